@@ -1,0 +1,1 @@
+//! Build-time generation of the engine's numeric tables (trig, reciprocals).

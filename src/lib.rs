@@ -1,0 +1,8 @@
+//! portalcast: a sector/portal 3D engine for the Game Boy Advance.
+//!
+//! The library is `no_std` and builds for the host (where `cargo test` checks the math, the
+//! rasterizer twins and the renderer against an f64 oracle) and for `thumbv4t-none-eabi` (where the
+//! ROM binary in `main.rs` drives it). See `docs/ARCHITECTURE.md` for the pipeline.
+#![cfg_attr(not(test), no_std)]
+
+pub mod math;

@@ -1,0 +1,1 @@
+//! Fixed-point formats, angles, trig, reciprocals and exact integer geometry.
