@@ -4,5 +4,13 @@
 //! rasterizer twins and the renderer against an f64 oracle) and for `thumbv4t-none-eabi` (where the
 //! ROM binary in `main.rs` drives it). See `docs/ARCHITECTURE.md` for the pipeline.
 #![cfg_attr(not(test), no_std)]
+#![deny(unsafe_code)]
+#![warn(missing_docs)]
 
+pub mod frame;
 pub mod math;
+pub mod raster;
+pub mod testpic;
+
+#[cfg(target_os = "none")]
+pub mod hw;

@@ -1,0 +1,202 @@
+//! portalcast's build commands as a library: the `cargo rom` / `cargo play` / `cargo xtest`
+//! aliases run the binary, and emulator tests call [`rom_for_tests`] to get a fresh `.gba`.
+//!
+//! This crate must build before any setup has run, so it depends on nothing that needs a system
+//! library (the mGBA harness is started as a separate process once setup has installed libmgba).
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+/// The GBA target the ROM is built for.
+pub const ROM_TARGET: &str = "thumbv4t-none-eabi";
+/// Debian packages the harness (libmgba) and the play command (an mGBA window) need.
+pub const DEBIAN_PACKAGES: [&str; 2] = ["libmgba-dev", "mgba-sdl"];
+
+/// A failed step, with the one line that says what to do.
+#[derive(Debug)]
+pub struct TaskError(pub String);
+
+impl fmt::Display for TaskError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for TaskError {}
+
+/// Shorthand for results of the tasks.
+pub type TaskResult<T> = Result<T, TaskError>;
+
+fn fail<T>(message: impl Into<String>) -> TaskResult<T> {
+    Err(TaskError(message.into()))
+}
+
+/// The workspace root (where the top-level Cargo.toml is).
+pub fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .ancestors()
+        .nth(2)
+        .expect("crates/xtask sits two levels below the workspace root")
+        .to_path_buf()
+}
+
+/// Where `cargo rom` writes the ROM: `target/portalcast.gba` under the workspace root.
+pub fn gba_path() -> PathBuf {
+    workspace_root().join("target").join("portalcast.gba")
+}
+
+/// The ROM build's own target directory. Separate from the host one so that a test can build
+/// the ROM while `cargo test` holds the host build directory.
+pub fn rom_target_dir() -> PathBuf {
+    workspace_root().join("target").join("rom")
+}
+
+/// The linked ROM ELF.
+pub fn elf_path() -> PathBuf {
+    rom_target_dir().join(ROM_TARGET).join("release").join("portalcast")
+}
+
+fn cargo() -> Command {
+    let mut command = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
+    command.current_dir(workspace_root());
+    command
+}
+
+fn run(command: &mut Command, what: &str) -> TaskResult<()> {
+    let status = command
+        .status()
+        .map_err(|error| TaskError(format!("{what}: could not start {command:?}: {error}")))?;
+    if status.success() {
+        Ok(())
+    } else {
+        fail(format!("{what} failed ({status})"))
+    }
+}
+
+fn tool_exists(tool: &str) -> bool {
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("command -v {tool} >/dev/null 2>&1"))
+        .status()
+        .is_ok_and(|status| status.success())
+}
+
+/// Installs the nightly `rust-src` component if it is missing (the ROM builds `core` from it).
+/// Never updates the toolchain.
+pub fn ensure_rust_src() -> TaskResult<()> {
+    if !tool_exists("rustup") {
+        return fail("rustup is not installed: install it (https://rustup.rs), then run this command again");
+    }
+    let installed = Command::new("rustup")
+        .args(["component", "list", "--toolchain", "nightly", "--installed"])
+        .output()
+        .map_err(|error| TaskError(format!("rustup component list: {error}")))?;
+    if !installed.status.success() {
+        return fail("the nightly toolchain is missing: run `rustup toolchain install nightly`, then this command again");
+    }
+    if String::from_utf8_lossy(&installed.stdout).lines().any(|line| line.starts_with("rust-src")) {
+        return Ok(());
+    }
+    eprintln!("setup: rustup component add rust-src --toolchain nightly");
+    run(
+        Command::new("rustup").args(["component", "add", "rust-src", "--toolchain", "nightly"]),
+        "installing rust-src (rustup component add rust-src --toolchain nightly)",
+    )
+}
+
+fn debian_package_installed(package: &str) -> bool {
+    Command::new("dpkg-query")
+        .args(["-W", "-f=${Status}", package])
+        .output()
+        .is_ok_and(|out| String::from_utf8_lossy(&out.stdout).contains("install ok installed"))
+}
+
+/// Installs [`DEBIAN_PACKAGES`] with apt-get if any is missing (apt-get update first).
+pub fn ensure_debian_packages() -> TaskResult<()> {
+    let missing: Vec<&str> =
+        DEBIAN_PACKAGES.iter().copied().filter(|package| !debian_package_installed(package)).collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    let list = missing.join(" ");
+    if !tool_exists("apt-get") {
+        return fail(format!("missing {list} and no apt-get here: install mGBA's library and player ({list}) with your package manager"));
+    }
+    let is_root = Command::new("id").arg("-u").output().is_ok_and(|out| out.stdout.starts_with(b"0"));
+    let sudo: &[&str] = if is_root {
+        &[]
+    } else if tool_exists("sudo") {
+        &["sudo"]
+    } else {
+        return fail(format!("missing {list}: run `apt-get update && apt-get install -y {list}` as root"));
+    };
+    let apt = |args: &[&str]| {
+        let mut full: Vec<&str> = sudo.to_vec();
+        full.push("apt-get");
+        full.extend_from_slice(args);
+        let mut command = Command::new(full[0]);
+        command.args(&full[1..]).env("DEBIAN_FRONTEND", "noninteractive");
+        command
+    };
+    eprintln!("setup: apt-get update && apt-get install -y {list}");
+    run(&mut apt(&["update", "-q"]), "apt-get update")?;
+    let mut install_args = vec!["install", "-y", "-q", "--no-install-recommends"];
+    install_args.extend(missing.iter().copied());
+    run(&mut apt(&install_args), &format!("apt-get install {list}"))
+}
+
+/// Everything the test and play commands need, installed if missing.
+pub fn ensure_setup() -> TaskResult<()> {
+    ensure_rust_src()?;
+    ensure_debian_packages()
+}
+
+/// Builds the ROM ELF (release, Thumb, `core` from source) and converts it into
+/// `target/portalcast.gba` with agb-gbafix. Returns the `.gba` path.
+pub fn build_rom() -> TaskResult<PathBuf> {
+    ensure_rust_src()?;
+    run(
+        cargo()
+            .args(["build", "--release", "--target", ROM_TARGET, "-Zbuild-std=core"])
+            .args(["-p", "portalcast", "--bin", "portalcast", "--target-dir"])
+            .arg(rom_target_dir()),
+        "building the ROM",
+    )?;
+    let gba = gba_path();
+    elf_to_gba(&elf_path(), &gba)?;
+    Ok(gba)
+}
+
+/// Converts a linked ELF into a `.gba` with a valid header (logo, complement check, title, game
+/// code). Writes a temporary file and renames it, so a failure leaves no half-written ROM.
+pub fn elf_to_gba(elf: &Path, gba: &Path) -> TaskResult<()> {
+    let elf_bytes = std::fs::read(elf)
+        .map_err(|error| TaskError(format!("{}: cannot read the ROM ELF ({error}); build it with `cargo rom`", elf.display())))?;
+    let header = agb_gbafix::GbaHeader {
+        start_code: [0; 4],
+        game_title: *b"PORTALCAST\0\0",
+        game_code: *b"BPCE",
+        maker_code: *b"PC",
+        software_version: 0,
+    };
+    let mut rom = Vec::new();
+    agb_gbafix::write_gba_file(&elf_bytes, header, agb_gbafix::PaddingBehaviour::DoNotPad, false, &mut rom)
+        .map_err(|error| TaskError(format!("{}: cannot convert to .gba: {error}", elf.display())))?;
+    let partial = gba.with_extension("gba.partial");
+    std::fs::write(&partial, &rom)
+        .and_then(|()| std::fs::rename(&partial, gba))
+        .map_err(|error| TaskError(format!("{}: cannot write the ROM: {error}", gba.display())))
+}
+
+/// The `.gba` emulator tests run: `$PORTALCAST_GBA` if set (the test command builds the ROM
+/// first and sets it), otherwise a fresh build, made once per test process.
+pub fn rom_for_tests() -> PathBuf {
+    static ROM: OnceLock<PathBuf> = OnceLock::new();
+    ROM.get_or_init(|| match std::env::var_os("PORTALCAST_GBA") {
+        Some(path) => PathBuf::from(path),
+        None => build_rom().unwrap_or_else(|error| panic!("{error}")),
+    })
+    .clone()
+}

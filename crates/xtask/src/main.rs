@@ -1,0 +1,110 @@
+//! `cargo rom`, `cargo play` and `cargo xtest` (aliases in .cargo/config.toml).
+use portalcast_xtask::{build_rom, ensure_setup, workspace_root, TaskError, TaskResult};
+use std::process::{Command, ExitCode};
+
+const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("rom") => rom(),
+        Some("play") => play(),
+        Some("test") => test(),
+        _ => Err(TaskError(USAGE.to_string())),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn rom() -> TaskResult<()> {
+    let gba = build_rom()?;
+    let size = std::fs::metadata(&gba).map(|meta| meta.len()).unwrap_or(0);
+    println!("ROM: {} ({size} bytes)", gba.display());
+    Ok(())
+}
+
+fn cargo() -> Command {
+    let mut command = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
+    command.current_dir(workspace_root());
+    command
+}
+
+fn run(command: &mut Command, what: &str) -> TaskResult<()> {
+    eprintln!("== {what}");
+    let status = command
+        .status()
+        .map_err(|error| TaskError(format!("{what}: could not start: {error}")))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(TaskError(format!("{what} failed ({status})")))
+    }
+}
+
+fn has_display() -> bool {
+    ["DISPLAY", "WAYLAND_DISPLAY"]
+        .iter()
+        .any(|var| std::env::var_os(var).is_some_and(|value| !value.is_empty()))
+}
+
+fn find_player() -> Option<&'static str> {
+    ["mgba", "mgba-qt"].into_iter().find(|player| {
+        Command::new("sh")
+            .arg("-c")
+            .arg(format!("command -v {player} >/dev/null 2>&1"))
+            .status()
+            .is_ok_and(|status| status.success())
+    })
+}
+
+fn play() -> TaskResult<()> {
+    ensure_setup()?;
+    let gba = build_rom()?;
+    println!("ROM: {}", gba.display());
+    if has_display() {
+        if let Some(player) = find_player() {
+            return run(Command::new(player).arg(&gba), &format!("{player} {}", gba.display()));
+        }
+    }
+    let out = workspace_root().join("target").join("play");
+    let script = workspace_root().join("assets").join("demo").join("play.keys");
+    let mut headless = cargo();
+    headless
+        .args(["run", "--quiet", "--release", "-p", "portalcast-harness", "--bin", "pc-run", "--"])
+        .arg(&gba)
+        .args(["--frames", "600", "--png-every", "60", "--summary", "--out"])
+        .arg(&out)
+        .arg("--keys")
+        .arg(&script);
+    run(&mut headless, "no display: running the demo headless in the real mGBA core")?;
+    println!("PNG frames: {}", out.display());
+    Ok(())
+}
+
+fn test() -> TaskResult<()> {
+    ensure_setup()?;
+    run(cargo().args(["fmt", "--all", "--", "--check"]), "cargo fmt --check")?;
+    run(
+        cargo().args(["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"]),
+        "cargo clippy (host)",
+    )?;
+    let rom_target_dir = portalcast_xtask::rom_target_dir();
+    run(
+        cargo()
+            .args(["clippy", "--release", "--target", portalcast_xtask::ROM_TARGET, "-Zbuild-std=core"])
+            .args(["-p", "portalcast", "--target-dir"])
+            .arg(&rom_target_dir)
+            .args(["--", "-D", "warnings"]),
+        "cargo clippy (GBA)",
+    )?;
+    let gba = build_rom()?;
+    run(
+        cargo().args(["test", "--workspace"]).env("PORTALCAST_GBA", &gba),
+        "cargo test --workspace",
+    )
+}

@@ -1,0 +1,63 @@
+//! Mode 4 with two pages, BG2's affine step per resolution, the palette, and VBlank waits through
+//! the VBlank interrupt and the BIOS `IntrWait`.
+
+use crate::frame::Resolution;
+use gba::bios::VBlankIntrWait;
+use gba::interrupts::IrqBits;
+use gba::mmio::{BG2PA, BG2PB, BG2PC, BG2PD, BG2X, BG2Y, BG_PALETTE, DISPCNT, DISPSTAT, IE, IME};
+use gba::prelude::{Color, DisplayControl, DisplayStatus, VideoMode};
+use gba::fixed::{i16fx8, i32fx8};
+
+/// Owns the display: which page is shown and at which resolution.
+pub struct Display {
+    shown_page: usize,
+}
+
+impl Display {
+    /// Turns on Mode 4 with BG2, page 0 shown, the VBlank interrupt armed, and `resolution`'s
+    /// affine step.
+    pub fn start(resolution: Resolution) -> Display {
+        DISPSTAT.write(DisplayStatus::new().with_irq_vblank(true));
+        IE.write(IrqBits::VBLANK);
+        IME.write(true);
+        let display = Display { shown_page: 0 };
+        display.show(resolution);
+        display
+    }
+
+    /// The page on screen (0 at 0x0600_0000, 1 at 0x0600_A000).
+    pub fn shown_page(&self) -> usize {
+        self.shown_page
+    }
+
+    /// Loads all 256 BG palette entries.
+    pub fn set_palette(&self, palette: &[u16; 256]) {
+        for (index, colour) in palette.iter().enumerate() {
+            BG_PALETTE.index(index).write(Color(*colour));
+        }
+    }
+
+    /// Sleeps until the next VBlank starts, then shows the back page at `resolution`. The affine
+    /// registers and DISPCNT are written inside VBlank, so the new page and its scale appear
+    /// together on the next frame.
+    pub fn flip_at_vblank(&mut self, resolution: Resolution) {
+        VBlankIntrWait();
+        self.shown_page ^= 1;
+        self.show(resolution);
+    }
+
+    fn show(&self, resolution: Resolution) {
+        BG2PA.write(i16fx8::from_bits(resolution.bg2_pa()));
+        BG2PB.write(i16fx8::from_bits(0));
+        BG2PC.write(i16fx8::from_bits(0));
+        BG2PD.write(i16fx8::from_bits(resolution.bg2_pd()));
+        BG2X.write(i32fx8::from_bits(0));
+        BG2Y.write(i32fx8::from_bits(0));
+        DISPCNT.write(
+            DisplayControl::new()
+                .with_video_mode(VideoMode::_4)
+                .with_show_bg2(true)
+                .with_show_frame1(self.shown_page == 1),
+        );
+    }
+}
