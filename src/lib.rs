@@ -8,6 +8,7 @@
 #![warn(missing_docs)]
 
 pub mod frame;
+pub mod kernel_check;
 pub mod math;
 pub mod raster;
 pub mod testpic;

@@ -13,12 +13,15 @@ fn main() {
 #[cfg(target_os = "none")]
 mod rom {
     use portalcast::frame::Resolution;
-    use portalcast::hw::{self, kernels::VramPage, log, memory, meter, video::Display};
-    use portalcast::testpic;
+    use portalcast::hw::kernels::{VramCanvas, VramPage};
+    use portalcast::hw::{self, log, memory, meter, video::Display};
+    use portalcast::{kernel_check, testpic};
 
     const KEY_SELECT: u16 = 1 << 2;
     const KEY_RIGHT: u16 = 1 << 4;
     const KEY_LEFT: u16 = 1 << 5;
+    const KEY_R: u16 = 1 << 8;
+    const KEY_L: u16 = 1 << 9;
 
     /// Entered from gba's runtime after it copied IWRAM/EWRAM and zeroed .bss.
     #[allow(unsafe_code)]
@@ -36,6 +39,9 @@ mod rom {
         let mut resolution = Resolution::R120x80;
         let mut display = Display::start(resolution);
         display.set_palette(&testpic::PALETTE);
+        if hw::keys_held() & (KEY_L | KEY_R) == KEY_L | KEY_R {
+            kernel_check_scene(&mut display);
+        }
         let mut phase: u32 = 0;
         let mut held_before: u16 = 0;
         let mut frame: u32 = 0;
@@ -64,6 +70,31 @@ mod rom {
                 "shown frame={frame} res={} phase={phase} draw_cycles={draw_cycles}",
                 resolution.label()
             ));
+        }
+    }
+
+    /// L+R held at boot: draw the kernel check at every resolution with a few seeds, printing
+    /// where each page is, so the emulator test can compare VRAM with the host twins.
+    fn kernel_check_scene(display: &mut Display) -> ! {
+        let mut seed = 1u32;
+        loop {
+            for resolution in Resolution::ALL {
+                let mut page = VramPage::back_of(display.shown_page());
+                page.clear();
+                let address = page.address();
+                let started = meter::now();
+                kernel_check::draw(&mut VramCanvas::new(page, resolution), seed);
+                let cycles = meter::cycles_since(started);
+                display.flip_at_vblank(resolution);
+                log::info(format_args!(
+                    "kernel-check res={} seed={seed} page=0x{address:08x} cycles={cycles}",
+                    resolution.label()
+                ));
+                // Hold the page on screen for a frame so the test reads it before it is reused.
+                display.wait_vblank();
+                display.wait_vblank();
+                seed = seed.wrapping_add(1);
+            }
         }
     }
 

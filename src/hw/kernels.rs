@@ -26,7 +26,7 @@ extern "C" {
 
 /// A Mode 4 page in VRAM that the kernels draw into.
 pub struct VramPage {
-    base: *mut u16,
+    pub(crate) base: *mut u16,
 }
 
 impl VramPage {
@@ -34,6 +34,21 @@ impl VramPage {
     pub fn back_of(shown_page: usize) -> VramPage {
         let base = if shown_page == 0 { 0x0600_A000 } else { 0x0600_0000 };
         VramPage { base: base as *mut u16 }
+    }
+}
+
+impl VramPage {
+    /// Sets every pixel of the page to palette index 0.
+    pub fn clear(&mut self) {
+        for offset in 0..PAGE_HALFWORDS {
+            // SAFETY: offset < 19,200 halfwords, the page size; VRAM takes 16-bit stores.
+            unsafe { self.base.add(offset).write_volatile(0) };
+        }
+    }
+
+    /// The page's base address (0x0600_0000 or 0x0600_A000), printed for tests that read VRAM.
+    pub fn address(&self) -> usize {
+        self.base as usize
     }
 }
 
@@ -68,5 +83,183 @@ impl SpanTarget for VramPage {
                 SpanPacking::Pairs => pc_span64_pairs(&job),
             }
         }
+    }
+}
+
+core::arch::global_asm!(include_str!("../../asm/column.s"), options(raw));
+core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
+
+use crate::frame::Resolution;
+use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
+use crate::raster::flat::{FlatTexture, FLAT_LOG2_SIDES};
+use crate::raster::Canvas;
+
+/// The argument block of the column kernels (`asm/column.s`).
+#[repr(C)]
+struct ColumnJob {
+    dst: *mut u8,
+    texels: *const u8,
+    v: u32,
+    dv: u32,
+    count: u32,
+    colormap: *const u8,
+}
+
+/// The argument block of the flat kernels (`asm/flat.s`).
+#[repr(C)]
+struct FlatJob {
+    dst: *mut u16,
+    texels: *const u8,
+    pos: u32,
+    step: u32,
+    count: u32,
+    colormap: *const u8,
+}
+
+type ColumnKernel = unsafe extern "C" fn(*const ColumnJob);
+type FlatKernel = unsafe extern "C" fn(*const FlatJob);
+
+macro_rules! kernel_table {
+    ($job:ty; $($name:ident),+ $(,)?) => {{
+        extern "C" { $(fn $name(job: *const $job);)+ }
+        [$($name as unsafe extern "C" fn(*const $job)),+]
+    }};
+}
+
+/// Column kernels by `[packing][lit][log2_height - 3]`; packing 0 = doubled, 1 = even, 2 = odd.
+static COLUMN_KERNELS: [[[ColumnKernel; 6]; 2]; 3] = [
+    [
+        kernel_table!(ColumnJob; pc_col_dbl_unlit_h3, pc_col_dbl_unlit_h4, pc_col_dbl_unlit_h5, pc_col_dbl_unlit_h6, pc_col_dbl_unlit_h7, pc_col_dbl_unlit_h8),
+        kernel_table!(ColumnJob; pc_col_dbl_lit_h3, pc_col_dbl_lit_h4, pc_col_dbl_lit_h5, pc_col_dbl_lit_h6, pc_col_dbl_lit_h7, pc_col_dbl_lit_h8),
+    ],
+    [
+        kernel_table!(ColumnJob; pc_col_even_unlit_h3, pc_col_even_unlit_h4, pc_col_even_unlit_h5, pc_col_even_unlit_h6, pc_col_even_unlit_h7, pc_col_even_unlit_h8),
+        kernel_table!(ColumnJob; pc_col_even_lit_h3, pc_col_even_lit_h4, pc_col_even_lit_h5, pc_col_even_lit_h6, pc_col_even_lit_h7, pc_col_even_lit_h8),
+    ],
+    [
+        kernel_table!(ColumnJob; pc_col_odd_unlit_h3, pc_col_odd_unlit_h4, pc_col_odd_unlit_h5, pc_col_odd_unlit_h6, pc_col_odd_unlit_h7, pc_col_odd_unlit_h8),
+        kernel_table!(ColumnJob; pc_col_odd_lit_h3, pc_col_odd_lit_h4, pc_col_odd_lit_h5, pc_col_odd_lit_h6, pc_col_odd_lit_h7, pc_col_odd_lit_h8),
+    ],
+];
+
+/// Flat kernels by `[pairs][lit][log2_side - 3]`.
+static FLAT_KERNELS: [[[FlatKernel; 4]; 2]; 2] = [
+    [
+        kernel_table!(FlatJob; pc_flat_dbl_unlit_k3, pc_flat_dbl_unlit_k4, pc_flat_dbl_unlit_k5, pc_flat_dbl_unlit_k6),
+        kernel_table!(FlatJob; pc_flat_dbl_lit_k3, pc_flat_dbl_lit_k4, pc_flat_dbl_lit_k5, pc_flat_dbl_lit_k6),
+    ],
+    [
+        kernel_table!(FlatJob; pc_flat_pair_unlit_k3, pc_flat_pair_unlit_k4, pc_flat_pair_unlit_k5, pc_flat_pair_unlit_k6),
+        kernel_table!(FlatJob; pc_flat_pair_lit_k3, pc_flat_pair_lit_k4, pc_flat_pair_lit_k5, pc_flat_pair_lit_k6),
+    ],
+];
+
+/// The back page in VRAM as a [`Canvas`]: columns and spans go to the asm kernels.
+pub struct VramCanvas {
+    page: VramPage,
+    resolution: Resolution,
+}
+
+impl VramCanvas {
+    /// Draws into `page` at `resolution`.
+    pub fn new(page: VramPage, resolution: Resolution) -> VramCanvas {
+        VramCanvas { page, resolution }
+    }
+
+    fn row_address(&self, row: usize) -> *mut u8 {
+        // SAFETY (of the arithmetic): callers check row < 160, so this stays in the page.
+        self.page.base.cast::<u8>().wrapping_add(row * crate::frame::PAGE_WIDTH)
+    }
+
+    /// One native pixel written by read-modify-write of its halfword, keeping the neighbour.
+    fn put_native(&mut self, x: usize, row: usize, index: u8) {
+        let halfword = self.row_address(row).wrapping_add(x & !1).cast::<u16>();
+        // SAFETY: in the page (bounds checked by the callers); VRAM takes 16-bit accesses.
+        unsafe {
+            let old = halfword.read_volatile();
+            let new = if x % 2 == 0 {
+                (old & 0xff00) | u16::from(index)
+            } else {
+                (old & 0x00ff) | (u16::from(index) << 8)
+            };
+            halfword.write_volatile(new);
+        }
+    }
+}
+
+fn colormap_pointer(colormap: Option<&[u8; 256]>) -> *const u8 {
+    colormap.map_or(core::ptr::null(), |row| row.as_ptr())
+}
+
+impl Canvas for VramCanvas {
+    fn resolution(&self) -> Resolution {
+        self.resolution
+    }
+
+    fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture) {
+        assert!(x < self.resolution.width() && row + count <= self.resolution.height() && count > 0);
+        assert!(COLUMN_LOG2_HEIGHTS.contains(&texture.log2_height));
+        assert_eq!(texture.texels.len(), 1 << texture.log2_height);
+        let (packing, byte_column) = match self.resolution.pixels_per_halfword() {
+            1 => (0, 2 * x),
+            _ => (1 + x % 2, x & !1),
+        };
+        let job = ColumnJob {
+            dst: self.row_address(row).wrapping_add(byte_column),
+            texels: texture.texels.as_ptr(),
+            v: texture.v,
+            dv: texture.dv,
+            count: count as u32,
+            colormap: colormap_pointer(texture.colormap),
+        };
+        let kernel = COLUMN_KERNELS[packing][usize::from(texture.colormap.is_some())]
+            [(texture.log2_height - 3) as usize];
+        // SAFETY: the column lies inside the page (checked above), the texel column holds
+        // 2^log2_height bytes and every index the kernel forms is below that; the colormap, if
+        // used, has 256 entries.
+        unsafe { kernel(&job) };
+    }
+
+    fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
+        assert!(row < self.resolution.height() && x + count <= self.resolution.width() && count > 0);
+        assert!(FLAT_LOG2_SIDES.contains(&texture.log2_side));
+        assert_eq!(texture.texels.len(), 1 << (2 * texture.log2_side));
+        let lit = usize::from(texture.colormap.is_some());
+        let side = (texture.log2_side - 3) as usize;
+        let (mut x, mut count, mut texture) = (x, count, *texture);
+        if self.resolution.pixels_per_halfword() == 2 {
+            // Whole halfwords go to the pair kernel; a pixel sharing its halfword with a
+            // neighbour outside the span is written here with the twin's arithmetic.
+            if x % 2 == 1 {
+                let index = texture.indices(1).next().unwrap_or(0);
+                self.put_native(x, row, index);
+                texture = texture.advanced(1);
+                x += 1;
+                count -= 1;
+            }
+            if count % 2 == 1 {
+                let index = texture.advanced(count as u32 - 1).indices(1).next().unwrap_or(0);
+                self.put_native(x + count - 1, row, index);
+                count -= 1;
+            }
+            if count == 0 {
+                return;
+            }
+        }
+        let (pairs, dst_halfword, halfwords) = match self.resolution.pixels_per_halfword() {
+            1 => (0, x, count),
+            _ => (1, x / 2, count / 2),
+        };
+        let job = FlatJob {
+            dst: self.row_address(row).cast::<u16>().wrapping_add(dst_halfword),
+            texels: texture.texels.as_ptr(),
+            pos: texture.pos.0,
+            step: texture.step.0,
+            count: halfwords as u32,
+            colormap: colormap_pointer(texture.colormap),
+        };
+        // SAFETY: the run lies inside the page row (checked above); the flat holds 4^k texels
+        // and the kernel's index is below that by construction of its masks.
+        unsafe { FLAT_KERNELS[pairs][lit][side](&job) };
     }
 }

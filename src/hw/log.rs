@@ -15,7 +15,8 @@ pub fn info(args: Arguments) {
     print_at(MgbaMessageLevel::Info, args);
 }
 
-/// Prints one Fatal-level line. mGBA stops emulation on a Fatal message, so this comes last.
+/// Prints one Fatal-level line. mGBA's frontends stop on it (the bare core used by the harness
+/// does not; the harness fails the run instead), so this is the last thing the ROM prints.
 pub fn fatal(args: Arguments) {
     print_at(MgbaMessageLevel::Fatal, args);
 }

@@ -46,6 +46,11 @@ impl Display {
         self.show(resolution);
     }
 
+    /// Sleeps until the next VBlank starts, changing nothing.
+    pub fn wait_vblank(&self) {
+        VBlankIntrWait();
+    }
+
     fn show(&self, resolution: Resolution) {
         BG2PA.write(i16fx8::from_bits(resolution.bg2_pa()));
         BG2PB.write(i16fx8::from_bits(0));

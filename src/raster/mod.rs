@@ -4,6 +4,8 @@
 //! (including wrap-around), so the host can render exactly what the ROM renders; an emulator test
 //! compares the two pixel for pixel.
 
+pub mod column;
+pub mod flat;
 pub mod span;
 
 use crate::frame::{PAGE_HALFWORDS, PAGE_ROW_HALFWORDS};
@@ -42,5 +44,60 @@ impl SpanTarget for HostPage {
     ) {
         let start = row * PAGE_ROW_HALFWORDS + first_halfword;
         span::draw_span(&mut self.halfwords[start..start + halfwords], texture, steps, packing);
+    }
+}
+
+use crate::frame::Resolution;
+use column::ColumnTexture;
+use flat::FlatTexture;
+
+/// Where the renderer's columns and spans go: VRAM through the asm kernels on the GBA, a host
+/// page through the twins on the host. Coordinates are logical (at the canvas's resolution);
+/// rows are page rows.
+pub trait Canvas {
+    /// The resolution this canvas draws at.
+    fn resolution(&self) -> Resolution;
+    /// Draws `count` rows of logical column `x`, from row `row` down.
+    fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture);
+    /// Draws `count` logical pixels of row `row`, from logical column `x` rightwards.
+    fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture);
+}
+
+/// A [`HostPage`] drawn at a resolution: the host twin of the GBA's VRAM canvas.
+pub struct HostCanvas<'a> {
+    /// The page drawn into.
+    pub page: &'a mut HostPage,
+    /// The resolution drawn at.
+    pub resolution: Resolution,
+}
+
+impl HostCanvas<'_> {
+    fn put(&mut self, x: usize, row: usize, index: u8) {
+        let halfword = &mut self.page.halfwords[row * PAGE_ROW_HALFWORDS + x / self.resolution.pixels_per_halfword()];
+        *halfword = match (self.resolution.pixels_per_halfword(), x % 2) {
+            (1, _) => u16::from(index) * 0x0101,
+            (_, 0) => (*halfword & 0xff00) | u16::from(index),
+            _ => (*halfword & 0x00ff) | (u16::from(index) << 8),
+        };
+    }
+}
+
+impl Canvas for HostCanvas<'_> {
+    fn resolution(&self) -> Resolution {
+        self.resolution
+    }
+
+    fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture) {
+        assert!(x < self.resolution.width() && row + count <= self.resolution.height());
+        for (offset, index) in texture.indices(count).enumerate() {
+            self.put(x, row + offset, index);
+        }
+    }
+
+    fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
+        assert!(row < self.resolution.height() && x + count <= self.resolution.width());
+        for (offset, index) in texture.indices(count).enumerate() {
+            self.put(x + offset, row, index);
+        }
     }
 }

@@ -1,0 +1,87 @@
+@ Floor and ceiling span kernels: one screen row across a square 2^k x 2^k flat, stepping a
+@ packed texture position (the layout Doom's R_DrawSpan uses). ARM code in IWRAM.
+@ Rust twins: src/raster/flat.rs (identical pixels, tested).
+@
+@ The position packs both coordinates in one register, each integer part directly above its
+@ fraction so one ADD steps both:
+@   bits 32-k .. 31  : u integer (k bits)      bits 16 .. 31-k : u fraction
+@   bits 16-k .. 15  : v integer (k bits)      bits 0 .. 15-k  : v fraction
+@ texel index = v*2^k + u = ((pos >> (16-2k)) & ((2^k-1) << k)) | (pos >> (32-k)).
+@
+@ r0 = *const FlatJob:
+@   +0  dst       *mut u16   halfword address of the first output halfword
+@   +4  texels    *const u8  2^k * 2^k texels, row-major
+@   +8  pos       u32        packed position of the first pixel
+@   +12 step      u32        packed step per logical pixel
+@   +16 count     u32        halfwords to write, at least 1
+@   +20 colormap  *const u8  256-entry light row (lit variants only)
+@
+@ Variants for k = 3..6:
+@   pc_flat_dbl_{unlit,lit}_kK    one logical pixel per halfword (120-wide modes; STRB mirrors)
+@   pc_flat_pair_{unlit,lit}_kK   two logical pixels per halfword (240 mode), left one low
+@ Per pixel (IWRAM texels and colormap): dbl unlit 8 cycles, dbl lit 11; pair lit 10.5.
+
+    .macro FLAT_TEXEL k, lit, out
+    and     \out, r7, r3, lsr #(16 - 2 * \k)
+    orr     \out, \out, r3, lsr #(32 - \k)
+    ldrb    \out, [r2, \out]
+    .if \lit
+    ldrb    \out, [r6, \out]
+    .endif
+    add     r3, r3, r4
+    .endm
+
+    .macro FLAT_OUT kind, k, lit
+    .ifc \kind, dbl
+    FLAT_TEXEL \k, \lit, r0
+    strb    r0, [r1], #2
+    .else
+    FLAT_TEXEL \k, \lit, r0
+    FLAT_TEXEL \k, \lit, r12
+    orr     r0, r0, r12, lsl #8
+    strh    r0, [r1], #2
+    .endif
+    .endm
+
+    .macro FLAT_KERNEL name, kind, k, lit
+    .global \name
+    .type \name, %function
+    .align 2
+\name:
+    push    {r4-r8}
+    ldmia   r0, {r1-r6}
+    mov     r7, #((1 << \k) - 1)
+    mov     r7, r7, lsl #\k
+    ands    r8, r5, #7
+    beq     2f
+1:
+    FLAT_OUT \kind, \k, \lit
+    subs    r8, r8, #1
+    bne     1b
+2:
+    movs    r5, r5, lsr #3
+    beq     4f
+3:
+    .rept 8
+    FLAT_OUT \kind, \k, \lit
+    .endr
+    subs    r5, r5, #1
+    bne     3b
+4:
+    pop     {r4-r8}
+    bx      lr
+    .size \name, . - \name
+    .endm
+
+    .section .iwram.pc_flat, "ax", %progbits
+    .arm
+
+    .irp k, 3, 4, 5, 6
+    FLAT_KERNEL pc_flat_dbl_unlit_k\k, dbl, \k, 0
+    FLAT_KERNEL pc_flat_dbl_lit_k\k, dbl, \k, 1
+    FLAT_KERNEL pc_flat_pair_unlit_k\k, pair, \k, 0
+    FLAT_KERNEL pc_flat_pair_lit_k\k, pair, \k, 1
+    .endr
+
+    .text
+    .thumb

@@ -1,0 +1,90 @@
+//! The kernel check: a deterministic scatter of columns and spans over every kernel variant
+//! (texture heights, flat sizes, lit and unlit, both packings). The ROM draws it through the asm
+//! kernels and the host through the twins; the emulator test requires identical pages.
+
+use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
+use crate::raster::flat::{FlatTexture, PackedUv, FLAT_LOG2_SIDES};
+use crate::raster::Canvas;
+
+const TEXEL_POOL_SIZE: usize = 4096;
+
+const fn texel_pool() -> [u8; TEXEL_POOL_SIZE] {
+    let mut pool = [0u8; TEXEL_POOL_SIZE];
+    let mut i = 0;
+    while i < TEXEL_POOL_SIZE {
+        // Every byte value appears, in an order unlike the index, so a wrong address shows.
+        pool[i] = ((i * 37 + (i >> 8) * 11) & 0xff) as u8;
+        i += 1;
+    }
+    pool
+}
+
+const fn check_colormap() -> [u8; 256] {
+    let mut colormap = [0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        colormap[i] = ((i * 7 + 3) & 0xff) as u8;
+        i += 1;
+    }
+    colormap
+}
+
+static TEXEL_POOL: [u8; TEXEL_POOL_SIZE] = texel_pool();
+static COLORMAP: [u8; 256] = check_colormap();
+
+/// A small deterministic generator (Numerical Recipes' LCG), so both sides draw the same jobs.
+struct Lcg(u32);
+
+impl Lcg {
+    fn next(&mut self) -> u32 {
+        self.0 = self.0.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        self.0
+    }
+
+    fn below(&mut self, bound: u32) -> u32 {
+        (self.next() >> 8) % bound
+    }
+}
+
+/// Columns and spans drawn per call.
+pub const JOBS_PER_KIND: u32 = 160;
+
+/// Draws the kernel check for `seed` on `canvas`.
+pub fn draw(canvas: &mut impl Canvas, seed: u32) {
+    let mut rng = Lcg(seed);
+    let width = canvas.resolution().width() as u32;
+    let height = canvas.resolution().height() as u32;
+    let heights = *COLUMN_LOG2_HEIGHTS.start()..=*COLUMN_LOG2_HEIGHTS.end();
+    let sides = *FLAT_LOG2_SIDES.start()..=*FLAT_LOG2_SIDES.end();
+    for job in 0..JOBS_PER_KIND {
+        let log2_height = heights.start() + job % (heights.end() - heights.start() + 1);
+        let column_start = rng.below((TEXEL_POOL_SIZE >> log2_height) as u32) as usize;
+        let texels = &TEXEL_POOL[column_start << log2_height..(column_start + 1) << log2_height];
+        let row = rng.below(height);
+        let count = 1 + rng.below(height - row);
+        let column = ColumnTexture {
+            texels,
+            log2_height,
+            v: rng.next(),
+            // Steps from a fraction of a texel to many texels per row, both directions.
+            dv: rng.next() >> rng.below(12),
+            colormap: if job % 3 == 0 { None } else { Some(&COLORMAP) },
+        };
+        canvas.column(rng.below(width) as usize, row as usize, count as usize, &column);
+    }
+    for job in 0..JOBS_PER_KIND {
+        let log2_side = sides.start() + job % (sides.end() - sides.start() + 1);
+        let texels = &TEXEL_POOL[..1 << (2 * log2_side)];
+        let x = rng.below(width);
+        let count = 1 + rng.below(width - x);
+        let step = |rng: &mut Lcg| (rng.next() as i32) >> (12 + rng.below(8));
+        let flat = FlatTexture {
+            texels,
+            log2_side,
+            pos: PackedUv(rng.next()),
+            step: PackedUv::pack(step(&mut rng), step(&mut rng), log2_side),
+            colormap: if job % 3 == 1 { None } else { Some(&COLORMAP) },
+        };
+        canvas.flat(rng.below(height) as usize, x as usize, count as usize, &flat);
+    }
+}

@@ -1,0 +1,72 @@
+//! Shared pieces of the emulator tests: the ROM under test, log-line fields, pages and frames.
+#![allow(dead_code)]
+
+use portalcast::frame::{shown_index, Resolution, PAGE_HALFWORDS, PAGE_HEIGHT, PAGE_WIDTH};
+use portalcast::raster::HostPage;
+use portalcast_harness::Emulator;
+use std::path::PathBuf;
+
+/// The ROM, loaded in a fresh mGBA core (built first if the test command did not).
+pub fn boot() -> Emulator {
+    let rom = portalcast_xtask::rom_for_tests();
+    Emulator::load(&rom).unwrap_or_else(|error| panic!("{error}"))
+}
+
+/// The value of `key=value` in a ROM log line.
+pub fn field<'a>(line: &'a str, key: &str) -> Option<&'a str> {
+    line.split_whitespace().find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
+}
+
+/// A numeric `key=value` field; panics with the line if missing or malformed.
+pub fn number(line: &str, key: &str) -> u64 {
+    let text = field(line, key).unwrap_or_else(|| panic!("no {key}= in {line:?}"));
+    let parsed = match text.strip_prefix("0x") {
+        Some(hex) => u64::from_str_radix(hex, 16),
+        None => text.parse(),
+    };
+    parsed.unwrap_or_else(|_| panic!("{key}={text} is not a number in {line:?}"))
+}
+
+/// The ROM's debug lines that start with `prefix`.
+pub fn lines_starting(emulator: &Emulator, prefix: &str) -> Vec<String> {
+    emulator
+        .debug_lines()
+        .into_iter()
+        .filter(|line| line.starts_with(prefix))
+        .map(str::to_owned)
+        .collect()
+}
+
+/// A Mode 4 page read out of the emulator's VRAM.
+pub fn read_page(emulator: &Emulator, address: u32) -> HostPage {
+    let bytes = emulator.read_bytes(address, PAGE_HALFWORDS * 2);
+    let mut page = HostPage::new();
+    for (halfword, pair) in page.halfwords.iter_mut().zip(bytes.chunks_exact(2)) {
+        *halfword = u16::from_le_bytes([pair[0], pair[1]]);
+    }
+    page
+}
+
+/// The 240×160 frame BG2 shows of `page` at `resolution`, through `palette`, as 5-bit channels.
+pub fn expected_frame_rgb5(page: &HostPage, resolution: Resolution, palette: &[u16; 256]) -> Vec<[u8; 3]> {
+    let mut pixels = Vec::with_capacity(PAGE_WIDTH * PAGE_HEIGHT);
+    for y in 0..PAGE_HEIGHT {
+        for x in 0..PAGE_WIDTH {
+            let colour = palette[usize::from(shown_index(&page.halfwords, resolution, x, y))];
+            pixels.push([(colour & 31) as u8, ((colour >> 5) & 31) as u8, ((colour >> 10) & 31) as u8]);
+        }
+    }
+    pixels
+}
+
+/// The emulator's current frame as 5-bit channels (mGBA expands BGR555 to 8 bits per channel).
+pub fn shown_frame_rgb5(emulator: &Emulator) -> Vec<[u8; 3]> {
+    emulator.frame_rgb().pixels().map(|pixel| [pixel[0] >> 3, pixel[1] >> 3, pixel[2] >> 3]).collect()
+}
+
+/// Where tests leave PNGs for people (and the README) to look at.
+pub fn screenshot_dir() -> PathBuf {
+    let dir = portalcast_xtask::workspace_root().join("target").join("screenshots");
+    std::fs::create_dir_all(&dir).expect("creating target/screenshots");
+    dir
+}
