@@ -7,10 +7,12 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod assets;
 pub mod frame;
 pub mod kernel_check;
 pub mod math;
 pub mod raster;
+pub mod render;
 pub mod testpic;
 
 #[cfg(target_os = "none")]

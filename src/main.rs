@@ -15,8 +15,14 @@ mod rom {
     use portalcast::frame::Resolution;
     use portalcast::hw::kernels::{VramCanvas, VramPage};
     use portalcast::hw::{self, log, memory, meter, video::Display};
-    use portalcast::{kernel_check, testpic};
+    use portalcast::render::demo;
+    use portalcast::render::light::Lighting;
+    use portalcast::render::view::{Settings, View};
+    use portalcast::render::walk::Renderer;
+    use portalcast::{assets, kernel_check, testpic};
 
+    const KEY_A: u16 = 1 << 0;
+    const KEY_B: u16 = 1 << 1;
     const KEY_SELECT: u16 = 1 << 2;
     const KEY_RIGHT: u16 = 1 << 4;
     const KEY_LEFT: u16 = 1 << 5;
@@ -36,14 +42,70 @@ mod rom {
             memory::stack_room()
         ));
 
-        let mut resolution = Resolution::R120x80;
-        let mut display = Display::start(resolution);
-        display.set_palette(&testpic::PALETTE);
-        if hw::keys_held() & (KEY_L | KEY_R) == KEY_L | KEY_R {
+        let mut display = Display::start(Resolution::R120x80);
+        let held_at_boot = hw::keys_held();
+        if held_at_boot & (KEY_L | KEY_R) == KEY_L | KEY_R {
+            display.set_palette(&testpic::PALETTE);
             kernel_check_scene(&mut display);
         }
+        if held_at_boot & KEY_B != 0 {
+            display.set_palette(&testpic::PALETTE);
+            test_picture_scene(&mut display, held_at_boot);
+        }
+        display.set_palette(&assets::PALETTE);
+        render_scene(&mut display, held_at_boot)
+    }
+
+    /// The engine: the demo camera path through the bench map. Select cycles the resolution,
+    /// A toggles lighting.
+    fn render_scene(display: &mut Display, held_at_boot: u16) -> ! {
+        let map = demo::demo_map();
+        let render_assets = demo::render_assets();
+        let mut renderer = Renderer::new();
+        let mut settings = Settings { resolution: Resolution::R120x80, lighting: Lighting::SectorDepth };
+        let mut held_before = held_at_boot;
+        let mut frame: u32 = 0;
+        loop {
+            let held = hw::keys_held();
+            let pressed = held & !held_before;
+            held_before = held;
+            if pressed & KEY_SELECT != 0 {
+                settings.resolution = settings.resolution.next();
+            }
+            if pressed & KEY_A != 0 {
+                settings.lighting = match settings.lighting {
+                    Lighting::SectorDepth => Lighting::Off,
+                    Lighting::Off => Lighting::Sector,
+                    Lighting::Sector => Lighting::SectorDepth,
+                };
+            }
+            let camera = demo::camera_at(&map, frame);
+            let view = View::new(&camera, &settings);
+            let page = VramPage::back_of(display.shown_page());
+            let address = page.address();
+            let started = meter::now();
+            let stats = renderer.render(&map, &render_assets, &view, &mut VramCanvas::new(page, settings.resolution));
+            let cycles = meter::cycles_since(started);
+            display.flip_at_vblank(settings.resolution);
+            log::info(format_args!(
+                "render frame={frame} res={} lighting={} page=0x{address:08x} cycles={cycles} visits={} columns={} span_px={} column_px={}",
+                settings.resolution.label(),
+                demo::lighting_label(settings.lighting),
+                stats.sector_visits,
+                stats.wall_columns,
+                stats.span_pixels,
+                stats.column_pixels,
+            ));
+            frame += 1;
+        }
+    }
+
+    /// B held at boot: the foundation's test picture. Select cycles the resolution, left/right
+    /// scroll.
+    fn test_picture_scene(display: &mut Display, held_at_boot: u16) -> ! {
+        let mut resolution = Resolution::R120x80;
         let mut phase: u32 = 0;
-        let mut held_before: u16 = 0;
+        let mut held_before: u16 = held_at_boot;
         let mut frame: u32 = 0;
         loop {
             let held = hw::keys_held();

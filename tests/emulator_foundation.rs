@@ -13,6 +13,7 @@ use portalcast_harness::Keys;
 #[test]
 fn rom_boots_and_prints_its_figures() {
     let mut emulator = boot();
+    emulator.set_keys(Keys::B);
     emulator.run_frames(10).unwrap_or_else(|error| panic!("{error}"));
     let boot_line = lines_starting(&emulator, "portalcast boot").pop().expect("a boot line");
     assert_eq!(number(&boot_line, "waitcnt"), 0x4317, "{boot_line}");
@@ -52,7 +53,11 @@ fn assert_frame_is_twin(emulator: &portalcast_harness::Emulator, resolution: Res
 #[test]
 fn test_picture_matches_the_twin_at_every_resolution() {
     let mut emulator = boot();
-    emulator.run_frames(12).unwrap_or_else(|error| panic!("{error}"));
+    // B held at boot selects the test picture.
+    emulator.set_keys(Keys::B);
+    emulator.run_frames(2).unwrap_or_else(|error| panic!("{error}"));
+    emulator.set_keys(Keys::NONE);
+    emulator.run_frames(10).unwrap_or_else(|error| panic!("{error}"));
     let mut seen = Vec::new();
     for _ in 0..3 {
         let (resolution, phase) = last_shown(&emulator);

@@ -61,6 +61,12 @@ pub trait Canvas {
     fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture);
     /// Draws `count` logical pixels of row `row`, from logical column `x` rightwards.
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture);
+    /// Names the surface the next calls draw: recorded by the host's coverage checks, ignored
+    /// on the GBA.
+    #[inline]
+    fn set_surface(&mut self, surface: crate::render::surface::Surface) {
+        let _ = surface;
+    }
 }
 
 /// A [`HostPage`] drawn at a resolution: the host twin of the GBA's VRAM canvas.

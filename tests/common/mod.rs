@@ -70,3 +70,92 @@ pub fn screenshot_dir() -> PathBuf {
     std::fs::create_dir_all(&dir).expect("creating target/screenshots");
     dir
 }
+
+use portalcast::raster::column::ColumnTexture;
+use portalcast::raster::flat::FlatTexture;
+use portalcast::raster::{Canvas, HostCanvas};
+use portalcast::render::surface::Surface;
+
+/// A host canvas that also records, per logical pixel, the surface drawn and how many times it
+/// was written: the debug coverage buffer of the renderer tests.
+pub struct RecordingCanvas {
+    /// The page the twins draw.
+    pub page: HostPage,
+    /// Resolution drawn at.
+    pub resolution: Resolution,
+    /// Surface per logical pixel, row-major.
+    pub surfaces: Vec<Surface>,
+    /// Writes per logical pixel.
+    pub writes: Vec<u32>,
+    /// Palette index per logical pixel.
+    pub indices: Vec<u8>,
+    current: Surface,
+}
+
+impl RecordingCanvas {
+    /// An empty canvas at `resolution`.
+    pub fn new(resolution: Resolution) -> RecordingCanvas {
+        let pixels = resolution.width() * resolution.height();
+        RecordingCanvas {
+            page: HostPage::new(),
+            resolution,
+            surfaces: vec![Surface::None; pixels],
+            writes: vec![0; pixels],
+            indices: vec![0; pixels],
+            current: Surface::None,
+        }
+    }
+
+    fn record(&mut self, x: usize, row: usize, index: u8) {
+        let at = row * self.resolution.width() + x;
+        self.surfaces[at] = self.current;
+        self.writes[at] += 1;
+        self.indices[at] = index;
+    }
+
+    /// Pixels written other than exactly once: (x, row, writes).
+    pub fn coverage_faults(&self) -> Vec<(usize, usize, u32)> {
+        let width = self.resolution.width();
+        self.writes
+            .iter()
+            .enumerate()
+            .filter(|(_, &writes)| writes != 1)
+            .map(|(at, &writes)| (at % width, at / width, writes))
+            .collect()
+    }
+}
+
+impl Canvas for RecordingCanvas {
+    fn resolution(&self) -> Resolution {
+        self.resolution
+    }
+
+    fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture) {
+        let indices: Vec<u8> = texture.indices(count).collect();
+        for (offset, index) in indices.into_iter().enumerate() {
+            self.record(x, row + offset, index);
+        }
+        HostCanvas { page: &mut self.page, resolution: self.resolution }.column(x, row, count, texture);
+    }
+
+    fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
+        let indices: Vec<u8> = texture.indices(count).collect();
+        for (offset, index) in indices.into_iter().enumerate() {
+            self.record(x + offset, row, index);
+        }
+        HostCanvas { page: &mut self.page, resolution: self.resolution }.flat(row, x, count, texture);
+    }
+
+    fn set_surface(&mut self, surface: Surface) {
+        self.current = surface;
+    }
+}
+
+/// The shipped assets, compiled once per test process by the same compiler build.rs runs.
+pub fn shipped_assets() -> &'static portalcast_assets::Compiled {
+    static COMPILED: std::sync::OnceLock<portalcast_assets::Compiled> = std::sync::OnceLock::new();
+    COMPILED.get_or_init(|| {
+        let dir = portalcast_xtask::workspace_root().join("assets");
+        portalcast_assets::compile_dir(&dir).unwrap_or_else(|errors| panic!("{errors}"))
+    })
+}

@@ -1,3 +1,530 @@
-//! The portalcast asset compiler. One implementation, used by the ROM's `build.rs` and by host tests.
+//! The portalcast asset compiler. One implementation, used by the ROM's `build.rs` and by host
+//! tests.
+//!
+//! [`compile_dir`] reads an asset directory (the repo's `assets/` or a user's), checks every map
+//! and every image the maps use, and returns a [`Compiled`] set: palette, colormap, textures
+//! with mip chains, sky, sprites and map tables, owned in `Vec`s. [`Compiled::write_to`] emits
+//! them into `OUT_DIR` as `assets.rs` (Rust statics) plus binary blobs pulled in with
+//! `include_bytes!`. Host tests can instead borrow the tables directly
+//! ([`Compiled::map`]) and run the engine on a freshly compiled map.
+//!
+//! The directory layout and both map formats are specified in `docs/MAP_FORMAT.md`. Errors are
+//! reported all at once, one line each, `file:line:col: what is wrong, what to do`
+//! ([`CompileErrors`]); on any error nothing is written.
 
+mod diag;
+mod emit;
+mod geometry;
+mod images;
+mod lex;
+mod map_build;
+mod map_grid;
+mod map_text;
 pub mod numeric_tables;
+mod palette;
+mod source;
+mod texels;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use image::RgbaImage;
+use portalcast_format::{Colormap, MapTables, Palette, Sky, Sprite, Texture, NO_TEXTURE, SKY};
+
+pub use diag::{CompileErrors, Diagnostic, Loc};
+pub use map_build::{Catalog, CompiledMap};
+
+/// Extension of text maps.
+pub const TEXT_MAP_EXTENSION: &str = "map";
+/// Extension of grid maps.
+pub const GRID_MAP_EXTENSION: &str = "grid";
+/// Folder of wall and flat textures, inside the asset directory.
+pub const TEXTURES_DIR: &str = "textures";
+/// Folder of sprite images.
+pub const SPRITES_DIR: &str = "sprites";
+/// Folder of the sky panorama.
+pub const SKY_DIR: &str = "sky";
+/// The sky panorama's file name inside [`SKY_DIR`].
+pub const SKY_FILE: &str = "sky.png";
+/// Folder of maps.
+pub const MAPS_DIR: &str = "maps";
+
+/// A texture compiled for the ROM, owning its texels.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CompiledTexture {
+    /// File name without extension.
+    pub name: String,
+    /// log2 of the width.
+    pub width_log2: u8,
+    /// log2 of the height.
+    pub height_log2: u8,
+    /// Mip levels, level 0 included.
+    pub mip_count: u8,
+    /// Column-major chain (empty unless a wall uses the texture).
+    pub columns: Vec<u8>,
+    /// Row-major chain (empty unless a floor or ceiling uses the texture).
+    pub rows: Vec<u8>,
+}
+
+impl CompiledTexture {
+    /// The texture as the ROM sees it.
+    pub fn texture(&self) -> Texture<'_> {
+        Texture {
+            name: &self.name,
+            width_log2: self.width_log2,
+            height_log2: self.height_log2,
+            mip_count: self.mip_count,
+            columns: &self.columns,
+            rows: &self.rows,
+        }
+    }
+}
+
+/// The sky panorama compiled for the ROM.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CompiledSky {
+    /// log2 of the width (one full turn).
+    pub width_log2: u8,
+    /// Height in texels.
+    pub height: u16,
+    /// Column-major palette indices.
+    pub texels: Vec<u8>,
+}
+
+impl CompiledSky {
+    /// The sky as the ROM sees it.
+    pub fn sky(&self) -> Sky<'_> {
+        Sky {
+            width_log2: self.width_log2,
+            height: self.height,
+            texels: &self.texels,
+        }
+    }
+}
+
+/// A sprite compiled for the ROM.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CompiledSprite {
+    /// File name without extension.
+    pub name: String,
+    /// Width in texels.
+    pub width: u16,
+    /// Height in texels.
+    pub height: u16,
+    /// Column-major palette indices, 0 = transparent.
+    pub texels: Vec<u8>,
+}
+
+impl CompiledSprite {
+    /// The sprite as the ROM sees it.
+    pub fn sprite(&self) -> Sprite<'_> {
+        Sprite {
+            name: &self.name,
+            width: self.width,
+            height: self.height,
+            texels: &self.texels,
+        }
+    }
+}
+
+/// A compiled asset set: everything the maps use, and nothing else.
+#[derive(Clone, Debug)]
+pub struct Compiled {
+    source_dir: PathBuf,
+    files_read: Vec<PathBuf>,
+    palette: Palette,
+    colormap: Box<Colormap>,
+    textures: Vec<CompiledTexture>,
+    sky: Option<CompiledSky>,
+    sprites: Vec<CompiledSprite>,
+    maps: Vec<CompiledMap>,
+    left_out: Vec<String>,
+}
+
+impl Compiled {
+    /// The shared BGR555 palette; entry 0 is transparent.
+    pub fn palette(&self) -> &Palette {
+        &self.palette
+    }
+
+    /// The light colormap.
+    pub fn colormap(&self) -> &Colormap {
+        &self.colormap
+    }
+
+    /// Textures used by some map, sorted by name; walls and sectors index this list.
+    pub fn textures(&self) -> &[CompiledTexture] {
+        &self.textures
+    }
+
+    /// The sky, if some sector shows it.
+    pub fn sky(&self) -> Option<&CompiledSky> {
+        self.sky.as_ref()
+    }
+
+    /// Sprites used by some thing, sorted by name; things index this list.
+    pub fn sprites(&self) -> &[CompiledSprite] {
+        &self.sprites
+    }
+
+    /// All maps, sorted by name.
+    pub fn maps(&self) -> &[CompiledMap] {
+        &self.maps
+    }
+
+    /// The tables of the map called `name` (file name without extension).
+    pub fn map(&self, name: &str) -> Option<MapTables<'_>> {
+        self.maps
+            .iter()
+            .find(|m| m.name == name)
+            .map(CompiledMap::tables)
+    }
+
+    /// Files and folders the compilation read: print each as `cargo:rerun-if-changed`.
+    pub fn files_read(&self) -> &[PathBuf] {
+        &self.files_read
+    }
+
+    /// Assets present in the directory but used by no map, hence left out.
+    pub fn left_out(&self) -> &[String] {
+        &self.left_out
+    }
+
+    /// Writes `assets.rs` and its blobs into `out_dir` (each to a temporary name first, renamed
+    /// into place once all are written). Returns the files the compilation read, for
+    /// `cargo:rerun-if-changed`.
+    pub fn write_to(&self, out_dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+        emit::write(self, out_dir)?;
+        Ok(self.files_read.clone())
+    }
+
+    /// ROM bytes per asset kind, and the RAM the tables would need if copied to EWRAM or IWRAM.
+    pub fn size_report(&self) -> String {
+        emit::size_report(self)
+    }
+}
+
+/// Parses and checks one map from text, against a catalog of texture and sprite names (no
+/// images are read). `file_name` picks the format by extension (`.map` or `.grid`) and names
+/// the file in errors. Texture and sprite indices in the result refer to the catalog's lists.
+pub fn compile_map_str(
+    file_name: &str,
+    text: &str,
+    catalog: &Catalog,
+) -> Result<CompiledMap, CompileErrors> {
+    let path = Path::new(file_name);
+    let stem = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("map")
+        .to_string();
+    let parsed = match path.extension().and_then(|e| e.to_str()) {
+        Some(GRID_MAP_EXTENSION) => map_grid::parse(text),
+        Some(TEXT_MAP_EXTENSION) => map_text::parse(text),
+        _ => Err(vec![(
+            Loc::START,
+            format!("unknown map format; name the file *.{TEXT_MAP_EXTENSION} or *.{GRID_MAP_EXTENSION}"),
+        )]),
+    };
+    parsed
+        .and_then(|source| map_build::build(&stem, &source, catalog))
+        .map_err(|errors| CompileErrors::in_file(path, errors))
+}
+
+/// Names of the `*.png` files of a folder (missing folder: none), with their paths.
+fn png_files(dir: &Path) -> BTreeMap<String, PathBuf> {
+    let mut found = BTreeMap::new();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return found;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        let is_png = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+        if let (true, Some(stem)) = (is_png, path.file_stem().and_then(|s| s.to_str())) {
+            found.insert(stem.to_string(), path);
+        }
+    }
+    found
+}
+
+/// What the maps use, by catalog index.
+#[derive(Default)]
+struct Usage {
+    wall_textures: Vec<bool>,
+    flat_textures: Vec<bool>,
+    sprites: Vec<bool>,
+    sky: bool,
+}
+
+impl Usage {
+    fn of(maps: &[CompiledMap], catalog: &Catalog) -> Usage {
+        let mut usage = Usage {
+            wall_textures: vec![false; catalog.textures().len()],
+            flat_textures: vec![false; catalog.textures().len()],
+            sprites: vec![false; catalog.sprites().len()],
+            sky: false,
+        };
+        for map in maps {
+            for wall in &map.walls {
+                for texture in [wall.texture, wall.upper_texture, wall.lower_texture] {
+                    if texture != NO_TEXTURE {
+                        usage.wall_textures[usize::from(texture)] = true;
+                    }
+                }
+            }
+            for sector in &map.sectors {
+                usage.flat_textures[usize::from(sector.floor_texture)] = true;
+                if sector.ceil_texture == SKY {
+                    usage.sky = true;
+                } else {
+                    usage.flat_textures[usize::from(sector.ceil_texture)] = true;
+                }
+            }
+            for thing in &map.things {
+                usage.sprites[usize::from(thing.sprite)] = true;
+            }
+        }
+        usage
+    }
+}
+
+/// Compiles the asset directory `dir`: `textures/*.png`, `sprites/*.png`, `sky/sky.png` and
+/// `maps/*.map`, `maps/*.grid` (see `docs/MAP_FORMAT.md`). Only what some map uses is kept.
+/// Returns every error found, sorted by file and position.
+pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
+    let mut errors: Vec<Diagnostic> = Vec::new();
+    let mut files_read = vec![dir.to_path_buf()];
+    let textures_dir = dir.join(TEXTURES_DIR);
+    let sprites_dir = dir.join(SPRITES_DIR);
+    let sky_path = dir.join(SKY_DIR).join(SKY_FILE);
+    let maps_dir = dir.join(MAPS_DIR);
+    let texture_files = png_files(&textures_dir);
+    let sprite_files = png_files(&sprites_dir);
+    let catalog = Catalog::new(
+        texture_files.keys().cloned(),
+        sprite_files.keys().cloned(),
+        sky_path.is_file(),
+    );
+    if catalog.textures().len() >= usize::from(SKY) {
+        errors.push(Diagnostic::new(
+            &textures_dir,
+            (
+                Loc::START,
+                format!(
+                    "{} textures are more than the tables can index; remove some",
+                    catalog.textures().len()
+                ),
+            ),
+        ));
+    }
+
+    let mut map_files: Vec<PathBuf> = std::fs::read_dir(&maps_dir)
+        .map(|entries| {
+            entries
+                .flatten()
+                .map(|e| e.path())
+                .filter(|p| {
+                    matches!(
+                        p.extension().and_then(|e| e.to_str()),
+                        Some(TEXT_MAP_EXTENSION | GRID_MAP_EXTENSION)
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    map_files.sort();
+    if map_files.is_empty() {
+        errors.push(Diagnostic::new(
+            &maps_dir,
+            (Loc::START, format!("no maps found; add at least one *.{TEXT_MAP_EXTENSION} or *.{GRID_MAP_EXTENSION} file to this folder")),
+        ));
+    }
+
+    let mut maps: Vec<CompiledMap> = Vec::new();
+    for path in &map_files {
+        files_read.push(path.clone());
+        let text = match std::fs::read(path).map(String::from_utf8) {
+            Ok(Ok(text)) => text,
+            Ok(Err(_)) => {
+                errors.push(Diagnostic::new(
+                    path,
+                    (
+                        Loc::START,
+                        "the file is not UTF-8 text; save it as UTF-8".to_string(),
+                    ),
+                ));
+                continue;
+            }
+            Err(e) => {
+                errors.push(Diagnostic::new(
+                    path,
+                    (Loc::START, format!("cannot read the file ({e})")),
+                ));
+                continue;
+            }
+        };
+        match compile_map_str(&path.to_string_lossy(), &text, &catalog) {
+            Ok(map) => {
+                if let Some(first) = maps.iter().find(|m| m.name == map.name) {
+                    errors.push(Diagnostic::new(
+                        path,
+                        (
+                            Loc::START,
+                            format!(
+                                "another map is also called '{}'; rename one of the files",
+                                first.name
+                            ),
+                        ),
+                    ));
+                } else {
+                    maps.push(map);
+                }
+            }
+            Err(CompileErrors(found)) => errors.extend(found),
+        }
+    }
+
+    let usage = Usage::of(&maps, &catalog);
+    let mut load =
+        |path: &Path, check: fn(&RgbaImage) -> Vec<diag::Located>, errors: &mut Vec<Diagnostic>| {
+            files_read.push(path.to_path_buf());
+            match images::load(path) {
+                Ok(image) => {
+                    let found = check(&image);
+                    let ok = found.is_empty();
+                    errors.extend(found.into_iter().map(|e| Diagnostic::new(path, e)));
+                    ok.then_some(image)
+                }
+                Err(e) => {
+                    errors.push(Diagnostic::new(path, e));
+                    None
+                }
+            }
+        };
+    let mut texture_images = Vec::new();
+    let mut left_out = Vec::new();
+    for (index, (name, path)) in texture_files.iter().enumerate() {
+        if usage.wall_textures[index] || usage.flat_textures[index] {
+            texture_images.push((index, name, load(path, images::check_texture, &mut errors)));
+        } else {
+            left_out.push(format!("{TEXTURES_DIR}/{name}.png"));
+        }
+    }
+    let mut sprite_images = Vec::new();
+    for (index, (name, path)) in sprite_files.iter().enumerate() {
+        if usage.sprites[index] {
+            sprite_images.push((name, load(path, images::check_sprite, &mut errors)));
+        } else {
+            left_out.push(format!("{SPRITES_DIR}/{name}.png"));
+        }
+    }
+    let sky_image = if usage.sky {
+        load(&sky_path, images::check_sky, &mut errors)
+    } else {
+        if catalog.has_sky() {
+            left_out.push(format!("{SKY_DIR}/{SKY_FILE}"));
+        }
+        None
+    };
+    if !errors.is_empty() {
+        return Err(CompileErrors::sorted(errors));
+    }
+
+    // Every image loaded and passed its checks (else errors is not empty).
+    let texture_images: Vec<(usize, &String, RgbaImage)> = texture_images
+        .into_iter()
+        .filter_map(|(i, n, image)| Some((i, n, image?)))
+        .collect();
+    let sprite_images: Vec<(&String, RgbaImage)> = sprite_images
+        .into_iter()
+        .filter_map(|(n, image)| Some((n, image?)))
+        .collect();
+
+    let mut samples = Vec::new();
+    for (_, _, image) in &texture_images {
+        texels::opaque_samples(image, &mut samples);
+    }
+    if let Some(image) = &sky_image {
+        texels::opaque_samples(image, &mut samples);
+    }
+    for (_, image) in &sprite_images {
+        texels::opaque_samples(image, &mut samples);
+    }
+    let mut quantiser = palette::Quantiser::new(&samples);
+
+    let mut texture_index = vec![NO_TEXTURE; catalog.textures().len()];
+    let mut textures = Vec::new();
+    for (old, name, image) in &texture_images {
+        texture_index[*old] = textures.len() as u16;
+        let (columns, rows) = texels::texture_chains(
+            image,
+            usage.wall_textures[*old],
+            usage.flat_textures[*old],
+            &mut quantiser,
+        );
+        textures.push(CompiledTexture {
+            name: (*name).clone(),
+            width_log2: image.width().trailing_zeros() as u8,
+            height_log2: image.height().trailing_zeros() as u8,
+            mip_count: texels::mip_count(image.width(), image.height()),
+            columns,
+            rows,
+        });
+    }
+    let mut sprite_index = vec![0u16; catalog.sprites().len()];
+    let mut sprites = Vec::new();
+    for (name, image) in &sprite_images {
+        if let Ok(old) = catalog.sprites().binary_search(name) {
+            sprite_index[old] = sprites.len() as u16;
+        }
+        sprites.push(CompiledSprite {
+            name: (*name).clone(),
+            width: image.width() as u16,
+            height: image.height() as u16,
+            texels: texels::sprite_columns(image, &mut quantiser),
+        });
+    }
+    let sky = sky_image.map(|image| CompiledSky {
+        width_log2: image.width().trailing_zeros() as u8,
+        height: image.height() as u16,
+        texels: texels::sky_columns(&image, &mut quantiser),
+    });
+    let remap = |texture: u16| match texture {
+        NO_TEXTURE | SKY => texture,
+        other => texture_index[usize::from(other)],
+    };
+    for map in &mut maps {
+        for wall in &mut map.walls {
+            wall.texture = remap(wall.texture);
+            wall.upper_texture = remap(wall.upper_texture);
+            wall.lower_texture = remap(wall.lower_texture);
+        }
+        for sector in &mut map.sectors {
+            sector.floor_texture = remap(sector.floor_texture);
+            sector.ceil_texture = remap(sector.ceil_texture);
+        }
+        for thing in &mut map.things {
+            thing.sprite = sprite_index[usize::from(thing.sprite)];
+        }
+    }
+    files_read.extend([textures_dir, sprites_dir, dir.join(SKY_DIR), maps_dir]);
+    // Cargo reruns a build script on every build if a watched path does not exist; the asset
+    // directory itself is watched recursively, so a folder created later is still noticed.
+    files_read.retain(|path| path.exists());
+    files_read.sort();
+    files_read.dedup();
+    Ok(Compiled {
+        source_dir: dir.to_path_buf(),
+        files_read,
+        palette: quantiser.palette(),
+        colormap: quantiser.colormap(),
+        textures,
+        sky,
+        sprites,
+        maps,
+        left_out,
+    })
+}

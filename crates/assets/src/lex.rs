@@ -1,0 +1,296 @@
+//! Line tokens and number syntax shared by the `.map` and `.grid` parsers.
+
+use crate::diag::{Loc, Located};
+
+/// A whitespace-separated word of a line and where it starts.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Token<'t> {
+    pub text: &'t str,
+    pub loc: Loc,
+}
+
+/// Splits a line into tokens (any Unicode whitespace separates), with 1-based character columns.
+pub(crate) fn tokens(line: &str, line_no: u32) -> Vec<Token<'_>> {
+    let mut out = Vec::new();
+    let mut start: Option<(usize, u32)> = None;
+    let mut col = 0u32;
+    for (byte, ch) in line.char_indices() {
+        col += 1;
+        match (ch.is_whitespace(), start) {
+            (true, Some((s, c))) => {
+                out.push(Token {
+                    text: &line[s..byte],
+                    loc: Loc::new(line_no, c),
+                });
+                start = None;
+            }
+            (false, None) => start = Some((byte, col)),
+            _ => {}
+        }
+    }
+    if let Some((s, c)) = start {
+        out.push(Token {
+            text: &line[s..],
+            loc: Loc::new(line_no, c),
+        });
+    }
+    out
+}
+
+/// The `key=value` words of a directive, checked for duplicates, taken one by one by the parser;
+/// whatever is left is an unknown key.
+pub(crate) struct KeyValues<'t> {
+    pairs: Vec<(Token<'t>, Token<'t>, bool)>,
+}
+
+impl<'t> KeyValues<'t> {
+    /// Splits `words` into positional words (before the first `key=value`) and key/value pairs.
+    pub fn split(
+        words: &[Token<'t>],
+        errors: &mut Vec<Located>,
+    ) -> (Vec<Token<'t>>, KeyValues<'t>) {
+        let mut positional = Vec::new();
+        let mut pairs: Vec<(Token<'t>, Token<'t>, bool)> = Vec::new();
+        for word in words {
+            let Some((key, value)) = word.text.split_once('=') else {
+                if pairs.is_empty() {
+                    positional.push(*word);
+                } else {
+                    errors.push((
+                        word.loc,
+                        format!(
+                            "'{}' after key=value settings; put plain values before the settings",
+                            word.text
+                        ),
+                    ));
+                }
+                continue;
+            };
+            let value_loc = Loc::new(word.loc.line, word.loc.col + key.chars().count() as u32 + 1);
+            if key.is_empty() || value.is_empty() {
+                errors.push((
+                    word.loc,
+                    format!(
+                        "'{}' is not a key=value setting; write it as key=value with no spaces",
+                        word.text
+                    ),
+                ));
+                continue;
+            }
+            if pairs.iter().any(|(k, _, _)| k.text == key) {
+                errors.push((word.loc, format!("'{key}' is set twice; keep one")));
+                continue;
+            }
+            pairs.push((
+                Token {
+                    text: key,
+                    loc: word.loc,
+                },
+                Token {
+                    text: value,
+                    loc: value_loc,
+                },
+                false,
+            ));
+        }
+        (positional, KeyValues { pairs })
+    }
+
+    /// The value of `key`, marking it as known.
+    pub fn take(&mut self, key: &str) -> Option<Token<'t>> {
+        self.pairs
+            .iter_mut()
+            .find(|(k, _, _)| k.text == key)
+            .map(|pair| {
+                pair.2 = true;
+                pair.1
+            })
+    }
+
+    /// Reports every key not taken, listing the keys the directive accepts.
+    pub fn report_unknown(&self, directive: &str, accepted: &[&str], errors: &mut Vec<Located>) {
+        for (key, _, taken) in &self.pairs {
+            if !taken {
+                errors.push((
+                    key.loc,
+                    format!(
+                        "unknown key '{}' for {directive}; accepted keys: {}",
+                        key.text,
+                        accepted.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+}
+
+/// Largest magnitude the parsers accept for any integer, far beyond every declared limit, so
+/// later arithmetic (i64 / i128) cannot overflow.
+const NUMBER_MAGNITUDE_MAX: i64 = 1 << 40;
+
+/// Parses a decimal integer (optional sign).
+pub(crate) fn integer(token: Token<'_>, what: &str) -> Result<i64, Located> {
+    let digits = token.text.strip_prefix(['-', '+']).unwrap_or(token.text);
+    let valid = !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit());
+    match token.text.parse::<i64>() {
+        Ok(value) if valid && value.abs() <= NUMBER_MAGNITUDE_MAX => Ok(value),
+        Ok(_) => Err((token.loc, format!("{what} '{}' is far out of range; use a value within the limits in docs/MAP_FORMAT.md", token.text))),
+        Err(_) if valid => Err((token.loc, format!("{what} '{}' is far out of range; use a value within the limits in docs/MAP_FORMAT.md", token.text))),
+        Err(_) => Err((token.loc, format!("{what} '{}' is not an integer; write digits with an optional '-'", token.text))),
+    }
+}
+
+/// Parses an integer within `min..=max`.
+pub(crate) fn integer_in(token: Token<'_>, what: &str, min: i64, max: i64) -> Result<i64, Located> {
+    let value = integer(token, what)?;
+    if (min..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err((
+            token.loc,
+            format!("{what} {value} is out of range; use {min}..={max}"),
+        ))
+    }
+}
+
+/// A decimal number `[-]digits[.digits]` as `numerator / 10^scale`.
+fn decimal(token: Token<'_>, what: &str) -> Result<(i128, u32), Located> {
+    let bad = || {
+        (
+            token.loc,
+            format!("{what} '{}' is not a number; write digits with an optional '-' and '.' (e.g. 32.5)", token.text),
+        )
+    };
+    let (negative, body) = match token.text.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, token.text.strip_prefix('+').unwrap_or(token.text)),
+    };
+    let (whole, fraction) = body.split_once('.').unwrap_or((body, ""));
+    if whole.is_empty()
+        || !whole.bytes().all(|b| b.is_ascii_digit())
+        || !fraction.bytes().all(|b| b.is_ascii_digit())
+        || (body.contains('.') && fraction.is_empty())
+    {
+        return Err(bad());
+    }
+    let whole = whole.trim_start_matches('0');
+    if whole.len() > 12 || fraction.len() > 12 {
+        return Err((
+            token.loc,
+            format!(
+                "{what} '{}' has too many digits; use at most 12 before and 12 after the '.'",
+                token.text
+            ),
+        ));
+    }
+    let mut numerator: i128 = 0;
+    for b in whole.bytes().chain(fraction.bytes()) {
+        numerator = numerator * 10 + i128::from(b - b'0');
+    }
+    Ok((
+        if negative { -numerator } else { numerator },
+        fraction.len() as u32,
+    ))
+}
+
+/// Rounds `n / d` to the nearest integer, halves away from zero (`d > 0`).
+pub(crate) fn div_round(n: i128, d: i128) -> i128 {
+    if n >= 0 {
+        (n + d / 2) / d
+    } else {
+        -((-n + d / 2) / d)
+    }
+}
+
+/// Parses a world position as 24.8 fixed point, rounded to the nearest 1/256.
+pub(crate) fn position_fx8(token: Token<'_>, what: &str) -> Result<i64, Located> {
+    let (numerator, scale) = decimal(token, what)?;
+    // At most 24 digits in all, so numerator * 256 fits i128 comfortably.
+    Ok(div_round(numerator * 256, 10i128.pow(scale)) as i64)
+}
+
+/// Parses an angle in degrees (0 along +x, 90 along +y) into a binary angle, 65536 per turn.
+pub(crate) fn angle_degrees(token: Token<'_>) -> Result<u16, Located> {
+    let (numerator, scale) = decimal(token, "angle")?;
+    let binary = div_round(numerator * 65536, 360 * 10i128.pow(scale));
+    Ok(binary.rem_euclid(65536) as u16)
+}
+
+/// Whether `name` is a valid vertex, sector, texture or sprite name: letters, digits, `_`, `-`.
+pub(crate) fn is_name(name: &str) -> bool {
+    !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}
+
+/// Checks a name token, reporting what a name may contain.
+pub(crate) fn name(token: Token<'_>, what: &str) -> Result<String, Located> {
+    if is_name(token.text) {
+        Ok(token.text.to_string())
+    } else {
+        Err((
+            token.loc,
+            format!(
+                "{what} '{}' is not a valid name; use letters, digits, '_' and '-'",
+                token.text
+            ),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn token(text: &str) -> Token<'_> {
+        Token {
+            text,
+            loc: Loc::START,
+        }
+    }
+
+    #[test]
+    fn positions_round_to_the_nearest_256th() {
+        let fx8 = |t| position_fx8(token(t), "x").expect("valid");
+        assert_eq!(fx8("32.5"), 32 * 256 + 128);
+        assert_eq!(fx8("-32.5"), -(32 * 256 + 128));
+        assert_eq!(fx8("1"), 256);
+        assert_eq!(fx8("0.001953125"), 1); // exactly half of 1/256 rounds away from zero
+        assert_eq!(fx8("0.0019"), 0);
+        assert_eq!(fx8("+2.25"), 576);
+        for bad in ["", "1.", ".5", "1e3", "inf", "1..2", "--1", "0x10"] {
+            assert!(position_fx8(token(bad), "x").is_err(), "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn degrees_become_binary_angles() {
+        let angle = |t| angle_degrees(token(t)).expect("valid");
+        assert_eq!(angle("0"), 0);
+        assert_eq!(angle("90"), 16384);
+        assert_eq!(angle("180"), 32768);
+        assert_eq!(angle("270"), 49152);
+        assert_eq!(angle("360"), 0);
+        assert_eq!(angle("-90"), 49152);
+        assert_eq!(angle("45.5"), 8283); // 45.5 / 360 * 65536 = 8283.0
+        assert_eq!(angle("720.0"), 0);
+    }
+
+    #[test]
+    fn integers_and_names() {
+        assert_eq!(integer(token("-42"), "n"), Ok(-42));
+        assert!(integer(token("4.2"), "n").is_err());
+        assert!(integer(token("1099511627777"), "n").is_err());
+        assert!(integer_in(token("300"), "light", 0, 255).is_err());
+        assert!(is_name("hall_2-b") && !is_name("a.b") && !is_name(""));
+    }
+
+    #[test]
+    fn tokens_carry_character_columns() {
+        let words = tokens("  é vertex\tv1  ", 7);
+        let found: Vec<(&str, u32)> = words.iter().map(|w| (w.text, w.loc.col)).collect();
+        assert_eq!(found, [("é", 3), ("vertex", 5), ("v1", 12)]);
+        assert!(words.iter().all(|w| w.loc.line == 7));
+    }
+}

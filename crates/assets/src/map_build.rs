@@ -1,0 +1,784 @@
+//! Checks a parsed map against the limits and the geometry rules and builds its tables.
+//!
+//! Checks run in stages, each reporting every error it finds; a stage runs only when the
+//! previous ones passed, because its checks rely on them (geometry needs coordinates in range,
+//! portal pairing needs closed convex sectors): values and names, then each sector's outline,
+//! then portals, then the player and things.
+
+use std::collections::HashMap;
+
+use portalcast_format::limits::{HEIGHT_MAX, HEIGHT_MIN, TEXTURE_COORD_MAX, WORLD_COORD_MAX};
+use portalcast_format::{
+    MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY,
+};
+
+use crate::diag::{Loc, Located};
+use crate::geometry::{cross, dot, double_area, segments_touch, Point};
+use crate::source::{CeilingSource, SourceMap, SourcePlace, SourceSector, SourceWall, Spanned};
+
+/// What an asset directory offers, by name; maps are checked against it. Texture and sprite
+/// indices in a [`CompiledMap`] built against a catalog are positions in its sorted name lists.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Catalog {
+    textures: Vec<String>,
+    sprites: Vec<String>,
+    has_sky: bool,
+}
+
+impl Catalog {
+    /// A catalog of texture and sprite names (sorted and deduplicated here), and whether a sky
+    /// panorama exists.
+    pub fn new<T: Into<String>, S: Into<String>>(
+        textures: impl IntoIterator<Item = T>,
+        sprites: impl IntoIterator<Item = S>,
+        has_sky: bool,
+    ) -> Catalog {
+        let mut textures: Vec<String> = textures.into_iter().map(Into::into).collect();
+        let mut sprites: Vec<String> = sprites.into_iter().map(Into::into).collect();
+        textures.sort();
+        textures.dedup();
+        sprites.sort();
+        sprites.dedup();
+        Catalog {
+            textures,
+            sprites,
+            has_sky,
+        }
+    }
+
+    /// Texture names, sorted.
+    pub fn textures(&self) -> &[String] {
+        &self.textures
+    }
+
+    /// Sprite names, sorted.
+    pub fn sprites(&self) -> &[String] {
+        &self.sprites
+    }
+
+    /// Whether a sky panorama exists.
+    pub fn has_sky(&self) -> bool {
+        self.has_sky
+    }
+
+    fn texture(&self, name: &Spanned<String>, errors: &mut Vec<Located>) -> u16 {
+        lookup(&self.textures, name, "texture", "textures", errors)
+    }
+
+    fn sprite(&self, name: &Spanned<String>, errors: &mut Vec<Located>) -> u16 {
+        lookup(&self.sprites, name, "sprite", "sprites", errors)
+    }
+}
+
+fn lookup(
+    names: &[String],
+    name: &Spanned<String>,
+    what: &str,
+    folder: &str,
+    errors: &mut Vec<Located>,
+) -> u16 {
+    match names.binary_search(&name.value) {
+        Ok(index) => u16::try_from(index).unwrap_or(NO_TEXTURE),
+        Err(_) => {
+            let known = if names.is_empty() {
+                format!("there are none in {folder}/")
+            } else {
+                let mut list = names
+                    .iter()
+                    .take(12)
+                    .cloned()
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                if names.len() > 12 {
+                    list.push_str(", ...");
+                }
+                format!("known: {list}")
+            };
+            errors.push((
+                name.loc,
+                format!(
+                    "unknown {what} '{}'; add {folder}/{}.png or use a known one ({known})",
+                    name.value, name.value
+                ),
+            ));
+            NO_TEXTURE
+        }
+    }
+}
+
+/// One compiled map, owning its tables (host side); [`CompiledMap::tables`] borrows them in the
+/// ROM's layout.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CompiledMap {
+    /// File name without extension.
+    pub name: String,
+    /// Vertices (only those some wall uses).
+    pub vertices: Vec<Vertex>,
+    /// Walls, grouped by sector, clockwise.
+    pub walls: Vec<Wall>,
+    /// Sectors, in file order (grid maps: in order of their top-left cells).
+    pub sectors: Vec<Sector>,
+    /// Things.
+    pub things: Vec<Thing>,
+    /// Player start.
+    pub player_start: PlayerStart,
+}
+
+impl CompiledMap {
+    /// The tables, as the ROM sees them.
+    pub fn tables(&self) -> MapTables<'_> {
+        MapTables {
+            name: &self.name,
+            vertices: &self.vertices,
+            walls: &self.walls,
+            sectors: &self.sectors,
+            player_start: self.player_start,
+            things: &self.things,
+        }
+    }
+}
+
+/// A sector's walls after the outline checks, clockwise.
+struct Outline<'s> {
+    walls: Vec<OrientedWall<'s>>,
+}
+
+struct OrientedWall<'s> {
+    start: usize,
+    end: usize,
+    source: &'s SourceWall,
+}
+
+/// Checks `source` and builds its tables. Texture and sprite indices refer to `catalog`.
+pub(crate) fn build(
+    name: &str,
+    source: &SourceMap,
+    catalog: &Catalog,
+) -> Result<CompiledMap, Vec<Located>> {
+    let mut errors = Vec::new();
+    check_values(source, catalog, &mut errors);
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let outlines: Vec<Option<Outline<'_>>> = source
+        .sectors
+        .iter()
+        .map(|sector| check_outline(source, sector, &mut errors))
+        .collect();
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let outlines: Vec<Outline<'_>> = outlines.into_iter().flatten().collect();
+    check_portals(source, &outlines, &mut errors);
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let player_sector = locate(
+        source,
+        &outlines,
+        &source.player,
+        "player start",
+        &mut errors,
+    );
+    let thing_sectors: Vec<u16> = source
+        .things
+        .iter()
+        .map(|thing| {
+            let what = format!("thing '{}'", thing.sprite.value);
+            locate(source, &outlines, &thing.place, &what, &mut errors)
+        })
+        .collect();
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    Ok(tables(
+        name,
+        source,
+        catalog,
+        &outlines,
+        player_sector,
+        &thing_sectors,
+    ))
+}
+
+fn point(source: &SourceMap, vertex: usize) -> Point {
+    let v = &source.vertices[vertex];
+    (v.x.value, v.y.value)
+}
+
+fn check_values(source: &SourceMap, catalog: &Catalog, errors: &mut Vec<Located>) {
+    let limit = i64::from(WORLD_COORD_MAX);
+    let mut positions: HashMap<Point, usize> = HashMap::new();
+    for (index, vertex) in source.vertices.iter().enumerate() {
+        for (axis, value) in [("x", &vertex.x), ("y", &vertex.y)] {
+            if value.value.abs() > limit {
+                errors.push((
+                    value.loc,
+                    format!(
+                        "{} {axis} {} is outside the map limits; keep coordinates within -{limit}..={limit}",
+                        vertex.label, value.value
+                    ),
+                ));
+            }
+        }
+        let at = (vertex.x.value, vertex.y.value);
+        if let Some(&first) = positions.get(&at) {
+            let first = &source.vertices[first];
+            errors.push((
+                vertex.x.loc,
+                format!(
+                    "{} is at ({}, {}) like {}; use {} instead of a second vertex at the same place",
+                    vertex.label, at.0, at.1, first.label, first.label
+                ),
+            ));
+        } else {
+            positions.insert(at, index);
+        }
+    }
+    let count_limit = |what: &str, count: usize, max: usize, errors: &mut Vec<Located>| {
+        if count > max {
+            errors.push((
+                Loc::START,
+                format!("the map has {count} {what}, more than the tables can index ({max}); split the map"),
+            ));
+        }
+    };
+    count_limit(
+        "vertices",
+        source.vertices.len(),
+        usize::from(u16::MAX),
+        errors,
+    );
+    // Sector ids stop below NO_PORTAL.
+    count_limit(
+        "sectors",
+        source.sectors.len(),
+        usize::from(NO_PORTAL),
+        errors,
+    );
+    let wall_total: usize = source.sectors.iter().map(|s| s.walls.len()).sum();
+    count_limit("walls", wall_total, usize::from(u16::MAX), errors);
+
+    for (index, sector) in source.sectors.iter().enumerate() {
+        check_sector_values(source, index, sector, catalog, errors);
+    }
+    for place in std::iter::once(&source.player).chain(source.things.iter().map(|t| &t.place)) {
+        for (axis, value) in [("x", &place.x_fx8), ("y", &place.y_fx8)] {
+            if value.value.abs() > limit * 256 {
+                errors.push((
+                    value.loc,
+                    format!(
+                        "{axis} {} is outside the map limits; keep positions within -{limit}..={limit}",
+                        fx8(value.value)
+                    ),
+                ));
+            }
+        }
+    }
+    for thing in &source.things {
+        catalog.sprite(&thing.sprite, errors);
+    }
+}
+
+fn check_sector_values(
+    source: &SourceMap,
+    index: usize,
+    sector: &SourceSector,
+    catalog: &Catalog,
+    errors: &mut Vec<Located>,
+) {
+    for (what, height) in [("floor", &sector.floor), ("ceiling", &sector.ceil)] {
+        if !(i64::from(HEIGHT_MIN)..=i64::from(HEIGHT_MAX)).contains(&height.value) {
+            errors.push((
+                height.loc,
+                format!(
+                    "{what} height {} is outside the limits; use {HEIGHT_MIN}..={HEIGHT_MAX}",
+                    height.value
+                ),
+            ));
+        }
+    }
+    if sector.floor.value >= sector.ceil.value {
+        errors.push((
+            sector.ceil.loc,
+            format!(
+                "{}: floor {} is not below ceiling {}; raise the ceiling or lower the floor",
+                sector.label, sector.floor.value, sector.ceil.value
+            ),
+        ));
+    }
+    catalog.texture(&sector.floor_texture, errors);
+    match &sector.ceiling {
+        CeilingSource::Texture(name) => {
+            catalog.texture(name, errors);
+        }
+        CeilingSource::Sky if !catalog.has_sky => errors.push((
+            sector.loc,
+            format!(
+                "{} has a sky ceiling but there is no sky/sky.png; add the panorama or give the ceiling a texture",
+                sector.label
+            ),
+        )),
+        CeilingSource::Sky => {}
+    }
+    for wall in &sector.walls {
+        for offset in [&wall.x_offset, &wall.y_offset] {
+            // Offsets are stored as i16; the renderer reduces them modulo the texture size.
+            if offset.value.abs() > i64::from(TEXTURE_COORD_MAX) {
+                errors.push((
+                    offset.loc,
+                    format!(
+                        "texture offset {} is out of range; use -{TEXTURE_COORD_MAX}..={TEXTURE_COORD_MAX} (offsets wrap at the texture size anyway)",
+                        offset.value
+                    ),
+                ));
+            }
+        }
+        for texture in [&wall.texture, &wall.upper, &wall.lower]
+            .into_iter()
+            .flatten()
+        {
+            catalog.texture(texture, errors);
+        }
+        match &wall.portal {
+            Some(portal) => {
+                if portal.value == index {
+                    errors.push((
+                        portal.loc,
+                        format!(
+                            "{} has a portal to itself; name the sector on the other side",
+                            sector.label
+                        ),
+                    ));
+                }
+                if let Some(texture) = &wall.texture {
+                    errors.push((
+                        texture.loc,
+                        "a portal has no middle texture; remove tex= (use upper= and lower= for the step strips)".to_string(),
+                    ));
+                }
+            }
+            None => {
+                if wall.texture.is_none() {
+                    errors.push((
+                        wall.loc,
+                        format!(
+                            "solid wall from {} to {} needs tex=TEXTURE (or portal=SECTOR if it opens into a neighbour)",
+                            source.vertices[wall.start].label, source.vertices[wall.end].label
+                        ),
+                    ));
+                }
+                for strip in [&wall.upper, &wall.lower].into_iter().flatten() {
+                    errors.push((
+                        strip.loc,
+                        "upper= and lower= apply to portals only; use tex= on a solid wall"
+                            .to_string(),
+                    ));
+                }
+            }
+        }
+    }
+}
+
+fn check_outline<'s>(
+    source: &'s SourceMap,
+    sector: &'s SourceSector,
+    errors: &mut Vec<Located>,
+) -> Option<Outline<'s>> {
+    let label = |vertex: usize| source.vertices[vertex].label.as_str();
+    let walls = &sector.walls;
+    if walls.len() < 3 {
+        errors.push((
+            sector.loc,
+            format!(
+                "{} has {} wall{}; a sector needs at least 3 walls forming a closed loop",
+                sector.label,
+                walls.len(),
+                if walls.len() == 1 { "" } else { "s" }
+            ),
+        ));
+        return None;
+    }
+    let before = errors.len();
+    for (i, wall) in walls.iter().enumerate() {
+        if wall.start == wall.end {
+            errors.push((
+                wall.loc,
+                format!(
+                    "wall from {} to itself has zero length; remove it",
+                    label(wall.start)
+                ),
+            ));
+        }
+        let next = &walls[(i + 1) % walls.len()];
+        if wall.end != next.start {
+            let message = if i + 1 == walls.len() {
+                format!(
+                    "{}: the last wall ends at {} but the first wall starts at {}; close the loop",
+                    sector.label,
+                    label(wall.end),
+                    label(next.start)
+                )
+            } else {
+                format!(
+                    "wall starts at {} but the previous wall ends at {}; list walls in order so each starts where the previous one ends",
+                    label(next.start),
+                    label(wall.end)
+                )
+            };
+            errors.push((
+                if i + 1 == walls.len() {
+                    wall.loc
+                } else {
+                    next.loc
+                },
+                message,
+            ));
+        }
+    }
+    if errors.len() > before {
+        return None;
+    }
+
+    let points: Vec<Point> = walls.iter().map(|w| point(source, w.start)).collect();
+    let area = double_area(&points);
+    if area == 0 {
+        errors.push((
+            sector.loc,
+            format!(
+                "{} has zero area; its vertices must not all lie on one line",
+                sector.label
+            ),
+        ));
+        return None;
+    }
+    // The file may list a sector either way round; the tables store it clockwise.
+    let oriented: Vec<OrientedWall<'_>> = if area > 0 {
+        walls
+            .iter()
+            .map(|w| OrientedWall {
+                start: w.start,
+                end: w.end,
+                source: w,
+            })
+            .collect()
+    } else {
+        walls
+            .iter()
+            .rev()
+            .map(|w| OrientedWall {
+                start: w.end,
+                end: w.start,
+                source: w,
+            })
+            .collect()
+    };
+
+    let n = oriented.len();
+    for i in 0..n {
+        let (wall, next) = (&oriented[i], &oriented[(i + 1) % n]);
+        let (a, b, c) = (
+            point(source, wall.start),
+            point(source, wall.end),
+            point(source, next.end),
+        );
+        let turn = cross(a, b, c);
+        if turn < 0 {
+            errors.push((
+                next.source.loc,
+                format!(
+                    "{} is not convex at {}: its walls turn the other way there; split it into convex sectors joined by portals",
+                    sector.label,
+                    label(wall.end)
+                ),
+            ));
+        } else if turn == 0 && dot(b, a, c) > 0 {
+            errors.push((
+                next.source.loc,
+                format!(
+                    "{} folds back on itself at {}: the walls before and after it overlap; remove the spike",
+                    sector.label,
+                    label(wall.end)
+                ),
+            ));
+        }
+    }
+    for i in 0..n {
+        for j in i + 2..n {
+            if i == 0 && j == n - 1 {
+                continue;
+            }
+            let (w, v) = (&oriented[i], &oriented[j]);
+            if segments_touch(
+                point(source, w.start),
+                point(source, w.end),
+                point(source, v.start),
+                point(source, v.end),
+            ) {
+                errors.push((
+                    v.source.loc,
+                    format!(
+                        "{}: the wall from {} to {} touches or crosses the wall from {} to {} (line {}); a sector's outline must not meet itself",
+                        sector.label,
+                        label(v.start),
+                        label(v.end),
+                        label(w.start),
+                        label(w.end),
+                        w.source.loc.line
+                    ),
+                ));
+            }
+        }
+    }
+    if errors.len() > before {
+        return None;
+    }
+    Some(Outline { walls: oriented })
+}
+
+fn check_portals(source: &SourceMap, outlines: &[Outline<'_>], errors: &mut Vec<Located>) {
+    let label = |vertex: usize| source.vertices[vertex].label.as_str();
+    let mut edges: HashMap<(usize, usize), (usize, &OrientedWall<'_>)> = HashMap::new();
+    for (sector_index, outline) in outlines.iter().enumerate() {
+        for wall in &outline.walls {
+            if let Some((other, first)) = edges.insert((wall.start, wall.end), (sector_index, wall))
+            {
+                errors.push((
+                    wall.source.loc,
+                    format!(
+                        "the wall from {} to {} is also a wall of {} (line {}) in the same direction; those sectors overlap, fix their outlines",
+                        label(wall.start),
+                        label(wall.end),
+                        source.sectors[other].label,
+                        first.source.loc.line
+                    ),
+                ));
+            }
+        }
+    }
+    for (here_index, outline) in outlines.iter().enumerate() {
+        let here = &source.sectors[here_index];
+        for wall in &outline.walls {
+            let Some(portal) = &wall.source.portal else {
+                continue;
+            };
+            let there = &source.sectors[portal.value];
+            match edges.get(&(wall.end, wall.start)) {
+                None => errors.push((
+                    portal.loc,
+                    format!(
+                        "portal to {}: it has no wall from {} to {}; add one with portal= back to this sector (both sides of a portal must use the same two vertices: split longer walls at shared vertices)",
+                        there.label,
+                        label(wall.end),
+                        label(wall.start)
+                    ),
+                )),
+                Some(&(owner, _)) if owner != portal.value => errors.push((
+                    portal.loc,
+                    format!(
+                        "portal to {}, but the wall from {} to {} on the other side belongs to {}; point portal= at that sector",
+                        there.label,
+                        label(wall.end),
+                        label(wall.start),
+                        source.sectors[owner].label
+                    ),
+                )),
+                Some(&(_, back)) => match &back.source.portal {
+                    Some(back_portal) if back_portal.value == here_index => {}
+                    Some(back_portal) => errors.push((
+                        portal.loc,
+                        format!(
+                            "portal to {}, but its wall back (line {}) leads to {}; make both sides name each other",
+                            there.label,
+                            back.source.loc.line,
+                            source.sectors[back_portal.value].label
+                        ),
+                    )),
+                    None => errors.push((
+                        portal.loc,
+                        format!(
+                            "portal to {}, but its wall from {} to {} (line {}) is solid; make it a portal back to this sector",
+                            there.label,
+                            label(wall.end),
+                            label(wall.start),
+                            back.source.loc.line
+                        ),
+                    )),
+                },
+            }
+            let both_sky = matches!(here.ceiling, CeilingSource::Sky)
+                && matches!(there.ceiling, CeilingSource::Sky);
+            if there.ceil.value < here.ceil.value && !both_sky && wall.source.upper.is_none() {
+                errors.push((
+                    portal.loc,
+                    format!(
+                        "portal to {} needs upper=TEXTURE: its ceiling ({}) is lower than this sector's ({}), so a strip of wall shows above the opening",
+                        there.label, there.ceil.value, here.ceil.value
+                    ),
+                ));
+            }
+            if there.floor.value > here.floor.value && wall.source.lower.is_none() {
+                errors.push((
+                    portal.loc,
+                    format!(
+                        "portal to {} needs lower=TEXTURE: its floor ({}) is higher than this sector's ({}), so a step shows below the opening",
+                        there.label, there.floor.value, here.floor.value
+                    ),
+                ));
+            }
+        }
+    }
+}
+
+/// Formats a 24.8 value for messages.
+fn fx8(value: i64) -> String {
+    let text = format!("{:.4}", value as f64 / 256.0);
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// Finds the one sector strictly containing `place`.
+fn locate(
+    source: &SourceMap,
+    outlines: &[Outline<'_>],
+    place: &SourcePlace,
+    what: &str,
+    errors: &mut Vec<Located>,
+) -> u16 {
+    let p = (place.x_fx8.value, place.y_fx8.value);
+    let scaled = |vertex: usize| {
+        let (x, y) = point(source, vertex);
+        (x * 256, y * 256)
+    };
+    let mut inside = Vec::new();
+    let mut on_line = Vec::new();
+    for (index, outline) in outlines.iter().enumerate() {
+        let sides: Vec<i128> = outline
+            .walls
+            .iter()
+            .map(|w| cross(scaled(w.start), scaled(w.end), p))
+            .collect();
+        if sides.iter().all(|&s| s > 0) {
+            inside.push(index);
+        } else if sides.iter().all(|&s| s >= 0) {
+            on_line.push(index);
+        }
+    }
+    let at = format!("({}, {})", fx8(p.0), fx8(p.1));
+    match (inside.as_slice(), on_line.as_slice()) {
+        ([index], []) => return u16::try_from(*index).unwrap_or(NO_PORTAL),
+        (_, [index, ..]) => errors.push((
+            place.loc,
+            format!(
+                "{what} at {at} lies on a wall line of {}; move it off the line (e.g. by .5)",
+                source.sectors[*index].label
+            ),
+        )),
+        ([], []) => errors.push((
+            place.loc,
+            format!("{what} at {at} is in no sector; move it inside one"),
+        )),
+        ([a, b, ..], []) => errors.push((
+            place.loc,
+            format!(
+                "{what} at {at} is inside both {} and {}; those sectors overlap, fix their outlines",
+                source.sectors[*a].label, source.sectors[*b].label
+            ),
+        )),
+    }
+    NO_PORTAL
+}
+
+fn tables(
+    name: &str,
+    source: &SourceMap,
+    catalog: &Catalog,
+    outlines: &[Outline<'_>],
+    player_sector: u16,
+    thing_sectors: &[u16],
+) -> CompiledMap {
+    // Every reference was checked above, so these lookups cannot fail.
+    let mut ignore = Vec::new();
+    let mut texture = |name: &Option<Spanned<String>>| {
+        name.as_ref()
+            .map_or(NO_TEXTURE, |n| catalog.texture(n, &mut ignore))
+    };
+    // Keep only the vertices some wall uses, in declaration order.
+    let mut used = vec![false; source.vertices.len()];
+    for wall in outlines.iter().flat_map(|o| &o.walls) {
+        used[wall.start] = true;
+    }
+    let mut new_index = vec![0u16; source.vertices.len()];
+    let mut vertices = Vec::new();
+    for (index, vertex) in source.vertices.iter().enumerate() {
+        if used[index] {
+            new_index[index] = vertices.len() as u16;
+            vertices.push(Vertex {
+                x: vertex.x.value as i32,
+                y: vertex.y.value as i32,
+            });
+        }
+    }
+    let mut walls = Vec::new();
+    let mut sectors = Vec::new();
+    for (sector, outline) in source.sectors.iter().zip(outlines) {
+        let first_wall = walls.len() as u16;
+        for wall in &outline.walls {
+            walls.push(Wall {
+                start: new_index[wall.start],
+                end: new_index[wall.end],
+                portal: wall
+                    .source
+                    .portal
+                    .as_ref()
+                    .map_or(NO_PORTAL, |p| p.value as u16),
+                texture: texture(&wall.source.texture),
+                upper_texture: texture(&wall.source.upper),
+                lower_texture: texture(&wall.source.lower),
+                x_offset: wall.source.x_offset.value as i16,
+                y_offset: wall.source.y_offset.value as i16,
+            });
+        }
+        sectors.push(Sector {
+            first_wall,
+            wall_count: outline.walls.len() as u16,
+            floor_z: sector.floor.value as i32,
+            ceil_z: sector.ceil.value as i32,
+            floor_texture: texture(&Some(sector.floor_texture.clone())),
+            ceil_texture: match &sector.ceiling {
+                CeilingSource::Sky => SKY,
+                CeilingSource::Texture(name) => texture(&Some(name.clone())),
+            },
+            light: sector.light,
+        });
+    }
+    let place = |p: &SourcePlace| (p.x_fx8.value as i32, p.y_fx8.value as i32, p.angle);
+    let (x_fx8, y_fx8, angle) = place(&source.player);
+    let things = source
+        .things
+        .iter()
+        .zip(thing_sectors)
+        .map(|(thing, &sector)| {
+            let (x_fx8, y_fx8, angle) = place(&thing.place);
+            Thing {
+                x_fx8,
+                y_fx8,
+                angle,
+                sprite: catalog.sprite(&thing.sprite, &mut ignore),
+                sector,
+            }
+        })
+        .collect();
+    CompiledMap {
+        name: name.to_string(),
+        vertices,
+        walls,
+        sectors,
+        things,
+        player_start: PlayerStart {
+            x_fx8,
+            y_fx8,
+            angle,
+            sector: player_sector,
+        },
+    }
+}

@@ -1,0 +1,411 @@
+//! The `.map` text format (specified in `docs/MAP_FORMAT.md`): vertices, sectors with their
+//! walls, the player start and things, one directive per line.
+
+use std::collections::hash_map::Entry;
+use std::collections::HashMap;
+
+use crate::diag::{Loc, Located};
+use crate::lex::{self, KeyValues, Token};
+use crate::source::{
+    CeilingSource, SourceMap, SourcePlace, SourceSector, SourceThing, SourceVertex, SourceWall,
+    Spanned,
+};
+
+/// Light level of a sector that does not set `light=`: textures shown as painted.
+const DEFAULT_LIGHT: u8 = portalcast_format::LIGHT_NEUTRAL;
+
+const SECTOR_KEYS: &[&str] = &["floor", "ceil", "floor_tex", "ceil_tex", "light"];
+const WALL_KEYS: &[&str] = &["tex", "portal", "upper", "lower", "xoff", "yoff"];
+const PLACE_KEYS: &[&str] = &["angle"];
+
+/// A wall as written: vertex and sector names not yet resolved.
+struct WrittenWall<'t> {
+    loc: Loc,
+    start: Token<'t>,
+    end: Token<'t>,
+    texture: Option<Spanned<String>>,
+    portal: Option<Token<'t>>,
+    upper: Option<Spanned<String>>,
+    lower: Option<Spanned<String>>,
+    x_offset: Spanned<i64>,
+    y_offset: Spanned<i64>,
+}
+
+struct WrittenSector<'t> {
+    sector: SourceSector,
+    walls: Vec<WrittenWall<'t>>,
+}
+
+/// Parses a `.map` file. Reports every syntax and name error it finds.
+pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
+    let mut errors = Vec::new();
+    let mut vertices: Vec<SourceVertex> = Vec::new();
+    let mut vertex_names: HashMap<String, usize> = HashMap::new();
+    let mut sectors: Vec<WrittenSector<'_>> = Vec::new();
+    let mut sector_names: HashMap<String, usize> = HashMap::new();
+    let mut player: Option<SourcePlace> = None;
+    let mut player_seen = false;
+    let mut things = Vec::new();
+
+    for (index, raw_line) in text.lines().enumerate() {
+        let line_no = u32::try_from(index + 1).unwrap_or(u32::MAX);
+        let line = raw_line.split('#').next().unwrap_or("");
+        let words = lex::tokens(line, line_no);
+        let Some((&directive, rest)) = words.split_first() else {
+            continue;
+        };
+        let (positional, mut keys) = KeyValues::split(rest, &mut errors);
+        match directive.text {
+            "vertex" => {
+                keys.report_unknown("vertex", &[], &mut errors);
+                let Some([name, x, y]) =
+                    expect_words(directive, &positional, ["NAME", "X", "Y"], &mut errors)
+                else {
+                    continue;
+                };
+                let Some(label) = record(lex::name(name, "vertex name"), &mut errors) else {
+                    continue;
+                };
+                let x = record(lex::integer(x, "vertex x"), &mut errors);
+                let y = record(lex::integer(y, "vertex y"), &mut errors);
+                if vertex_names.contains_key(&label) {
+                    errors.push((
+                        name.loc,
+                        format!("vertex '{label}' is declared twice; rename one"),
+                    ));
+                    continue;
+                }
+                vertex_names.insert(label.clone(), vertices.len());
+                // A vertex with a bad coordinate keeps its name, so walls using it report
+                // nothing more; the map has errors and is not built.
+                vertices.push(SourceVertex {
+                    label: format!("vertex '{label}'"),
+                    x: Spanned::new(x.unwrap_or(0), Loc::new(line_no, positional[1].loc.col)),
+                    y: Spanned::new(y.unwrap_or(0), Loc::new(line_no, positional[2].loc.col)),
+                });
+            }
+            "sector" => {
+                let parsed = parse_sector(directive, &positional, &mut keys, &mut errors);
+                keys.report_unknown("sector", SECTOR_KEYS, &mut errors);
+                if let Some((name, sector)) = parsed {
+                    match sector_names.entry(name) {
+                        Entry::Occupied(taken) => errors.push((
+                            positional[0].loc,
+                            format!("sector '{}' is declared twice; rename one", taken.key()),
+                        )),
+                        Entry::Vacant(free) => {
+                            free.insert(sectors.len());
+                        }
+                    }
+                    sectors.push(WrittenSector {
+                        sector,
+                        walls: Vec::new(),
+                    });
+                } else {
+                    // Keep later walls attached to something so they are still checked.
+                    sectors.push(WrittenSector {
+                        sector: placeholder_sector(directive.loc),
+                        walls: Vec::new(),
+                    });
+                }
+            }
+            "wall" => {
+                let wall = parse_wall(directive, &positional, &mut keys, &mut errors);
+                keys.report_unknown("wall", WALL_KEYS, &mut errors);
+                match (sectors.last_mut(), wall) {
+                    (None, _) => errors.push((
+                        directive.loc,
+                        "wall before any sector; put each sector's walls after its sector line"
+                            .to_string(),
+                    )),
+                    (Some(sector), Some(wall)) => sector.walls.push(wall),
+                    (Some(_), None) => {}
+                }
+            }
+            "player" => {
+                let place = expect_words(directive, &positional, ["X", "Y"], &mut errors)
+                    .and_then(|[x, y]| parse_place(directive, x, y, &mut keys, &mut errors));
+                keys.report_unknown("player", PLACE_KEYS, &mut errors);
+                if player_seen {
+                    errors.push((
+                        directive.loc,
+                        "second player start; keep one player line".to_string(),
+                    ));
+                }
+                player_seen = true;
+                player = player.or(place);
+            }
+            "thing" => {
+                let words = expect_words(directive, &positional, ["SPRITE", "X", "Y"], &mut errors);
+                let thing = words.and_then(|[sprite, x, y]| {
+                    let name = record(lex::name(sprite, "sprite name"), &mut errors);
+                    let place = parse_place(directive, x, y, &mut keys, &mut errors)?;
+                    Some(SourceThing {
+                        sprite: Spanned::new(name?, sprite.loc),
+                        place,
+                    })
+                });
+                keys.report_unknown("thing", PLACE_KEYS, &mut errors);
+                things.extend(thing);
+            }
+            other => errors.push((
+                directive.loc,
+                format!(
+                    "unknown directive '{other}'; expected vertex, sector, wall, player or thing"
+                ),
+            )),
+        }
+    }
+
+    let sectors = resolve_walls(sectors, &vertex_names, &sector_names, &mut errors);
+    match player {
+        Some(player) if errors.is_empty() => Ok(SourceMap {
+            vertices,
+            sectors,
+            player,
+            things,
+        }),
+        None if !player_seen => {
+            errors.push((
+                Loc::START,
+                "no player start; add a line `player X Y angle=DEGREES`".to_string(),
+            ));
+            Err(errors)
+        }
+        _ => Err(errors),
+    }
+}
+
+/// Moves a result's error into `errors`.
+fn record<T>(result: Result<T, Located>, errors: &mut Vec<Located>) -> Option<T> {
+    result.map_err(|e| errors.push(e)).ok()
+}
+
+/// Checks that a directive has exactly the positional words `names`.
+fn expect_words<'t, const N: usize>(
+    directive: Token<'t>,
+    words: &[Token<'t>],
+    names: [&str; N],
+    errors: &mut Vec<Located>,
+) -> Option<[Token<'t>; N]> {
+    match <[Token<'t>; N]>::try_from(words) {
+        Ok(array) => Some(array),
+        Err(_) => {
+            let at = words.get(N).map_or(directive.loc, |w| w.loc);
+            errors.push((
+                at,
+                format!(
+                    "{} takes {} value{} ({}) before its key=value settings, found {}",
+                    directive.text,
+                    N,
+                    if N == 1 { "" } else { "s" },
+                    names.join(" "),
+                    words.len()
+                ),
+            ));
+            None
+        }
+    }
+}
+
+fn placeholder_sector(loc: Loc) -> SourceSector {
+    SourceSector {
+        label: String::new(),
+        loc,
+        floor: Spanned::new(0, loc),
+        ceil: Spanned::new(0, loc),
+        floor_texture: Spanned::new(String::new(), loc),
+        ceiling: CeilingSource::Sky,
+        light: DEFAULT_LIGHT,
+        walls: Vec::new(),
+    }
+}
+
+fn texture_name(token: Token<'_>, errors: &mut Vec<Located>) -> Option<Spanned<String>> {
+    record(lex::name(token, "texture name"), errors).map(|name| Spanned::new(name, token.loc))
+}
+
+fn parse_sector(
+    directive: Token<'_>,
+    positional: &[Token<'_>],
+    keys: &mut KeyValues<'_>,
+    errors: &mut Vec<Located>,
+) -> Option<(String, SourceSector)> {
+    let [name] = expect_words(directive, positional, ["NAME"], errors)?;
+    let name = record(lex::name(name, "sector name"), errors);
+    let mut missing = |key: &str, example: &str| {
+        errors.push((
+            directive.loc,
+            format!("sector needs {key}=; add e.g. {key}={example}"),
+        ));
+    };
+    let floor = keys.take("floor");
+    let ceil = keys.take("ceil");
+    let floor_tex = keys.take("floor_tex");
+    let ceil_tex = keys.take("ceil_tex");
+    let light = keys.take("light");
+    if floor.is_none() {
+        missing("floor", "0");
+    }
+    if ceil.is_none() {
+        missing("ceil", "128");
+    }
+    if floor_tex.is_none() {
+        missing("floor_tex", "stone");
+    }
+    if ceil_tex.is_none() {
+        missing("ceil_tex", "sky");
+    }
+    let floor = floor.and_then(|t| {
+        record(lex::integer(t, "floor height"), errors).map(|v| Spanned::new(v, t.loc))
+    });
+    let ceil = ceil.and_then(|t| {
+        record(lex::integer(t, "ceiling height"), errors).map(|v| Spanned::new(v, t.loc))
+    });
+    let floor_texture = match floor_tex {
+        Some(t) if t.text == "sky" => {
+            errors.push((
+                t.loc,
+                "the sky can only be a ceiling; give the floor a texture".to_string(),
+            ));
+            None
+        }
+        Some(t) => texture_name(t, errors),
+        None => None,
+    };
+    let ceiling = match ceil_tex {
+        Some(t) if t.text == "sky" => Some(CeilingSource::Sky),
+        Some(t) => texture_name(t, errors).map(CeilingSource::Texture),
+        None => None,
+    };
+    let light = match light {
+        Some(t) => record(lex::integer_in(t, "light", 0, 255), errors)? as u8,
+        None => DEFAULT_LIGHT,
+    };
+    let name = name?;
+    Some((
+        name.clone(),
+        SourceSector {
+            label: format!("sector '{name}'"),
+            loc: directive.loc,
+            floor: floor?,
+            ceil: ceil?,
+            floor_texture: floor_texture?,
+            ceiling: ceiling?,
+            light,
+            walls: Vec::new(),
+        },
+    ))
+}
+
+fn parse_wall<'t>(
+    directive: Token<'t>,
+    positional: &[Token<'t>],
+    keys: &mut KeyValues<'t>,
+    errors: &mut Vec<Located>,
+) -> Option<WrittenWall<'t>> {
+    let words = expect_words(directive, positional, ["START", "END"], errors);
+    let texture = keys.take("tex").and_then(|t| texture_name(t, errors));
+    let portal = keys.take("portal");
+    let upper = keys.take("upper").and_then(|t| texture_name(t, errors));
+    let lower = keys.take("lower").and_then(|t| texture_name(t, errors));
+    let mut offset = |key: &str| match keys.take(key) {
+        Some(t) => {
+            record(lex::integer(t, "texture offset"), errors).map(|v| Spanned::new(v, t.loc))
+        }
+        None => Some(Spanned::new(0, directive.loc)),
+    };
+    let x_offset = offset("xoff");
+    let y_offset = offset("yoff");
+    let [start, end] = words?;
+    Some(WrittenWall {
+        loc: directive.loc,
+        start,
+        end,
+        texture,
+        portal,
+        upper,
+        lower,
+        x_offset: x_offset?,
+        y_offset: y_offset?,
+    })
+}
+
+fn parse_place(
+    directive: Token<'_>,
+    x: Token<'_>,
+    y: Token<'_>,
+    keys: &mut KeyValues<'_>,
+    errors: &mut Vec<Located>,
+) -> Option<SourcePlace> {
+    let angle = match keys.take("angle") {
+        Some(t) => record(lex::angle_degrees(t), errors),
+        None => Some(0),
+    };
+    let x_fx8 = record(lex::position_fx8(x, "x"), errors);
+    let y_fx8 = record(lex::position_fx8(y, "y"), errors);
+    Some(SourcePlace {
+        loc: directive.loc,
+        x_fx8: Spanned::new(x_fx8?, x.loc),
+        y_fx8: Spanned::new(y_fx8?, y.loc),
+        angle: angle?,
+    })
+}
+
+/// Turns vertex and sector names into indices.
+fn resolve_walls(
+    sectors: Vec<WrittenSector<'_>>,
+    vertex_names: &HashMap<String, usize>,
+    sector_names: &HashMap<String, usize>,
+    errors: &mut Vec<Located>,
+) -> Vec<SourceSector> {
+    let mut resolved = Vec::with_capacity(sectors.len());
+    for WrittenSector { mut sector, walls } in sectors {
+        for wall in walls {
+            let vertex = |token: Token<'_>, errors: &mut Vec<Located>| {
+                let found = vertex_names.get(token.text).copied();
+                if found.is_none() {
+                    errors.push((
+                        token.loc,
+                        format!(
+                            "unknown vertex '{}'; declare it with `vertex {} X Y`",
+                            token.text, token.text
+                        ),
+                    ));
+                }
+                found
+            };
+            let start = vertex(wall.start, errors);
+            let end = vertex(wall.end, errors);
+            let portal = match wall.portal {
+                Some(token) => match sector_names.get(token.text) {
+                    Some(&index) => Some(Spanned::new(index, token.loc)),
+                    None => {
+                        errors.push((
+                            token.loc,
+                            format!("unknown sector '{}'; portal= must name a sector declared in this file", token.text),
+                        ));
+                        continue;
+                    }
+                },
+                None => None,
+            };
+            let (Some(start), Some(end)) = (start, end) else {
+                continue;
+            };
+            sector.walls.push(SourceWall {
+                loc: wall.loc,
+                start,
+                end,
+                texture: wall.texture,
+                portal,
+                upper: wall.upper,
+                lower: wall.lower,
+                x_offset: wall.x_offset,
+                y_offset: wall.y_offset,
+            });
+        }
+        resolved.push(sector);
+    }
+    resolved
+}

@@ -1,0 +1,383 @@
+//! The repository's own assets: they compile, the tables satisfy every invariant the engine
+//! relies on, the bench map round-trips and meets its design goals, and the generator
+//! reproduces the committed files.
+
+mod common;
+
+use std::collections::{BTreeMap, HashMap, VecDeque};
+
+use common::{shipped_assets, Scratch};
+use portalcast_assets::{compile_dir, Compiled};
+use portalcast_format::{MapTables, Sector, NO_TEXTURE, SKY};
+
+fn compiled() -> Compiled {
+    compile_dir(&shipped_assets()).unwrap_or_else(|e| panic!("shipped assets must compile:\n{e}"))
+}
+
+fn point(map: &MapTables<'_>, vertex: u16) -> (i64, i64) {
+    let v = map.vertices[usize::from(vertex)];
+    (i64::from(v.x), i64::from(v.y))
+}
+
+fn cross(o: (i64, i64), a: (i64, i64), b: (i64, i64)) -> i64 {
+    (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+}
+
+/// Whether a 24.8 position is strictly inside a sector (right of every wall).
+fn strictly_inside(map: &MapTables<'_>, sector: &Sector, x_fx8: i32, y_fx8: i32) -> bool {
+    let p = (i64::from(x_fx8), i64::from(y_fx8));
+    map.sector_walls(sector).iter().all(|w| {
+        let (a, b) = (point(map, w.start), point(map, w.end));
+        cross((a.0 * 256, a.1 * 256), (b.0 * 256, b.1 * 256), p) > 0
+    })
+}
+
+fn check_invariants(map: &MapTables<'_>, texture_count: usize, sprite_count: usize) {
+    let name = map.name;
+    let mut next_wall = 0;
+    for (index, sector) in map.sectors.iter().enumerate() {
+        assert_eq!(
+            usize::from(sector.first_wall),
+            next_wall,
+            "{name}: sectors own consecutive walls"
+        );
+        next_wall += usize::from(sector.wall_count);
+        assert!(sector.wall_count >= 3 && sector.floor_z < sector.ceil_z);
+        assert!(usize::from(sector.floor_texture) < texture_count);
+        assert!(sector.ceil_texture == SKY || usize::from(sector.ceil_texture) < texture_count);
+        let walls = map.sector_walls(sector);
+        let mut area = 0;
+        for (i, wall) in walls.iter().enumerate() {
+            let next = walls[(i + 1) % walls.len()];
+            assert_eq!(wall.end, next.start, "{name}: sector {index} is closed");
+            let (a, b, c) = (
+                point(map, wall.start),
+                point(map, wall.end),
+                point(map, next.end),
+            );
+            assert_ne!(a, b, "{name}: no zero-length wall");
+            assert!(
+                cross(a, b, c) >= 0,
+                "{name}: sector {index} is convex and clockwise"
+            );
+            area += a.0 * b.1 - b.0 * a.1;
+            match wall.neighbour() {
+                None => {
+                    assert!(usize::from(wall.texture) < texture_count);
+                    assert_eq!(
+                        (wall.upper_texture, wall.lower_texture),
+                        (NO_TEXTURE, NO_TEXTURE)
+                    );
+                }
+                Some(other) => {
+                    assert_eq!(wall.texture, NO_TEXTURE);
+                    let there = &map.sectors[usize::from(other)];
+                    let back = map
+                        .sector_walls(there)
+                        .iter()
+                        .find(|w| w.start == wall.end && w.end == wall.start)
+                        .unwrap_or_else(|| {
+                            panic!("{name}: portal of sector {index} has a matching wall")
+                        });
+                    assert_eq!(
+                        usize::from(back.portal),
+                        index,
+                        "{name}: portals point both ways"
+                    );
+                    let both_sky = sector.ceil_texture == SKY && there.ceil_texture == SKY;
+                    if there.ceil_z < sector.ceil_z && !both_sky {
+                        assert!(usize::from(wall.upper_texture) < texture_count);
+                    }
+                    if there.floor_z > sector.floor_z {
+                        assert!(usize::from(wall.lower_texture) < texture_count);
+                    }
+                }
+            }
+        }
+        assert!(area > 0, "{name}: sector {index} runs clockwise (y down)");
+    }
+    assert_eq!(next_wall, map.walls.len());
+    let start = &map.sectors[usize::from(map.player_start.sector)];
+    assert!(
+        strictly_inside(map, start, map.player_start.x_fx8, map.player_start.y_fx8),
+        "{name}: player inside"
+    );
+    for thing in map.things {
+        assert!(usize::from(thing.sprite) < sprite_count);
+        let sector = &map.sectors[usize::from(thing.sector)];
+        assert!(
+            strictly_inside(map, sector, thing.x_fx8, thing.y_fx8),
+            "{name}: thing inside"
+        );
+    }
+}
+
+#[test]
+fn shipped_maps_satisfy_the_table_invariants() {
+    let compiled = compiled();
+    let names: Vec<&str> = compiled.maps().iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(names, ["bench", "grid", "tiny"]);
+    for map in compiled.maps() {
+        check_invariants(
+            &map.tables(),
+            compiled.textures().len(),
+            compiled.sprites().len(),
+        );
+    }
+    assert!(
+        compiled.left_out().is_empty(),
+        "every shipped asset is used: {:?}",
+        compiled.left_out()
+    );
+}
+
+/// A wall as the naive reader sees it: its start point and the sector its portal names.
+type WallStart = ((i32, i32), Option<String>);
+
+/// Reads bench.map with a deliberately naive parser (no validation) and returns, per sector
+/// name, its loop of wall start coordinates and the neighbour each wall names.
+fn naive_sectors(text: &str) -> BTreeMap<String, Vec<WallStart>> {
+    let mut vertices = HashMap::new();
+    let mut sectors: BTreeMap<String, Vec<WallStart>> = BTreeMap::new();
+    let mut current = String::new();
+    for line in text.lines().map(|l| l.split('#').next().unwrap_or("")) {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.as_slice() {
+            ["vertex", name, x, y] => {
+                vertices.insert(
+                    name.to_string(),
+                    (x.parse().expect("x"), y.parse().expect("y")),
+                );
+            }
+            ["sector", name, ..] => {
+                current = name.to_string();
+                sectors.insert(current.clone(), Vec::new());
+            }
+            ["wall", start, _end, rest @ ..] => {
+                let portal = rest
+                    .iter()
+                    .find_map(|w| w.strip_prefix("portal="))
+                    .map(str::to_string);
+                sectors
+                    .get_mut(&current)
+                    .expect("sector")
+                    .push((vertices[*start], portal));
+            }
+            _ => {}
+        }
+    }
+    sectors
+}
+
+#[test]
+fn bench_map_round_trips_to_the_same_geometry() {
+    let text = std::fs::read_to_string(shipped_assets().join("maps/bench.map")).expect("bench.map");
+    let written = naive_sectors(&text);
+    let order: Vec<&String> = {
+        // Sector ids follow file order.
+        let mut names = Vec::new();
+        for line in text.lines() {
+            if let Some(rest) = line.strip_prefix("sector ") {
+                names.push(rest.split_whitespace().next().expect("name"));
+            }
+        }
+        names
+            .iter()
+            .map(|n| written.keys().find(|k| k == n).expect("known"))
+            .collect()
+    };
+    let compiled = compiled();
+    let map = compiled.map("bench").expect("bench");
+    assert_eq!(map.sectors.len(), written.len());
+    for (index, sector) in map.sectors.iter().enumerate() {
+        let name = order[index];
+        let derived: Vec<WallStart> = map
+            .sector_walls(sector)
+            .iter()
+            .map(|w| {
+                let v = map.vertices[usize::from(w.start)];
+                (
+                    (v.x, v.y),
+                    w.neighbour().map(|n| order[usize::from(n)].clone()),
+                )
+            })
+            .collect();
+        assert_eq!(derived, written[name], "sector {name}");
+    }
+}
+
+#[test]
+fn bench_map_meets_its_design() {
+    let compiled = compiled();
+    let map = compiled.map("bench").expect("bench");
+    let portal_sides = map.walls.iter().filter(|w| w.neighbour().is_some()).count();
+    assert!(
+        map.sectors.len() >= 30,
+        "thesis scale: {} sectors",
+        map.sectors.len()
+    );
+    assert!(portal_sides >= 60);
+    let diagonal = map.walls.iter().any(|w| {
+        let (a, b) = (point(&map, w.start), point(&map, w.end));
+        a.0 != b.0 && a.1 != b.1
+    });
+    assert!(diagonal, "non-orthogonal walls");
+    let window = map.walls.iter().any(|w| {
+        w.neighbour().is_some() && w.upper_texture != NO_TEXTURE && w.lower_texture != NO_TEXTURE
+    });
+    assert!(
+        window,
+        "a window: a portal with both an upper and a lower strip"
+    );
+    assert!(
+        map.sectors.iter().any(|s| s.ceil_texture == SKY),
+        "a courtyard under the sky"
+    );
+    let lights: Vec<u8> = map.sectors.iter().map(|s| s.light).collect();
+    assert!(
+        lights.iter().any(|&l| l < 64) && lights.iter().any(|&l| l > 192),
+        "light and dark"
+    );
+
+    // Walk from the start with the player's rules: step up at most 16. Every sector reached
+    // must leave 64 units of headroom, and the walk must climb a staircase of 4+ steps.
+    let mut reached = vec![false; map.sectors.len()];
+    let mut queue = VecDeque::from([usize::from(map.player_start.sector)]);
+    reached[usize::from(map.player_start.sector)] = true;
+    let mut longest_climb = vec![0usize; map.sectors.len()];
+    while let Some(index) = queue.pop_front() {
+        let here = map.sectors[index];
+        assert!(
+            here.ceil_z - here.floor_z >= 64,
+            "headroom in walkable sector {index}"
+        );
+        for wall in map.sector_walls(&here) {
+            let Some(next) = wall.neighbour().map(usize::from) else {
+                continue;
+            };
+            let there = map.sectors[next];
+            let rise = there.floor_z - here.floor_z;
+            if rise > 16 || there.ceil_z - there.floor_z < 64 {
+                continue;
+            }
+            if rise > 0 {
+                longest_climb[next] = longest_climb[next].max(longest_climb[index] + 1);
+            }
+            if !reached[next] {
+                reached[next] = true;
+                queue.push_back(next);
+            }
+        }
+    }
+    assert!(
+        reached.iter().filter(|&&r| r).count() >= 30,
+        "most of the map is walkable"
+    );
+    assert!(
+        longest_climb.iter().any(|&c| c >= 4),
+        "a staircase of 16-unit steps"
+    );
+}
+
+#[test]
+fn written_blobs_read_back() {
+    let compiled = compiled();
+    let out = Scratch::new("shipped-out");
+    compiled.write_to(&out.dir).expect("write");
+    let texels = std::fs::read(out.path("assets_texels.bin")).expect("texel blob");
+    let source = std::fs::read_to_string(out.path("assets.rs")).expect("assets.rs");
+    let mut offset = 0;
+    for texture in compiled.textures() {
+        for chain in [&texture.columns, &texture.rows] {
+            assert_eq!(
+                &texels[offset..offset + chain.len()],
+                &chain[..],
+                "{}",
+                texture.name
+            );
+            let slice = format!("sub_slice(&TEXEL_BLOB.0, {offset}, {})", chain.len());
+            assert!(
+                source.contains(&slice),
+                "{} is sliced as {slice}",
+                texture.name
+            );
+            offset = (offset + chain.len()).next_multiple_of(4);
+        }
+    }
+    assert_eq!(offset, texels.len());
+    let sprites = std::fs::read(out.path("assets_sprites.bin")).expect("sprite blob");
+    assert_eq!(
+        &sprites[..compiled.sprites()[0].texels.len()],
+        &compiled.sprites()[0].texels[..]
+    );
+    let report = compiled.size_report();
+    for kind in [
+        "palette",
+        "colormap",
+        "textures",
+        "sky",
+        "sprites",
+        "map tables",
+        "IWRAM",
+        "EWRAM",
+    ] {
+        assert!(report.contains(kind), "size report names {kind}:\n{report}");
+    }
+}
+
+#[test]
+fn generator_reproduces_the_committed_assets() {
+    let out = Scratch::new("generated");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_gen-assets"))
+        .arg(&out.dir)
+        .stdout(std::process::Stdio::null())
+        .status()
+        .expect("run gen-assets");
+    assert!(status.success());
+    let shipped = shipped_assets();
+    let mut compared = 0;
+    for folder in ["textures", "sky", "sprites", "maps"] {
+        for entry in std::fs::read_dir(out.path(folder)).expect("generated folder") {
+            let path = entry.expect("entry").path();
+            let name = path.file_name().expect("file name");
+            let committed = std::fs::read(shipped.join(folder).join(name))
+                .unwrap_or_else(|_| panic!("{folder}/{name:?} is generated but not committed"));
+            assert!(
+                committed == std::fs::read(&path).expect("generated file"),
+                "{folder}/{name:?} differs from the generator's output; rerun gen-assets"
+            );
+            compared += 1;
+        }
+    }
+    assert!(compared >= 15);
+}
+
+#[test]
+fn examples_in_the_format_doc_compile() {
+    let doc_path = shipped_assets().join("../docs/MAP_FORMAT.md");
+    let doc = std::fs::read_to_string(doc_path).expect("docs/MAP_FORMAT.md");
+    let catalog = portalcast_assets::Catalog::new(
+        [
+            "brick", "ceiling", "grass", "step", "stone", "tiles", "wood",
+        ],
+        ["torch"],
+        true,
+    );
+    let mut examples = 0;
+    for section in doc.split("### Example").skip(1) {
+        let block = section
+            .split("```")
+            .nth(1)
+            .expect("an example is a fenced block");
+        let file = if block.contains("\ngrid\n") {
+            "example.grid"
+        } else {
+            "example.map"
+        };
+        if let Err(errors) = portalcast_assets::compile_map_str(file, block, &catalog) {
+            panic!("the {file} example in docs/MAP_FORMAT.md does not compile:\n{errors}");
+        }
+        examples += 1;
+    }
+    assert_eq!(examples, 2);
+}

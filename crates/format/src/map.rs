@@ -1,0 +1,147 @@
+//! Map tables: vertices, walls, sectors, the player start and things.
+
+/// [`Wall::portal`] of a solid wall.
+pub const NO_PORTAL: u16 = u16::MAX;
+/// A texture slot that is never drawn (the middle of a portal; an upper or lower strip that
+/// the heights make invisible).
+pub const NO_TEXTURE: u16 = u16::MAX;
+/// [`Sector::ceil_texture`] of a sector open to the sky: draw the sky panorama instead.
+pub const SKY: u16 = u16::MAX - 1;
+
+/// A map vertex, in integer world units (1 unit = 1 texel at mip level 0).
+///
+/// The compiler guarantees `|x|, |y| <= limits::WORLD_COORD_MAX` and that no two vertices of a
+/// map share a position, so vertex indices identify points (a renderer may cache per-vertex
+/// transforms by index).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Vertex {
+    /// World x.
+    pub x: i32,
+    /// World y (drawn downward on a top-down view).
+    pub y: i32,
+}
+
+/// One side of a sector's boundary, from vertex `start` to vertex `end`.
+///
+/// Stored clockwise (top-down view, y down): the sector's inside is to the right of
+/// `start → end`. A sector's walls are consecutive in [`MapTables::walls`], and wall `i`'s `end`
+/// is wall `i + 1`'s `start` (wrapping to the sector's first wall).
+///
+/// Texture coordinates: `u` is the distance along the wall from `start`, plus `x_offset`; `v`
+/// grows downward, plus `y_offset`. Both are in texels of mip level 0 and wrap at the texture's
+/// size. Where `v = 0` sits vertically (top of the strip, or a world height) is the renderer's
+/// choice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Wall {
+    /// Index of the start vertex in [`MapTables::vertices`].
+    pub start: u16,
+    /// Index of the end vertex (the next wall's start).
+    pub end: u16,
+    /// Index of the sector on the other side, or [`NO_PORTAL`] for a solid wall. The neighbour
+    /// has a wall `end → start` whose portal is this wall's sector.
+    pub portal: u16,
+    /// Texture of a solid wall, index into the textures table; [`NO_TEXTURE`] on a portal.
+    pub texture: u16,
+    /// Portal only: the strip between the neighbour's ceiling and this sector's (lower) ceiling.
+    /// [`NO_TEXTURE`] where the neighbour's ceiling is not lower, or both sectors show the sky.
+    pub upper_texture: u16,
+    /// Portal only: the strip between this sector's floor and the neighbour's (higher) floor.
+    /// [`NO_TEXTURE`] where the neighbour's floor is not higher.
+    pub lower_texture: u16,
+    /// Horizontal texture offset, in texels.
+    pub x_offset: i16,
+    /// Vertical texture offset, in texels.
+    pub y_offset: i16,
+}
+
+impl Wall {
+    /// The sector on the other side, or `None` for a solid wall.
+    pub const fn neighbour(&self) -> Option<u16> {
+        if self.portal == NO_PORTAL {
+            None
+        } else {
+            Some(self.portal)
+        }
+    }
+}
+
+/// A convex region of the map with a flat floor and a flat ceiling.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Sector {
+    /// Index of the sector's first wall in [`MapTables::walls`].
+    pub first_wall: u16,
+    /// Number of walls (at least 3). Consecutive walls may be collinear (a wall split where a
+    /// neighbour's portal starts), never of zero length.
+    pub wall_count: u16,
+    /// Floor height, world units; `floor_z < ceil_z`.
+    pub floor_z: i32,
+    /// Ceiling height, world units.
+    pub ceil_z: i32,
+    /// Floor texture, index into the textures table (its row-major flat copy is present).
+    pub floor_texture: u16,
+    /// Ceiling texture (its flat copy is present), or [`SKY`].
+    pub ceil_texture: u16,
+    /// Light level: 0 is black, [`LIGHT_NEUTRAL`](crate::LIGHT_NEUTRAL) (128) shows textures
+    /// as painted, 255 brightens them about twice. Select the colormap row with
+    /// [`colormap_row`](crate::colormap_row).
+    pub light: u8,
+}
+
+/// Where and how the player enters the map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct PlayerStart {
+    /// World x in 24.8 fixed point (`x_fx8 / 256.0` units).
+    pub x_fx8: i32,
+    /// World y in 24.8 fixed point.
+    pub y_fx8: i32,
+    /// View direction, binary angle: 65536 per turn, 0 along +x, growing toward +y.
+    pub angle: u16,
+    /// The sector that strictly contains the start position (never on a wall line).
+    pub sector: u16,
+}
+
+/// A named object placed on the map (rendered as a sprite by a later issue).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Thing {
+    /// World x in 24.8 fixed point.
+    pub x_fx8: i32,
+    /// World y in 24.8 fixed point.
+    pub y_fx8: i32,
+    /// Facing, binary angle as [`PlayerStart::angle`].
+    pub angle: u16,
+    /// Index into the sprites table.
+    pub sprite: u16,
+    /// The sector that strictly contains the thing; it stands on that sector's floor.
+    pub sector: u16,
+}
+
+/// Everything the engine needs to run one map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct MapTables<'a> {
+    /// The map's file name without extension (`bench` for `maps/bench.map`).
+    pub name: &'a str,
+    /// All vertices; walls refer to them by index.
+    pub vertices: &'a [Vertex],
+    /// All walls, grouped by sector (see [`Sector::first_wall`]).
+    pub walls: &'a [Wall],
+    /// All sectors; sector ids (portals, player start) are indices into this table.
+    pub sectors: &'a [Sector],
+    /// The player's start.
+    pub player_start: PlayerStart,
+    /// Placed objects.
+    pub things: &'a [Thing],
+}
+
+impl<'a> MapTables<'a> {
+    /// The walls of `sector`, in clockwise order.
+    pub fn sector_walls(&self, sector: &Sector) -> &'a [Wall] {
+        let first = sector.first_wall as usize;
+        &self.walls[first..first + sector.wall_count as usize]
+    }
+}

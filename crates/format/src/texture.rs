@@ -1,0 +1,193 @@
+//! Colour tables and image tables: palette, light colormap, textures, sky, sprites.
+
+/// The shared 256-colour palette in the GBA's BGR555 format: bits 0-4 red, 5-9 green, 10-14 blue.
+/// Entry [`TRANSPARENT`] is reserved: no texture or sky texel uses it.
+pub type Palette = [u16; 256];
+
+/// Palette index that means "transparent" in sprites; never used by opaque images.
+pub const TRANSPARENT: u8 = 0;
+
+/// Number of rows in the light [`Colormap`].
+pub const LIGHT_LEVELS: usize = 32;
+
+/// The light level (and colormap row `LIGHT_NEUTRAL >> 3`) that shows textures unchanged.
+pub const LIGHT_NEUTRAL: u8 = 128;
+
+/// Light remapping: `colormap[row][index]` is the palette index that best shows colour `index`
+/// at light row `row`.
+///
+/// Row `r` scales the colour's RGB by `r / 16` (clamped to full intensity) and takes the
+/// nearest palette colour: row 0 is black, row 16 is the identity, row 31 is almost twice as
+/// bright. Brighter rows are higher; pick the row with [`colormap_row`]. Index 0 (transparent)
+/// maps to 0 in every row, and no other index maps to 0.
+pub type Colormap = [[u8; 256]; LIGHT_LEVELS];
+
+/// The colormap row for a sector light level `0..=255` (128 is neutral).
+pub const fn colormap_row(light: u8) -> usize {
+    (light >> 3) as usize
+}
+
+/// Converts 8-bit RGB to the GBA's BGR555, rounding each channel to the nearest of 32 steps.
+pub const fn bgr555(r: u8, g: u8, b: u8) -> u16 {
+    const fn five(c: u8) -> u16 {
+        ((c as u16 * 31 + 127) / 255) & 0x1f
+    }
+    five(r) | (five(g) << 5) | (five(b) << 10)
+}
+
+/// A power-of-two texture of palette indices with its mip chain, in up to two layouts.
+///
+/// Level `m` is `max(width >> m, 1)` × `max(height >> m, 1)` texels; the chain runs down to 1×1,
+/// so `mip_count = max(width_log2, height_log2) + 1`. Each level is a box filter of the level
+/// above, computed in RGB and then mapped to the palette.
+///
+/// * [`columns`](Self::columns), for walls: column-major, texel `(u, v)` of a level at
+///   `u * level_height + v`, so a wall column is a contiguous run.
+/// * [`rows`](Self::rows), for floors and ceilings: row-major, texel `(u, v)` at
+///   `v * level_width + u`, with `u` along world +x and `v` along world +y, so the picture seen
+///   from above (y down) is the image as painted.
+///
+/// Levels follow each other, level 0 first ([`level_offset`](Self::level_offset)). A layout
+/// that no map uses is left out (empty slice).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Texture<'a> {
+    /// The image's file name without extension.
+    pub name: &'a str,
+    /// log2 of the width at level 0 (3..=8).
+    pub width_log2: u8,
+    /// log2 of the height at level 0 (3..=8).
+    pub height_log2: u8,
+    /// Number of mip levels, level 0 included.
+    pub mip_count: u8,
+    /// Column-major mip chain (walls), or empty if no wall uses this texture.
+    pub columns: &'a [u8],
+    /// Row-major mip chain (flats), or empty if no floor or ceiling uses this texture.
+    pub rows: &'a [u8],
+}
+
+impl<'a> Texture<'a> {
+    /// log2 of the width of mip level `level`.
+    pub const fn level_width_log2(&self, level: u8) -> u8 {
+        self.width_log2.saturating_sub(level)
+    }
+
+    /// log2 of the height of mip level `level`.
+    pub const fn level_height_log2(&self, level: u8) -> u8 {
+        self.height_log2.saturating_sub(level)
+    }
+
+    /// Texels in mip level `level`.
+    pub const fn level_len(&self, level: u8) -> usize {
+        1 << (self.level_width_log2(level) + self.level_height_log2(level))
+    }
+
+    /// Offset of mip level `level` in either chain.
+    pub const fn level_offset(&self, level: u8) -> usize {
+        let mut offset = 0;
+        let mut m = 0;
+        while m < level {
+            offset += self.level_len(m);
+            m += 1;
+        }
+        offset
+    }
+
+    /// Total texels in one layout's chain.
+    pub const fn chain_len(&self) -> usize {
+        self.level_offset(self.mip_count)
+    }
+
+    /// Mip level `level` of the column-major (wall) chain. Panics if absent.
+    pub fn wall_level(&self, level: u8) -> &'a [u8] {
+        let start = self.level_offset(level);
+        &self.columns[start..start + self.level_len(level)]
+    }
+
+    /// Mip level `level` of the row-major (flat) chain. Panics if absent.
+    pub fn flat_level(&self, level: u8) -> &'a [u8] {
+        let start = self.level_offset(level);
+        &self.rows[start..start + self.level_len(level)]
+    }
+}
+
+/// The 360° sky panorama, drawn behind sectors whose ceiling is [`SKY`](crate::SKY).
+///
+/// Column-major: texel `(u, v)` at `u * height + v`. The width is a power of two covering one
+/// full turn, so the column for view angle `a` (binary, 65536 per turn) is
+/// `a >> (16 - width_log2)`; `v = 0` is the top row.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Sky<'a> {
+    /// log2 of the width in texels (one full turn).
+    pub width_log2: u8,
+    /// Height in texels.
+    pub height: u16,
+    /// Palette indices, column-major; never [`TRANSPARENT`](crate::TRANSPARENT).
+    pub texels: &'a [u8],
+}
+
+/// A sprite image: palette indices, column-major (texel `(u, v)` at `u * height + v`), with
+/// [`TRANSPARENT`](crate::TRANSPARENT) (0) where nothing is drawn. Its origin is the bottom
+/// centre, placed on the floor at the thing's position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Sprite<'a> {
+    /// The image's file name without extension.
+    pub name: &'a str,
+    /// Width in texels (1..=256).
+    pub width: u16,
+    /// Height in texels (1..=256).
+    pub height: u16,
+    /// `width * height` palette indices, column-major.
+    pub texels: &'a [u8],
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn texture(width_log2: u8, height_log2: u8) -> Texture<'static> {
+        Texture {
+            name: "t",
+            width_log2,
+            height_log2,
+            mip_count: width_log2.max(height_log2) + 1,
+            columns: &[],
+            rows: &[],
+        }
+    }
+
+    #[test]
+    fn square_chain_is_four_thirds() {
+        let t = texture(6, 6);
+        assert_eq!(t.mip_count, 7);
+        assert_eq!(t.level_offset(1), 4096);
+        assert_eq!(t.level_offset(2), 4096 + 1024);
+        assert_eq!(t.chain_len(), 5461);
+    }
+
+    #[test]
+    fn narrow_chain_clamps_the_short_side_at_one() {
+        // 64×16: 64×16, 32×8, 16×4, 8×2, 4×1, 2×1, 1×1.
+        let t = texture(6, 4);
+        let sizes: [(u8, u8); 7] =
+            core::array::from_fn(|m| (t.level_width_log2(m as u8), t.level_height_log2(m as u8)));
+        assert_eq!(
+            sizes,
+            [(6, 4), (5, 3), (4, 2), (3, 1), (2, 0), (1, 0), (0, 0)]
+        );
+        assert_eq!(t.chain_len(), 1024 + 256 + 64 + 16 + 4 + 2 + 1);
+    }
+
+    #[test]
+    fn bgr555_rounds_each_channel() {
+        assert_eq!(bgr555(255, 255, 255), 0x7fff);
+        assert_eq!(bgr555(255, 0, 0), 0x001f);
+        assert_eq!(bgr555(0, 255, 0), 0x03e0);
+        assert_eq!(bgr555(0, 0, 255), 0x7c00);
+        assert_eq!(bgr555(4, 5, 0), 1 << 5);
+        assert_eq!(colormap_row(LIGHT_NEUTRAL), 16);
+        assert_eq!(colormap_row(255), LIGHT_LEVELS - 1);
+    }
+}

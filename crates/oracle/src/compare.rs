@@ -1,0 +1,222 @@
+//! Engine frame against oracle frame: counts, edge error, sectors, and a diff picture.
+
+use std::collections::{BTreeSet, HashMap};
+use std::io;
+use std::path::Path;
+
+use portalcast::render::surface::Surface;
+
+use crate::Frame;
+
+/// How an engine frame differs from the oracle's.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Comparison {
+    /// Pixels compared (`width · height`).
+    pub pixels: usize,
+    /// Pixels whose surface differs from the oracle's (holes included).
+    pub surface_mismatches: usize,
+    /// Pixels with the oracle's surface but another palette index.
+    pub texel_mismatches: usize,
+    /// Engine pixels left at [`Surface::None`].
+    pub holes: usize,
+    /// Over the surface mismatches that are not holes: the largest Chebyshev distance, in
+    /// pixels, from the pixel to the nearest oracle pixel of the surface the engine drew there
+    /// (1 for an edge one pixel off). A surface the oracle does not show at all counts
+    /// `max(width, height)`. 0 when there are no such mismatches.
+    pub max_edge_error_px: u32,
+    /// Sectors the oracle frame shows (a pixel of their floor, ceiling, or one of their walls
+    /// or strips) and the engine's does not, ascending.
+    pub missed_sectors: Vec<u16>,
+    /// Sectors the engine frame shows and the oracle's does not, ascending.
+    pub extra_sectors: Vec<u16>,
+}
+
+impl Comparison {
+    /// Surface mismatches, in percent of the pixels.
+    pub fn surface_mismatch_percent(&self) -> f64 {
+        percent(self.surface_mismatches, self.pixels)
+    }
+
+    /// Texel mismatches, in percent of all the pixels (not only the matching ones), so the two
+    /// percentages add up to the share of pixels that differ at all.
+    pub fn texel_mismatch_percent(&self) -> f64 {
+        percent(self.texel_mismatches, self.pixels)
+    }
+}
+
+fn percent(count: usize, total: usize) -> f64 {
+    if total == 0 {
+        0.0
+    } else {
+        100.0 * count as f64 / total as f64
+    }
+}
+
+/// Compares an engine frame (surfaces and final palette indices, row-major, the oracle's size)
+/// with the oracle's. Sectors of walls are taken from `oracle.wall_sectors`; an engine wall index
+/// outside it belongs to no sector.
+///
+/// Panics if the engine slices are not `oracle.width · oracle.height` long.
+pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Frame) -> Comparison {
+    let pixels = oracle.width * oracle.height;
+    assert_eq!(engine_surfaces.len(), pixels, "engine surfaces do not match the oracle frame size");
+    assert_eq!(engine_indices.len(), pixels, "engine indices do not match the oracle frame size");
+    let mut result = Comparison { pixels, ..Comparison::default() };
+    // Mismatched pixels grouped by the surface the engine drew, one distance map per surface.
+    let mut misplaced: HashMap<Surface, Vec<usize>> = HashMap::new();
+    let mut engine_sectors = BTreeSet::new();
+    let mut oracle_sectors = BTreeSet::new();
+    for (pixel, (&engine, &expected)) in engine_surfaces.iter().zip(&oracle.surfaces).enumerate() {
+        engine_sectors.extend(oracle.sector_of(engine));
+        oracle_sectors.extend(oracle.sector_of(expected));
+        if engine == Surface::None {
+            result.holes += 1;
+        }
+        if engine != expected {
+            result.surface_mismatches += 1;
+            if engine != Surface::None {
+                misplaced.entry(engine).or_default().push(pixel);
+            }
+        } else if engine_indices[pixel] != oracle.indices[pixel] {
+            result.texel_mismatches += 1;
+        }
+    }
+    for (surface, pixels) in &misplaced {
+        let distances = chebyshev_distances(&oracle.surfaces, oracle.width, oracle.height, *surface);
+        for &pixel in pixels {
+            result.max_edge_error_px = result.max_edge_error_px.max(distances[pixel]);
+        }
+    }
+    result.missed_sectors = oracle_sectors.difference(&engine_sectors).copied().collect();
+    result.extra_sectors = engine_sectors.difference(&oracle_sectors).copied().collect();
+    result
+}
+
+/// For each pixel, the Chebyshev distance to the nearest pixel showing `surface`, capped at
+/// `max(width, height)` (which also stands for "nowhere").
+///
+/// The two-pass 8-neighbour chamfer with unit weights is exact for the Chebyshev metric.
+fn chebyshev_distances(surfaces: &[Surface], width: usize, height: usize, surface: Surface) -> Vec<u32> {
+    let far = width.max(height) as u32;
+    let mut d: Vec<u32> = surfaces.iter().map(|&s| if s == surface { 0 } else { far }).collect();
+    for y in 0..height {
+        for x in 0..width {
+            let mut best = d[y * width + x];
+            if x > 0 {
+                best = best.min(d[y * width + x - 1] + 1);
+            }
+            if y > 0 {
+                let above = (y - 1) * width;
+                best = best.min(d[above + x] + 1);
+                if x > 0 {
+                    best = best.min(d[above + x - 1] + 1);
+                }
+                if x + 1 < width {
+                    best = best.min(d[above + x + 1] + 1);
+                }
+            }
+            d[y * width + x] = best.min(far);
+        }
+    }
+    for y in (0..height).rev() {
+        for x in (0..width).rev() {
+            let mut best = d[y * width + x];
+            if x + 1 < width {
+                best = best.min(d[y * width + x + 1] + 1);
+            }
+            if y + 1 < height {
+                let below = (y + 1) * width;
+                best = best.min(d[below + x] + 1);
+                if x > 0 {
+                    best = best.min(d[below + x - 1] + 1);
+                }
+                if x + 1 < width {
+                    best = best.min(d[below + x + 1] + 1);
+                }
+            }
+            d[y * width + x] = best.min(far);
+        }
+    }
+    d
+}
+
+/// A stable false colour for a surface: black for [`Surface::None`], sky blue for the sky,
+/// and for the others a colour hashed from the kind and index, tinted by kind (walls reddish,
+/// upper strips yellowish, lower strips purplish, floors greenish, ceilings bluish) so
+/// neighbouring walls still differ.
+pub fn surface_colour(surface: Surface) -> [u8; 3] {
+    let (kind, index, tint): (u64, u16, [u8; 3]) = match surface {
+        Surface::None => return [0, 0, 0],
+        Surface::Sky => return [135, 206, 235],
+        Surface::Wall(w) => (1, w, [96, 0, 0]),
+        Surface::Upper(w) => (2, w, [96, 96, 0]),
+        Surface::Lower(w) => (3, w, [96, 0, 96]),
+        Surface::Floor(s) => (4, s, [0, 96, 0]),
+        Surface::Ceiling(s) => (5, s, [0, 0, 96]),
+    };
+    let hash = splitmix64((kind << 16) | u64::from(index));
+    let channel = |i: usize| tint[i] + (hash >> (8 * i)) as u8 % 160;
+    [channel(0), channel(1), channel(2)]
+}
+
+fn splitmix64(seed: u64) -> u64 {
+    let mut z = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Gap between the panels of the diff picture, in pixels.
+const GAP: usize = 4;
+
+/// Writes a PNG for debugging a failed comparison: the engine's surfaces, the oracle's (both in
+/// [`surface_colour`]s) and a mismatch mask side by side, with a grey gap between panels. The
+/// mask is black where the surfaces agree, red where they differ and yellow for engine holes.
+pub fn write_diff_png(engine_surfaces: &[Surface], oracle: &Frame, path: &Path) -> io::Result<()> {
+    let (width, height) = (oracle.width, oracle.height);
+    assert_eq!(engine_surfaces.len(), width * height, "engine surfaces do not match the oracle frame size");
+    let total_width = 3 * width + 2 * GAP;
+    let mut image = image::RgbImage::from_pixel(total_width as u32, height as u32, image::Rgb([64, 64, 64]));
+    for y in 0..height {
+        for x in 0..width {
+            let engine = engine_surfaces[y * width + x];
+            let expected = oracle.surfaces[y * width + x];
+            let mask = if engine == Surface::None {
+                [255, 255, 0]
+            } else if engine != expected {
+                [255, 0, 0]
+            } else {
+                [0, 0, 0]
+            };
+            for (panel, colour) in [surface_colour(engine), surface_colour(expected), mask].into_iter().enumerate() {
+                image.put_pixel((panel * (width + GAP) + x) as u32, y as u32, image::Rgb(colour));
+            }
+        }
+    }
+    image.save_with_format(path, image::ImageFormat::Png).map_err(io::Error::other)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chebyshev_distance_is_exact_on_a_small_grid() {
+        // One wall pixel at (1, 1) of a 5×3 grid: distances are max(|dx|, |dy|).
+        let mut surfaces = vec![Surface::None; 15];
+        surfaces[5 + 1] = Surface::Wall(0);
+        let d = chebyshev_distances(&surfaces, 5, 3, Surface::Wall(0));
+        assert_eq!(d, vec![1, 1, 1, 2, 3, 1, 0, 1, 2, 3, 1, 1, 1, 2, 3]);
+        // Absent surface: everything at the cap max(5, 3) = 5.
+        let d = chebyshev_distances(&surfaces, 5, 3, Surface::Sky);
+        assert!(d.iter().all(|&x| x == 5));
+    }
+
+    #[test]
+    fn surface_colours_are_stable_and_distinct() {
+        assert_eq!(surface_colour(Surface::None), [0, 0, 0]);
+        assert_eq!(surface_colour(Surface::Wall(3)), surface_colour(Surface::Wall(3)));
+        assert_ne!(surface_colour(Surface::Wall(3)), surface_colour(Surface::Wall(4)));
+        assert_ne!(surface_colour(Surface::Floor(3)), surface_colour(Surface::Ceiling(3)));
+    }
+}

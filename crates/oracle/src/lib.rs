@@ -1,0 +1,187 @@
+//! The f64 reference renderer ("oracle") of portalcast, host only.
+//!
+//! The engine renders in fixed point, span by span; the oracle renders the same map and camera
+//! by casting one exact ray per pixel in `f64`, applying the texture rules of
+//! [`portalcast::render::surface`] and the light rule of [`portalcast::render::light`]. The
+//! accuracy tests render both and [`compare`] them: which surface each pixel shows, which palette
+//! index it ends with, how far the engine's edges are from the oracle's, and which sectors one of
+//! them shows and the other does not.
+//!
+//! # The ray of a pixel
+//!
+//! Conventions of `docs/ARCHITECTURE.md`: forward `f = (cos a, sin a)`, right
+//! `r = (−sin a, cos a)`. Column `c` is sampled at `c + ½`: slope `m = (c + ½ − width/2) / focal_x`,
+//! 2D ray `P + t·D` with `D = f + m·r`, so `t` is the eye-space depth `z'`. Row `y` is sampled at
+//! `y + ½`: `k = (y + ½ − horizon_y) / focal_y`, and the 3D ray is at height
+//! `h(t) = eye_z − k·t`.
+//!
+//! # The march
+//!
+//! In sector `S` over `t ∈ [t_in, t_out)`, with `t_out` where the 2D ray leaves `S` through wall
+//! `w` (parameter `s ∈ [0, 1)` along `w`: a ray through a vertex leaves through the wall that
+//! *starts* there, as the engine's column rule `x0 ≤ c + ½ < x1` assigns it):
+//! - the ceiling of `S` if `k < 0` and `h(t_out) > ceil_z` (the plane is reached before
+//!   `t_out`), the sky if that ceiling is [`SKY`](portalcast_format::SKY); the floor if `k > 0`
+//!   and `h(t_out) < floor_z`;
+//! - else, at `t_out`: a solid `w` is [`Surface::Wall`]; through a portal to `N`,
+//!   [`Surface::Upper`] if `N.ceil_z < S.ceil_z` and `h(t_out) ≥ N.ceil_z` (but [`Surface::Sky`]
+//!   when both ceilings are sky: that strip is never drawn, the panorama shows through);
+//!   [`Surface::Lower`] if `h(t_out) < N.floor_z`; otherwise the march goes on in `N` from
+//!   `t_in = t_out`;
+//! - after `sectors + 8` sectors without a hit (a broken map), [`Surface::None`].
+//!
+//! The 2D part does not depend on the row, so it runs once per column.
+
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+mod compare;
+mod geometry;
+mod poses;
+mod render;
+
+pub use compare::{compare, surface_colour, write_diff_png, Comparison};
+pub use geometry::find_sector;
+pub use poses::sample_poses;
+pub use portalcast::render::light::Lighting;
+pub use portalcast::render::surface::Surface;
+pub use render::{mip_level, render};
+
+use portalcast::math::Viewport;
+use portalcast_format::{Colormap, Sky, Texture};
+
+/// Where the eye is and where it looks, in `f64` world units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// World x.
+    pub x: f64,
+    /// World y (drawn downward on a top-down view).
+    pub y: f64,
+    /// Eye height.
+    pub eye_z: f64,
+    /// View direction in radians: 0 looks along +x, growing toward +y.
+    pub angle: f64,
+    /// The sector the eye is in; `None` to find it with [`find_sector`].
+    pub sector: Option<u16>,
+}
+
+impl Camera {
+    /// The camera at an engine pose: position and eye height in 24.8 fixed point, binary angle
+    /// (65536 per turn). Every engine pose is exactly representable here.
+    pub fn from_fixed(x_fx8: i32, y_fx8: i32, eye_z_fx8: i32, angle: u16, sector: Option<u16>) -> Camera {
+        Camera {
+            x: f64::from(x_fx8) / 256.0,
+            y: f64::from(y_fx8) / 256.0,
+            eye_z: f64::from(eye_z_fx8) / 256.0,
+            angle: angle_from_bits(angle),
+            sector,
+        }
+    }
+
+    /// The view direction as the nearest binary angle (65536 per turn).
+    pub fn angle_bits(&self) -> u16 {
+        angle_to_bits(self.angle)
+    }
+}
+
+/// Radians of a binary angle (65536 units per turn).
+pub fn angle_from_bits(bits: u16) -> f64 {
+    f64::from(bits) * core::f64::consts::TAU / 65536.0
+}
+
+/// The binary angle nearest to `radians`, wrapped into one turn; exact inverse of
+/// [`angle_from_bits`].
+pub fn angle_to_bits(radians: f64) -> u16 {
+    (radians / core::f64::consts::TAU * 65536.0).round().rem_euclid(65536.0) as u16
+}
+
+/// The screen: size, focal lengths, horizon and lighting rule.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// Columns.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// Horizontal focal length, in columns.
+    pub focal_x: f64,
+    /// Vertical focal length, in rows.
+    pub focal_y: f64,
+    /// Screen y of the horizon (the row boundary, not a pixel centre).
+    pub horizon_y: f64,
+    /// The lighting rule, as the engine's.
+    pub lighting: Lighting,
+}
+
+impl View {
+    /// The view of an engine viewport, so both renderers project identically.
+    pub fn from_viewport(viewport: &Viewport, lighting: Lighting) -> View {
+        View {
+            width: viewport.width as usize,
+            height: viewport.height as usize,
+            focal_x: f64::from(viewport.focal_x),
+            focal_y: f64::from(viewport.focal_y),
+            horizon_y: f64::from(viewport.horizon_y),
+            lighting,
+        }
+    }
+}
+
+/// The images a frame is drawn with.
+#[derive(Clone, Copy, Debug)]
+pub struct Assets<'a> {
+    /// Textures, indexed by the map's texture slots (walls need the column chains, floors and
+    /// ceilings the row chains).
+    pub textures: &'a [Texture<'a>],
+    /// The sky panorama.
+    pub sky: &'a Sky<'a>,
+    /// The light colormap.
+    pub colormap: &'a Colormap,
+}
+
+/// A rendered frame, row-major (`y * width + x`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// Columns.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// The surface of each pixel.
+    pub surfaces: Vec<Surface>,
+    /// The final palette index of each pixel (after the colormap when lighting is on).
+    pub indices: Vec<u8>,
+    /// Eye-space depth `z'` of each pixel's hit; `f64::INFINITY` for the sky and for
+    /// [`Surface::None`].
+    pub depths: Vec<f64>,
+    /// The sector owning each wall of the map (wall index → sector), so [`compare`] can tell
+    /// which sectors a frame shows without the map.
+    pub wall_sectors: Vec<u16>,
+}
+
+impl Frame {
+    /// The surface at column `x`, row `y`.
+    pub fn surface(&self, x: usize, y: usize) -> Surface {
+        self.surfaces[y * self.width + x]
+    }
+
+    /// The palette index at column `x`, row `y`.
+    pub fn index(&self, x: usize, y: usize) -> u8 {
+        self.indices[y * self.width + x]
+    }
+
+    /// The depth at column `x`, row `y`.
+    pub fn depth(&self, x: usize, y: usize) -> f64 {
+        self.depths[y * self.width + x]
+    }
+
+    /// The sector a surface belongs to: its own for floors and ceilings, the owner of the wall
+    /// for walls and strips; `None` for the sky, [`Surface::None`] and unknown walls.
+    pub fn sector_of(&self, surface: Surface) -> Option<u16> {
+        match surface {
+            Surface::Floor(s) | Surface::Ceiling(s) => Some(s),
+            Surface::Wall(w) | Surface::Upper(w) | Surface::Lower(w) => {
+                self.wall_sectors.get(usize::from(w)).copied()
+            }
+            Surface::Sky | Surface::None => None,
+        }
+    }
+}

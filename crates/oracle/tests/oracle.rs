@@ -1,0 +1,564 @@
+//! The oracle on hand-built maps, with every expected value worked out in the comments.
+//!
+//! Common set-up unless a test says otherwise: a 240×160 view, `focal_x = focal_y = 120`,
+//! horizon at 80, eye at `(0, 0)`, height 32, looking along +x (angle 0). Column `c` has slope
+//! `m = (c + ½ − 120)/120` and ray `D = (1, m)`; row `y` has `k = (y + ½ − 80)/120` and height
+//! `h(t) = 32 − k·t`. Room A is `x ∈ [−64, 64]`, `y ∈ [−32, 32]`, floor 0, ceiling 64; its walls
+//! are 0 north `(−64,−32)→(64,−32)`, 1 east `(64,−32)→(64,32)`, 2 south, 3 west. The centre
+//! column 120 has `m = 1/240`, so it meets `x = 64` at `t = 64` and `x = 192` at `t = 192`.
+
+use std::collections::BTreeSet;
+
+use portalcast_format::{
+    Colormap, MapTables, PlayerStart, Sector, Sky, Texture, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY,
+};
+use portalcast_oracle::{
+    angle_from_bits, angle_to_bits, compare, find_sector, render, sample_poses, write_diff_png, Assets, Camera,
+    Frame, Lighting, Surface, View,
+};
+
+// ---------------------------------------------------------------------------------------------
+// Fixtures
+
+/// Texture slots of the fixtures.
+const WALL_TEX: u16 = 0;
+const FLOOR_TEX: u16 = 1;
+const CEIL_TEX: u16 = 2;
+const STRIP_TEX: u16 = 3;
+
+/// Texel `(u, v)` of mip level `level` of texture `slot`: distinct for every `(u, v)` of level 0
+/// of one slot, so a wrong coordinate shows.
+fn pattern(slot: u16, level: u8, u: usize, v: usize) -> u8 {
+    ((slot as usize * 64 + level as usize * 37 + u * 8 + v) % 256) as u8
+}
+
+/// An 8×8 texture with 4 mip levels in both layouts.
+struct OwnedTexture {
+    columns: Vec<u8>,
+    rows: Vec<u8>,
+}
+
+impl OwnedTexture {
+    fn new(slot: u16) -> OwnedTexture {
+        let (mut columns, mut rows) = (Vec::new(), Vec::new());
+        for level in 0..4u8 {
+            let side = 8usize >> level;
+            for u in 0..side {
+                for v in 0..side {
+                    columns.push(pattern(slot, level, u, v));
+                }
+            }
+            for v in 0..side {
+                for u in 0..side {
+                    rows.push(pattern(slot, level, u, v));
+                }
+            }
+        }
+        OwnedTexture { columns, rows }
+    }
+
+    fn texture(&self) -> Texture<'_> {
+        Texture { name: "t", width_log2: 3, height_log2: 3, mip_count: 4, columns: &self.columns, rows: &self.rows }
+    }
+}
+
+/// The sky texel of column `u` (of 8), row `v` (of `height`).
+fn sky_pattern(u: usize, v: usize) -> u8 {
+    ((v + 31 * u) % 256) as u8
+}
+
+/// Lighting row `r` maps index `i` to `(3i + r) mod 256`: every row differs from the identity.
+fn colormap() -> Box<Colormap> {
+    let mut map = Box::new([[0u8; 256]; 32]);
+    for (r, row) in map.iter_mut().enumerate() {
+        for (i, entry) in row.iter_mut().enumerate() {
+            *entry = ((3 * i + r) % 256) as u8;
+        }
+    }
+    map
+}
+
+struct Fixture {
+    textures: Vec<OwnedTexture>,
+    sky_texels: Vec<u8>,
+    sky_height: u16,
+    colormap: Box<Colormap>,
+}
+
+impl Fixture {
+    fn new(sky_height: u16) -> Fixture {
+        let mut sky_texels = Vec::new();
+        for u in 0..8 {
+            for v in 0..usize::from(sky_height) {
+                sky_texels.push(sky_pattern(u, v));
+            }
+        }
+        Fixture { textures: (0..4).map(OwnedTexture::new).collect(), sky_texels, sky_height, colormap: colormap() }
+    }
+
+    fn render(&self, map: &MapTables, camera: &Camera, view: &View) -> Frame {
+        let textures: Vec<Texture> = self.textures.iter().map(OwnedTexture::texture).collect();
+        let sky = Sky { width_log2: 3, height: self.sky_height, texels: &self.sky_texels };
+        let assets = Assets { textures: &textures, sky: &sky, colormap: &self.colormap };
+        render(map, &assets, camera, view)
+    }
+}
+
+struct OwnedMap {
+    vertices: Vec<Vertex>,
+    walls: Vec<Wall>,
+    sectors: Vec<Sector>,
+}
+
+impl OwnedMap {
+    fn tables(&self) -> MapTables<'_> {
+        MapTables {
+            name: "test",
+            vertices: &self.vertices,
+            walls: &self.walls,
+            sectors: &self.sectors,
+            player_start: PlayerStart { x_fx8: 0, y_fx8: 0, angle: 0, sector: 0 },
+            things: &[],
+        }
+    }
+}
+
+fn wall(start: u16, end: u16, portal: u16) -> Wall {
+    let solid = portal == NO_PORTAL;
+    Wall {
+        start,
+        end,
+        portal,
+        texture: if solid { WALL_TEX } else { NO_TEXTURE },
+        upper_texture: if solid { NO_TEXTURE } else { STRIP_TEX },
+        lower_texture: if solid { NO_TEXTURE } else { STRIP_TEX },
+        x_offset: 0,
+        y_offset: 0,
+    }
+}
+
+fn sector(first_wall: u16, floor_z: i32, ceil_z: i32, ceil_texture: u16, light: u8) -> Sector {
+    Sector { first_wall, wall_count: 4, floor_z, ceil_z, floor_texture: FLOOR_TEX, ceil_texture, light }
+}
+
+/// Room A alone, `x ∈ [−64, east]`; the east wall (1) is solid, or a portal to `east_portal`.
+fn room(east: i32, east_portal: u16) -> OwnedMap {
+    OwnedMap {
+        vertices: vec![
+            Vertex { x: -64, y: -32 },
+            Vertex { x: east, y: -32 },
+            Vertex { x: east, y: 32 },
+            Vertex { x: -64, y: 32 },
+        ],
+        walls: vec![wall(0, 1, NO_PORTAL), wall(1, 2, east_portal), wall(2, 3, NO_PORTAL), wall(3, 0, NO_PORTAL)],
+        sectors: vec![sector(0, 0, 64, CEIL_TEX, 128)],
+    }
+}
+
+/// Room A with its east wall a portal to room B, `x ∈ [64, 192]`, `y ∈ [−32, 32]`. B's walls are
+/// 4 north `(64,−32)→(192,−32)`, 5 east `(192,−32)→(192,32)`, 6 south, 7 the portal back.
+fn two_rooms(b_floor: i32, b_ceil: i32, a_ceil_texture: u16, b_ceil_texture: u16, b_light: u8) -> OwnedMap {
+    let mut map = room(64, 1);
+    map.sectors[0].ceil_texture = a_ceil_texture;
+    map.vertices.extend([Vertex { x: 192, y: -32 }, Vertex { x: 192, y: 32 }]);
+    map.walls.extend([wall(1, 4, NO_PORTAL), wall(4, 5, NO_PORTAL), wall(5, 2, NO_PORTAL), wall(2, 1, 0)]);
+    let mut b = sector(4, b_floor, b_ceil, b_ceil_texture, b_light);
+    b.floor_texture = CEIL_TEX;
+    map.sectors.push(b);
+    map
+}
+
+fn view(lighting: Lighting) -> View {
+    View { width: 240, height: 160, focal_x: 120.0, focal_y: 120.0, horizon_y: 80.0, lighting }
+}
+
+fn centre_camera() -> Camera {
+    Camera { x: 0.0, y: 0.0, eye_z: 32.0, angle: 0.0, sector: Some(0) }
+}
+
+/// The surfaces of column `x`, as `(first row, last row, surface)` runs.
+fn runs(frame: &Frame, x: usize) -> Vec<(usize, usize, Surface)> {
+    let mut runs: Vec<(usize, usize, Surface)> = Vec::new();
+    for y in 0..frame.height {
+        let surface = frame.surface(x, y);
+        match runs.last_mut() {
+            Some(run) if run.2 == surface => run.1 = y,
+            _ => runs.push((y, y, surface)),
+        }
+    }
+    runs
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rendering
+
+/// Room A alone (all solid). Centre column: the ceiling where `h(64) > 64`, i.e. `k < −½`,
+/// `y + ½ < 20`: rows 0..=19; the floor where `h(64) < 0`, `k > ½`, `y + ½ > 140`: rows
+/// 140..=159; wall 1 between. Row 80 by column: the ray meets `y = −32` before `x = 64` when
+/// `m < −½`, `c + ½ < 60` (columns 0..=59, wall 0); symmetrically columns 180..=239 see wall 2.
+#[test]
+fn single_room_centre_column_and_symmetry() {
+    let map = room(64, NO_PORTAL);
+    let fixture = Fixture::new(200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
+
+    assert_eq!(
+        runs(&frame, 120),
+        vec![(0, 19, Surface::Ceiling(0)), (20, 139, Surface::Wall(1)), (140, 159, Surface::Floor(0))]
+    );
+    let row_80: Vec<Surface> = (0..240).map(|x| frame.surface(x, 80)).collect();
+    assert!(row_80[..60].iter().all(|&s| s == Surface::Wall(0)));
+    assert!(row_80[60..180].iter().all(|&s| s == Surface::Wall(1)));
+    assert!(row_80[180..].iter().all(|&s| s == Surface::Wall(2)));
+    assert_eq!(frame.depth(120, 80), 64.0);
+
+    // Mirror symmetry: column c ↔ 239 − c swaps walls 0 and 2; row y ↔ 159 − y swaps the
+    // ceiling and the floor (the eye is at mid-height, the horizon mid-screen).
+    let mirror_x = |s: Surface| match s {
+        Surface::Wall(0) => Surface::Wall(2),
+        Surface::Wall(2) => Surface::Wall(0),
+        other => other,
+    };
+    let mirror_y = |s: Surface| match s {
+        Surface::Ceiling(0) => Surface::Floor(0),
+        Surface::Floor(0) => Surface::Ceiling(0),
+        other => other,
+    };
+    for y in 0..160 {
+        for x in 0..240 {
+            assert_eq!(frame.surface(239 - x, y), mirror_x(frame.surface(x, y)), "column mirror at ({x}, {y})");
+            assert_eq!(frame.surface(x, 159 - y), mirror_y(frame.surface(x, y)), "row mirror at ({x}, {y})");
+        }
+    }
+}
+
+/// Texels of room A, lighting off. Wall 1 with offsets (3, 5) at (120, 80): hit at y = 64/240,
+/// `u = 32 + 0.2667 + 3 = 35.27` → 35 mod 8 = 3; `h = 32 − 64·(0.5/120) = 31.73`,
+/// `v = 64 − 31.73 + 5 = 37.27` → 5; depth 64 < 2·120: level 0.
+/// Floor at (120, 150): `k = 70.5/120`, `t = 32/k = 54.47`, point (54.47, 0.227) → (6, 0).
+/// Ceiling at (120, 5): `k = −74.5/120`, `t = −32/k = 51.54`, point (51.54, 0.215) → (3, 0).
+#[test]
+fn single_room_texels() {
+    let mut map = room(64, NO_PORTAL);
+    map.walls[1].x_offset = 3;
+    map.walls[1].y_offset = 5;
+    let fixture = Fixture::new(200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
+
+    assert_eq!(frame.index(120, 80), pattern(WALL_TEX, 0, 3, 5));
+    assert_eq!(frame.surface(120, 150), Surface::Floor(0));
+    assert_eq!(frame.index(120, 150), pattern(FLOOR_TEX, 0, 6, 0));
+    assert!((frame.depth(120, 150) - 32.0 / (70.5 / 120.0)).abs() < 1e-9);
+    assert_eq!(frame.surface(120, 5), Surface::Ceiling(0));
+    assert_eq!(frame.index(120, 5), pattern(CEIL_TEX, 0, 3, 0));
+}
+
+/// A corridor A, `x ∈ [−64, 1000]`, lit by depth (light 128). The east wall at `t = 1000`:
+/// `1000/120 = 8.3` → level 3 (1×1, texel (0, 0)); light `128 + 32 − 1000/16 = 98` → row 12.
+/// Floor at (120, 92): `k = 12.5/120`, `t = 307.2`, `307.2/120 = 2.56` → level 1 (4×4); point
+/// (307.2, 1.28): `(307 mod 8) >> 1 = 1`, `(1 mod 8) >> 1 = 0`; light `160 − 307/16 = 141` →
+/// row 17.
+#[test]
+fn corridor_mip_levels_and_depth_light() {
+    let map = room(1000, NO_PORTAL);
+    let fixture = Fixture::new(200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::SectorDepth));
+
+    assert_eq!(frame.surface(120, 80), Surface::Wall(1));
+    assert_eq!(frame.index(120, 80), fixture.colormap[12][usize::from(pattern(WALL_TEX, 3, 0, 0))]);
+    assert_eq!(frame.surface(120, 92), Surface::Floor(0));
+    assert_eq!(frame.index(120, 92), fixture.colormap[17][usize::from(pattern(FLOOR_TEX, 1, 1, 0))]);
+}
+
+/// A's east wall is a portal to B (floor 16, ceiling 48, light 200). Centre column:
+/// - A's ceiling where `h(64) > 64`: rows 0..=19;
+/// - upper strip where `h(64) ≥ 48`, `k ≤ −¼`, `y + ½ ≤ 50`: rows 20..=49;
+/// - B's ceiling where `h(192) > 48`, `k < −1/12`, `y + ½ < 70`: rows 50..=69;
+/// - B's east wall 5 while `h(192) ≥ 16`, `k ≤ 1/12`, `y + ½ ≤ 90`: rows 70..=89;
+/// - B's floor while `h(64) ≥ 16`, `k ≤ ¼`, `y + ½ ≤ 110`: rows 90..=109;
+/// - lower strip while `h(64) ≥ 0`, `k ≤ ½`: rows 110..=139; A's floor below.
+#[test]
+fn portal_to_a_raised_room_shows_strips_and_the_far_floor() {
+    let mut map = two_rooms(16, 48, CEIL_TEX, CEIL_TEX, 200);
+    map.walls[5].x_offset = 2;
+    let fixture = Fixture::new(200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Sector));
+
+    assert_eq!(
+        runs(&frame, 120),
+        vec![
+            (0, 19, Surface::Ceiling(0)),
+            (20, 49, Surface::Upper(1)),
+            (50, 69, Surface::Ceiling(1)),
+            (70, 89, Surface::Wall(5)),
+            (90, 109, Surface::Floor(1)),
+            (110, 139, Surface::Lower(1)),
+            (140, 159, Surface::Floor(0)),
+        ]
+    );
+    // Strips take A's light (128 → row 16), B's surfaces B's (200 → row 25). Wall 1 has
+    // `u = 32.27` → 0.
+    let cm = &fixture.colormap;
+    // Upper at row 30: `k = −49.5/120`, `h(64) = 58.4`, anchored at A's ceiling: `v = 5.6` → 5.
+    assert_eq!(frame.index(120, 30), cm[16][usize::from(pattern(STRIP_TEX, 0, 0, 5))]);
+    // Lower at row 130: `k = 50.5/120`, `h(64) = 5.07`, anchored at B's floor: `v = 10.93` → 2.
+    assert_eq!(frame.index(120, 130), cm[16][usize::from(pattern(STRIP_TEX, 0, 0, 2))]);
+    // B's floor at row 100: `k = 20.5/120`, `t = 16/k = 93.66`, point (93.66, 0.39) → (5, 0).
+    assert_eq!(frame.index(120, 100), cm[25][usize::from(pattern(CEIL_TEX, 0, 5, 0))]);
+    // Wall 5 at row 73: hit y = 0.8, `u = 32.8 + 2` → 2; `h = 32 + 192·6.5/120 = 42.4`,
+    // `v = 48 − 42.4 = 5.6` → 5.
+    assert_eq!(frame.index(120, 73), cm[25][usize::from(pattern(WALL_TEX, 0, 2, 5))]);
+    assert_eq!(frame.depth(120, 73), 192.0);
+}
+
+/// Both rooms open to the sky (B's ceiling 48, floor 0): rows 0..=69 of the centre column
+/// are all sky, the upper strip included (both ceilings are sky, so it is never drawn); B's wall
+/// 5 while `h(192) ≥ 0`, `k ≤ 1/6`, `y + ½ ≤ 100`: rows 70..=99; B's floor while
+/// `h(64) ≥ 0`: rows 100..=139.
+/// Sky texels: column 120 looks at `atan(1/240) > 0` → sky column 0, column 119 at `−atan(1/240)`
+/// → column 7; row y → `floor(y + ½ − 80) + 200/2 = y + 20`; never lit (light 200, lit view).
+#[test]
+fn sky_sectors_show_the_unlit_panorama() {
+    let map = two_rooms(0, 48, SKY, SKY, 200);
+    let fixture = Fixture::new(200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Sector));
+
+    assert_eq!(
+        runs(&frame, 120),
+        vec![
+            (0, 69, Surface::Sky),
+            (70, 99, Surface::Wall(5)),
+            (100, 139, Surface::Floor(1)),
+            (140, 159, Surface::Floor(0)),
+        ]
+    );
+    for y in [0, 19, 35, 69] {
+        assert_eq!(frame.index(120, y), sky_pattern(0, y + 20), "row {y}");
+        assert_eq!(frame.index(119, y), sky_pattern(7, y + 20), "row {y}");
+        assert_eq!(frame.depth(120, y), f64::INFINITY);
+    }
+
+    // Only B open to the sky: the strip is drawn, B's ceiling is sky.
+    let map = two_rooms(0, 48, CEIL_TEX, SKY, 200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Sector));
+    assert_eq!(runs(&frame, 120)[..3], [(0, 19, Surface::Ceiling(0)), (20, 49, Surface::Upper(1)), (50, 69, Surface::Sky)]);
+
+    // A 100-row panorama: row y → `clamp(y − 80 + 50)`, so rows 0..=30 show its top row.
+    let fixture = Fixture::new(100);
+    let map = two_rooms(0, 48, SKY, SKY, 200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Sector));
+    assert_eq!(frame.index(120, 0), sky_pattern(0, 0));
+    assert_eq!(frame.index(120, 30), sky_pattern(0, 0));
+    assert_eq!(frame.index(120, 31), sky_pattern(0, 1));
+    assert_eq!(frame.index(120, 69), sky_pattern(0, 39));
+}
+
+/// A square room `[−64, 64]²` with `focal_x = 119.5`: column 239 has `m = 119.5/119.5 = 1`
+/// exactly, so its ray passes through the corner (64, 64), the end of wall 1 and the start of
+/// wall 2: `s ∈ [0, 1)` gives wall 2. Column 0 (`m = −1`) passes through (64, −64), the end of
+/// wall 0 and the start of wall 1: wall 1.
+#[test]
+fn a_ray_through_a_vertex_takes_the_wall_starting_there() {
+    let map = OwnedMap {
+        vertices: vec![
+            Vertex { x: -64, y: -64 },
+            Vertex { x: 64, y: -64 },
+            Vertex { x: 64, y: 64 },
+            Vertex { x: -64, y: 64 },
+        ],
+        walls: vec![wall(0, 1, NO_PORTAL), wall(1, 2, NO_PORTAL), wall(2, 3, NO_PORTAL), wall(3, 0, NO_PORTAL)],
+        sectors: vec![sector(0, 0, 64, CEIL_TEX, 128)],
+    };
+    let fixture = Fixture::new(200);
+    let view = View { focal_x: 119.5, ..view(Lighting::Off) };
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view);
+    assert_eq!(frame.surface(239, 80), Surface::Wall(2));
+    assert_eq!(frame.surface(0, 80), Surface::Wall(1));
+    assert_eq!(frame.depth(239, 80), 64.0);
+}
+
+/// A portal back into its own sector (a broken map) never reaches a surface at the heights the
+/// ray keeps between floor and ceiling: after `1 + 8` sectors those pixels are holes. Rows
+/// 0..=19 and 140..=159 still hit the ceiling and floor of the first pass.
+#[test]
+fn portal_loops_end_as_holes() {
+    let map = room(64, 0);
+    let fixture = Fixture::new(200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
+    assert_eq!(
+        runs(&frame, 120),
+        vec![(0, 19, Surface::Ceiling(0)), (20, 139, Surface::None), (140, 159, Surface::Floor(0))]
+    );
+}
+
+/// A missing texture slot draws texel 0 (then lit: `(3·0 + 16) mod 256 = 16`).
+#[test]
+fn missing_texture_draws_texel_zero() {
+    let mut map = room(64, NO_PORTAL);
+    map.walls[1].texture = NO_TEXTURE;
+    let fixture = Fixture::new(200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
+    assert_eq!((frame.surface(120, 80), frame.index(120, 80)), (Surface::Wall(1), 0));
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Sector));
+    assert_eq!(frame.index(120, 80), 16);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sectors and poses
+
+#[test]
+fn find_sector_is_strict() {
+    let map = two_rooms(16, 48, CEIL_TEX, CEIL_TEX, 200);
+    let map = map.tables();
+    assert_eq!(find_sector(&map, 0.0, 0.0), Some(0));
+    assert_eq!(find_sector(&map, 63.999, 31.999), Some(0));
+    assert_eq!(find_sector(&map, 64.001, 0.0), Some(1));
+    assert_eq!(find_sector(&map, 191.5, -31.5), Some(1));
+    // On the shared portal, on an outer wall, on a vertex, outside.
+    assert_eq!(find_sector(&map, 64.0, 0.0), None);
+    assert_eq!(find_sector(&map, -64.0, 10.0), None);
+    assert_eq!(find_sector(&map, 0.0, 32.0), None);
+    assert_eq!(find_sector(&map, 64.0, 32.0), None);
+    assert_eq!(find_sector(&map, 300.0, 0.0), None);
+}
+
+/// Without a sector the camera's is found; on a wall line there is none and the frame is all
+/// holes.
+#[test]
+fn render_finds_the_camera_sector() {
+    let map = two_rooms(16, 48, CEIL_TEX, CEIL_TEX, 200);
+    let fixture = Fixture::new(200);
+    let known = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
+    let found = fixture.render(&map.tables(), &Camera { sector: None, ..centre_camera() }, &view(Lighting::Off));
+    assert_eq!(known, found);
+    let on_portal = Camera { x: 64.0, sector: None, ..centre_camera() };
+    let frame = fixture.render(&map.tables(), &on_portal, &view(Lighting::Off));
+    assert!(frame.surfaces.iter().all(|&s| s == Surface::None));
+}
+
+/// Poses land strictly inside a sector, 2 units clear of its walls, at eye height
+/// `min(floor + 32, ceil − 16)`: 32 in A (floor 0, ceiling 64), `min(48, 40) = 40` in B
+/// (floor 16, ceiling 56); on the engine's grids; reproducible from the seed.
+#[test]
+fn sample_poses_are_valid_and_reproducible() {
+    let owned = two_rooms(16, 56, CEIL_TEX, CEIL_TEX, 200);
+    let map = owned.tables();
+    let poses = sample_poses(&map, 64, 7);
+    assert_eq!(poses.len(), 64);
+    assert_eq!(poses, sample_poses(&map, 64, 7));
+    assert_ne!(poses, sample_poses(&map, 64, 8));
+    let mut sectors = BTreeSet::new();
+    for pose in &poses {
+        let sector = pose.sector.expect("poses carry their sector");
+        sectors.insert(sector);
+        assert_eq!(find_sector(&map, pose.x, pose.y), Some(sector));
+        let (x0, x1) = if sector == 0 { (-64.0, 64.0) } else { (64.0, 192.0) };
+        let clearance = (pose.x - x0).min(x1 - pose.x).min(pose.y + 32.0).min(32.0 - pose.y);
+        assert!(clearance >= 2.0, "{pose:?} within 2 of a wall");
+        assert_eq!(pose.eye_z, if sector == 0 { 32.0 } else { 40.0 });
+        assert_eq!((pose.x * 256.0).fract(), 0.0);
+        assert_eq!((pose.y * 256.0).fract(), 0.0);
+        assert_eq!(angle_from_bits(angle_to_bits(pose.angle)), pose.angle);
+    }
+    assert_eq!(sectors, BTreeSet::from([0, 1]));
+}
+
+#[test]
+fn camera_from_fixed_is_exact() {
+    let camera = Camera::from_fixed(-3 * 256 + 1, 512, 32 * 256, 16384, Some(2));
+    assert_eq!((camera.x, camera.y, camera.eye_z), (-3.0 + 1.0 / 256.0, 2.0, 32.0));
+    assert_eq!(camera.angle, std::f64::consts::FRAC_PI_2);
+    assert_eq!(camera.angle_bits(), 16384);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Comparison
+
+/// A 4×3 oracle frame; walls 0..=3 belong to sector 0, 4..=7 to sector 1.
+fn oracle_frame(surfaces: Vec<Surface>, width: usize, height: usize) -> Frame {
+    Frame {
+        width,
+        height,
+        indices: vec![10; surfaces.len()],
+        depths: vec![1.0; surfaces.len()],
+        surfaces,
+        wall_sectors: vec![0, 0, 0, 0, 1, 1, 1, 1],
+    }
+}
+
+/// Oracle                      Engine
+/// C0 C0 C1 C1                 C0* C0 C0 C1        (* index 11 instead of 10)
+/// W1 W1 W5 W5                 W1  W1 W1 --
+/// F0 F0 F0 Sky                F0  F0 F0 W9
+/// Surface mismatches: (2,0) C0 for C1, (2,1) W1 for W5, (3,1) hole, (3,2) W9: 4 of 12.
+/// Texel mismatches: (0,0) only (the engine's index at (2,0) differs too, but that pixel already
+/// is a surface mismatch). Edge error: C0 and W1 are 1 pixel from where the oracle draws them;
+/// wall 9 is nowhere in the oracle: `max(4, 3) = 4`. Sectors: both frames show 0 and 1 (wall 9
+/// has no sector).
+#[test]
+fn compare_counts_mismatches_holes_and_edge_error() {
+    use Surface::*;
+    let oracle = oracle_frame(
+        vec![Ceiling(0), Ceiling(0), Ceiling(1), Ceiling(1), Wall(1), Wall(1), Wall(5), Wall(5), Floor(0), Floor(0), Floor(0), Sky],
+        4,
+        3,
+    );
+    let engine =
+        [Ceiling(0), Ceiling(0), Ceiling(0), Ceiling(1), Wall(1), Wall(1), Wall(1), None, Floor(0), Floor(0), Floor(0), Wall(9)];
+    let mut indices = [10u8; 12];
+    indices[0] = 11;
+    indices[2] = 12;
+    let result = compare(&engine, &indices, &oracle);
+    assert_eq!(result.pixels, 12);
+    assert_eq!(result.surface_mismatches, 4);
+    assert_eq!(result.texel_mismatches, 1);
+    assert_eq!(result.holes, 1);
+    assert_eq!(result.max_edge_error_px, 4);
+    assert!(result.missed_sectors.is_empty() && result.extra_sectors.is_empty());
+    assert!((result.surface_mismatch_percent() - 100.0 * 4.0 / 12.0).abs() < 1e-12);
+    assert!((result.texel_mismatch_percent() - 100.0 / 12.0).abs() < 1e-12);
+}
+
+/// One row: the oracle's edge between walls 0 and 1 is at x = 2, the engine's at x = 4, so
+/// pixels 2 and 3 are mismatched, 1 and 2 pixels from the oracle's wall 0: error 2.
+#[test]
+fn compare_measures_edge_displacement() {
+    use Surface::*;
+    let oracle = oracle_frame(vec![Wall(0), Wall(0), Wall(1), Wall(1), Wall(1)], 5, 1);
+    let engine = [Wall(0), Wall(0), Wall(0), Wall(0), Wall(1)];
+    let result = compare(&engine, &[10; 5], &oracle);
+    assert_eq!((result.surface_mismatches, result.max_edge_error_px, result.holes), (2, 2, 0));
+
+    let result = compare(&oracle.surfaces, &[10; 5], &oracle);
+    assert_eq!(result, portalcast_oracle::Comparison { pixels: 5, ..Default::default() });
+}
+
+/// The oracle shows sectors 0 (floor) and 1 (wall 6 is sector 1's); the engine shows 0
+/// (wall 2) and 2 (its ceiling) and the sky (no sector): missed [1], extra [2].
+#[test]
+fn compare_lists_missed_and_extra_sectors() {
+    use Surface::*;
+    let oracle = oracle_frame(vec![Floor(0), Wall(6), Sky], 3, 1);
+    let engine = [Wall(2), Ceiling(2), Sky];
+    let result = compare(&engine, &[10; 3], &oracle);
+    assert_eq!(result.missed_sectors, vec![1]);
+    assert_eq!(result.extra_sectors, vec![2]);
+    assert_eq!(result.surface_mismatches, 2);
+}
+
+#[test]
+fn diff_png_has_three_panels() {
+    use Surface::*;
+    let oracle = oracle_frame(vec![Floor(0), Wall(6), Sky], 3, 1);
+    let path = std::env::temp_dir().join(format!("portalcast-oracle-diff-{}.png", std::process::id()));
+    write_diff_png(&[Floor(0), None, Sky], &oracle, &path).unwrap();
+    let image = image::open(&path).unwrap().to_rgb8();
+    std::fs::remove_file(&path).unwrap();
+    // 3 panels of 3 columns and 2 gaps of 4.
+    assert_eq!(image.dimensions(), (17, 1));
+    // Mask panel starts at 2·(3 + 4) = 14: match, hole, match.
+    assert_eq!(image.get_pixel(14, 0).0, [0, 0, 0]);
+    assert_eq!(image.get_pixel(15, 0).0, [255, 255, 0]);
+    assert_eq!(image.get_pixel(16, 0).0, [0, 0, 0]);
+    assert_eq!(image.get_pixel(7, 0).0, portalcast_oracle::surface_colour(Floor(0)));
+}

@@ -1,0 +1,59 @@
+//! The demo the ROM plays and the emulator tests replay on the host: the bench map, seen from
+//! its player start, turning a full circle every 256 frames.
+
+use portalcast_format::{MapTables, Sky};
+
+use super::light::Lighting;
+use super::view::Camera;
+use super::RenderAssets;
+use crate::assets;
+use crate::math::{Angle, Fx24_8, WorldPoint};
+
+/// Name of the map the demo shows.
+pub const DEMO_MAP: &str = "bench";
+/// Binary-angle turn per frame: a full circle in 256 frames.
+pub const TURN_PER_FRAME: u16 = 256;
+
+static NO_SKY_TEXELS: [u8; 8] = [0; 8];
+
+/// The demo map from the compiled assets (the first map if there is no `bench`).
+pub fn demo_map() -> MapTables<'static> {
+    *assets::MAPS.iter().find(|map| map.name == DEMO_MAP).unwrap_or(&assets::MAPS[0])
+}
+
+/// The compiled textures, sky and colormap.
+pub fn render_assets() -> RenderAssets<'static> {
+    RenderAssets {
+        textures: assets::TEXTURES,
+        sky: assets::SKY.unwrap_or(Sky { width_log2: 0, height: 8, texels: &NO_SKY_TEXELS }),
+        colormap: &assets::COLORMAP.0,
+    }
+}
+
+/// The demo camera on frame `frame`: at the player start, eye 32 above the floor, turned
+/// `frame · TURN_PER_FRAME` from the start angle.
+pub fn camera_at(map: &MapTables, frame: u32) -> Camera {
+    let start = map.player_start;
+    let sector = map.sectors[usize::from(start.sector)];
+    Camera {
+        position: WorldPoint::new(Fx24_8::from_bits(start.x_fx8), Fx24_8::from_bits(start.y_fx8)),
+        eye_z: Fx24_8::from_int(sector.floor_z + 32),
+        angle: Angle::from_bits(start.angle.wrapping_add((frame as u16).wrapping_mul(TURN_PER_FRAME))),
+        sector: start.sector,
+        look_lines: 0,
+    }
+}
+
+/// The label the ROM prints for a lighting setting.
+pub const fn lighting_label(lighting: Lighting) -> &'static str {
+    match lighting {
+        Lighting::Off => "off",
+        Lighting::Sector => "sector",
+        Lighting::SectorDepth => "depth",
+    }
+}
+
+/// Parses [`lighting_label`].
+pub fn lighting_from_label(label: &str) -> Option<Lighting> {
+    [Lighting::Off, Lighting::Sector, Lighting::SectorDepth].into_iter().find(|l| lighting_label(*l) == label)
+}

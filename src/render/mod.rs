@@ -1,0 +1,25 @@
+//! The renderer, in Doom's split: the sector walk (`walk`, Doom's r_bsp), wall projection
+//! (`walls`, r_segs), floors and ceilings (`planes`, r_plane) and the texture and light rules
+//! they share (`surface`, `light`). Rasterizing goes through [`crate::raster::Canvas`].
+
+pub mod demo;
+pub mod light;
+pub mod planes;
+pub mod spans;
+pub mod surface;
+pub mod view;
+pub mod walk;
+pub mod walls;
+
+use portalcast_format::{Colormap, Sky, Texture};
+
+/// What the renderer draws with: the compiled textures, the sky and the light colormap.
+#[derive(Clone, Copy, Debug)]
+pub struct RenderAssets<'a> {
+    /// Textures by index (map tables refer to them by index).
+    pub textures: &'a [Texture<'a>],
+    /// The sky panorama.
+    pub sky: Sky<'a>,
+    /// Light rows.
+    pub colormap: &'a Colormap,
+}
