@@ -284,6 +284,28 @@ fn column_centres_and_one_ulp_either_side() {
     assert_eq!(view.first_column_at_or_after(just_right), 151);
     let just_left = eye_point((150 - 120) * 256 + 127, z);
     assert_eq!(view.first_column_at_or_after(just_left), 150);
+    // Two walls meeting at that vertex: the left one ends before 150, the right one starts at it.
+    let left_wall = (
+        view.first_column_at_or_after(eye_point(-(50 << 8), 100 << 8)),
+        150,
+    );
+    let right_wall = (
+        150,
+        view.first_column_at_or_after(eye_point(60 << 8, 100 << 8)),
+    );
+    assert_eq!(view.first_column_at_or_after(on_centre), left_wall.1);
+    assert_eq!((left_wall.0, right_wall.1), (60, 192)); // 60.0 → 60; 192.0 → 192
+                                                        // Screen-space positions follow the same rule.
+    assert_eq!(
+        view.first_column_at_or_after_x(Fx16_16::from_bits(150 * 65536 + 32768)),
+        150
+    );
+    assert_eq!(
+        view.first_column_at_or_after_x(Fx16_16::from_bits(150 * 65536 + 32769)),
+        151
+    );
+    assert_eq!(view.first_column_at_or_after_x(Fx16_16::from_int(-3)), 0);
+    assert_eq!(view.first_column_at_or_after_x(Fx16_16::from_int(300)), 240);
     // The view axis (x = 120.0) is the left edge of column 120.
     assert_eq!(view.first_column_at_or_after(eye_point(0, 1)), 120);
     // The frustum edges at 45°: x = 0 and x = 240 exactly.

@@ -84,7 +84,7 @@ impl Angle {
 
     /// Sine, in 16.16; error ≤ 0.52 ulp (see the module docs).
     #[inline]
-    pub fn sin(self) -> Fx16_16 {
+    pub const fn sin(self) -> Fx16_16 {
         let quadrant = self.0 >> QUADRANT_BITS;
         let offset = (self.0 & ((1 << QUADRANT_BITS) - 1)) as u32;
         // Quadrants 1 and 3 run the quarter wave backwards; 2 and 3 are negative.
@@ -96,7 +96,7 @@ impl Angle {
         // Round the magnitude, then apply the sign, so that the sine stays exactly odd.
         let magnitude = Fx2_30::from_bits(quarter_sine_fx2_30(offset)).to_fx16_16_round();
         if quadrant >= 2 {
-            -magnitude
+            Fx16_16::from_bits(-magnitude.to_bits())
         } else {
             magnitude
         }
@@ -104,20 +104,20 @@ impl Angle {
 
     /// Cosine, in 16.16: `sin(self + ¼ turn)`, so the same error bound.
     #[inline]
-    pub fn cos(self) -> Fx16_16 {
+    pub const fn cos(self) -> Fx16_16 {
         self.wrapping_add(Angle::QUARTER).sin()
     }
 
     /// `(sin, cos)`.
     #[inline]
-    pub fn sin_cos(self) -> (Fx16_16, Fx16_16) {
+    pub const fn sin_cos(self) -> (Fx16_16, Fx16_16) {
         (self.sin(), self.cos())
     }
 }
 
 /// `sin(offset · 90° / 2^14)` in 2.30 for `offset` in `0..=2^14`, interpolated.
 #[inline]
-fn quarter_sine_fx2_30(offset: u32) -> i32 {
+const fn quarter_sine_fx2_30(offset: u32) -> i32 {
     let index = (offset >> INTERPOLATION_BITS) as usize;
     let weight = (offset & ((1 << INTERPOLATION_BITS) - 1)) as i32;
     let low = SIN_QUARTER_FX2_30[index];
@@ -194,6 +194,14 @@ mod tests {
             assert_eq!(angle.sin().to_bits(), sin, "sin {degrees}°");
             assert_eq!(angle.cos().to_bits(), cos, "cos {degrees}°");
         }
+    }
+
+    #[test]
+    fn trig_evaluates_at_compile_time() {
+        const QUARTER_SINE: Fx16_16 = Angle::QUARTER.sin();
+        const HALF_COSINE: Fx16_16 = Angle::HALF.cos();
+        assert_eq!(QUARTER_SINE, Fx16_16::ONE);
+        assert_eq!(HALF_COSINE, Fx16_16::from_int(-1));
     }
 
     #[test]

@@ -31,11 +31,12 @@
 //!
 //! The API follows `fixed`'s conventions (`from_bits`/`to_bits`, `DELTA`, `checked_`/
 //! `saturating_`/`wrapping_`, `to_int_floor` = its `to_num` rounding), but the types are our own:
-//! - mixed-format products name their result format (`fixed` multiplies only within one format,
-//!   or through a generic `mul_add`/`lossy` conversion that hides where precision goes);
-//! - every operation is a `const fn` over `i32`, usable in tables and `const` items;
-//! - rounding is ours to choose and document (nearest everywhere; `fixed` truncates);
-//! - no dependency enters the ROM (`fixed` pulls in `az`, `bytemuck`, `half`, `typenum`);
+//! - mixed-format products name their operand and result formats in the method name
+//!   (`Fx24_8::mul_fx16_16` → 24.8), readable at the call site without type-level generics;
+//! - every named operation, sine, cosine and the reciprocals included, is a `const fn` over
+//!   `i32`, usable in `const` items and tables (only the operator traits are not `const`);
+//! - rounding is ours to choose and document: nearest everywhere, stated per operation;
+//! - no third-party crate enters the ROM's arithmetic, so what runs is what is read here;
 //! - the 2.30 reciprocal, the exact column test and the geometry need the raw bits anyway.
 //!
 //! # Tables and their errors

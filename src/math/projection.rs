@@ -4,8 +4,9 @@
 //!
 //! For an eye at `e` looking at angle `a`: forward `f = (cos a, sin a)`, right
 //! `r = (−sin a, cos a)`, and a map point `p` has eye coordinates `x' = (p − e)·r` (to the right)
-//! and `z' = (p − e)·f` (depth), in 24.8 ([`EyeFrame::to_eye`]: one rounding, error ≤ ½ ulp
-//! plus `|p − e|·7.93e-6` from the sine table, which is `d·7.93e-6 ≤ 0.001` pixel on screen).
+//! and `z' = (p − e)·f` (depth), in 24.8 ([`EyeFrame::to_eye`]: one rounding, so the error is
+//! at most ½ ulp plus `(|Δx| + |Δy|)·7.93e-6` from the sine table; on screen that is
+//! `√2·d·7.93e-6 ≤ 0.0014` pixel whatever the distance).
 //!
 //! # The column rule
 //!
@@ -82,7 +83,7 @@ pub struct EyeFrame {
 impl EyeFrame {
     /// The eye at `position` looking at `angle`.
     #[inline]
-    pub fn new(position: WorldPoint, angle: Angle) -> EyeFrame {
+    pub const fn new(position: WorldPoint, angle: Angle) -> EyeFrame {
         let (sin, cos) = angle.sin_cos();
         EyeFrame {
             position,
@@ -105,7 +106,7 @@ impl EyeFrame {
     }
 
     /// Eye coordinates of a map point: `x' = (p − e)·r`, `z' = (p − e)·f`, each rounded once
-    /// (error ≤ ½ ulp + `|p − e|·7.93e-6`). Points within the declared world never overflow.
+    /// (error ≤ ½ ulp + `(|Δx| + |Δy|)·7.93e-6`). Points of the declared world never overflow.
     #[inline]
     #[track_caller]
     pub fn to_eye(&self, p: WorldPoint) -> EyePoint {
@@ -253,9 +254,10 @@ impl Viewport {
         Fx24_8::from_int(self.horizon_y) - offset
     }
 
-    /// The first column at or after the continuous screen `x`, clamped to `[0, width]`.
+    /// The first column at or after the continuous screen `x` (`ceil(x − ½)`), clamped to
+    /// `[0, width]`: the column rule for positions already in screen space (a sprite's edge).
     #[inline]
-    pub const fn first_column_at_or_after_x(&self, x: Fx24_8) -> i32 {
+    pub const fn first_column_at_or_after_x(&self, x: Fx16_16) -> i32 {
         clamp(x.first_pixel_at_or_after(), 0, self.width)
     }
 
@@ -276,7 +278,7 @@ impl Viewport {
     /// row centres sit half-way between integer horizon positions. `row` in `[0, height)`.
     #[inline]
     #[track_caller]
-    pub fn floor_depth_of_row(&self, eye_above_plane: Fx24_8, row: i32) -> Option<Fx24_8> {
+    pub const fn floor_depth_of_row(&self, eye_above_plane: Fx24_8, row: i32) -> Option<Fx24_8> {
         let doubled_offset = 2 * (row - self.horizon_y) + 1;
         let plane = eye_above_plane.signum();
         if plane == 0 || (plane > 0) != (doubled_offset > 0) {

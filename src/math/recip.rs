@@ -60,7 +60,7 @@ const fn normalise(n: u32) -> (u32, u32) {
 /// Newton step `r·(1 + δ + δ²)`, whose relative error is `δ³ < 2^-32.8`. All products are
 /// 32-bit; their truncations add a few units of `2^-31`.
 #[inline]
-fn mantissa_reciprocal(mantissa: u32) -> u32 {
+const fn mantissa_reciprocal(mantissa: u32) -> u32 {
     let index = ((mantissa >> (31 - RECIP_SEED_BITS)) & ((1 << RECIP_SEED_BITS) - 1)) as usize;
     // ≈ 2^16 / M, in (2^15, 2^16).
     let seed = RECIP_SEED_U16[index] as u32;
@@ -89,7 +89,7 @@ fn mantissa_reciprocal(mantissa: u32) -> u32 {
 /// Error: `|result − 2^k/n| ≤ 1e-9 · 2^k/n + ½`.
 #[inline]
 #[track_caller]
-pub fn recip_pow2(n: u32, k: u32) -> u32 {
+pub const fn recip_pow2(n: u32, k: u32) -> u32 {
     debug_assert!(n > 0, "reciprocal of zero");
     debug_assert!(
         k <= 62 && (n as u64) << 31 > (1u64 << k),
@@ -114,7 +114,7 @@ pub fn recip_pow2(n: u32, k: u32) -> u32 {
 /// Same preconditions as [`recip_pow2`].
 #[inline]
 #[track_caller]
-pub fn recip_pow2_exact(n: u32, k: u32) -> u32 {
+pub const fn recip_pow2_exact(n: u32, k: u32) -> u32 {
     debug_assert!(n > 0, "reciprocal of zero");
     debug_assert!(
         k <= 62 && (n as u64) << 31 > (1u64 << k),
@@ -128,7 +128,7 @@ pub fn recip_pow2_exact(n: u32, k: u32) -> u32 {
 /// `n = 0` gives `Fx2_30::MAX` (saturated), and panics in debug.
 #[inline]
 #[track_caller]
-pub fn recip_small(n: u32) -> Fx2_30 {
+pub const fn recip_small(n: u32) -> Fx2_30 {
     debug_assert!(n != 0, "reciprocal of zero");
     Fx2_30::from_bits(RECIP_SMALL_FX2_30[n as usize])
 }
@@ -139,7 +139,7 @@ impl Fx24_8 {
     /// Panics in debug outside the domain.
     #[inline]
     #[track_caller]
-    pub fn recip_fx2_30(self) -> Fx2_30 {
+    pub const fn recip_fx2_30(self) -> Fx2_30 {
         debug_assert!(self.to_bits() > 128, "1/z' needs z' > 1/2");
         // (2^30 · 2^8) / bits: 2^30 for the result's scale, 2^8 for the argument's.
         Fx2_30::from_bits(recip_pow2(self.to_bits() as u32, 38) as i32)
@@ -148,7 +148,7 @@ impl Fx24_8 {
     /// `1 / self` in 2.30, correctly rounded, through the integer divide (reference path).
     #[inline]
     #[track_caller]
-    pub fn recip_fx2_30_exact(self) -> Fx2_30 {
+    pub const fn recip_fx2_30_exact(self) -> Fx2_30 {
         debug_assert!(self.to_bits() > 128, "1/z' needs z' > 1/2");
         Fx2_30::from_bits(recip_pow2_exact(self.to_bits() as u32, 38) as i32)
     }
@@ -159,7 +159,7 @@ impl Fx2_30 {
     /// `≤ 1e-9`, plus ½ ulp of 24.8. Panics in debug outside the domain.
     #[inline]
     #[track_caller]
-    pub fn recip_fx24_8(self) -> Fx24_8 {
+    pub const fn recip_fx24_8(self) -> Fx24_8 {
         debug_assert!(self.to_bits() > 128, "1/w needs w > 2^-23");
         Fx24_8::from_bits(recip_pow2(self.to_bits() as u32, 38) as i32)
     }
@@ -167,7 +167,7 @@ impl Fx2_30 {
     /// `1 / self` in 24.8, correctly rounded, through the integer divide (reference path).
     #[inline]
     #[track_caller]
-    pub fn recip_fx24_8_exact(self) -> Fx24_8 {
+    pub const fn recip_fx24_8_exact(self) -> Fx24_8 {
         debug_assert!(self.to_bits() > 128, "1/w needs w > 2^-23");
         Fx24_8::from_bits(recip_pow2_exact(self.to_bits() as u32, 38) as i32)
     }
@@ -178,7 +178,7 @@ impl Fx16_16 {
     /// error `≤ ½ ulp + |self|·2^-31 ≤ 1.5 ulp`.
     #[inline]
     #[track_caller]
-    pub fn div_small(self, n: u32) -> Fx16_16 {
+    pub const fn div_small(self, n: u32) -> Fx16_16 {
         self.mul_fx2_30(recip_small(n))
     }
 }
