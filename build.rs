@@ -11,8 +11,9 @@ const ASSETS_ENV: &str = "PORTALCAST_ASSETS";
 
 fn main() {
     let out_dir = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let manifest_dir =
-        PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
+    let manifest_dir = PathBuf::from(
+        std::env::var_os("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"),
+    );
 
     portalcast_assets::numeric_tables::write_rust_tables(&out_dir).expect("writing numeric tables");
     println!("cargo:rerun-if-changed=crates/assets/src/numeric_tables.rs");
@@ -28,18 +29,25 @@ fn main() {
         Err(errors) => {
             // One line per problem, each naming the file and line; nothing was written.
             eprintln!("{errors}");
-            eprintln!("portalcast: the assets in {} did not compile (see above)", assets_dir.display());
+            eprintln!(
+                "portalcast: the assets in {} did not compile (see above)",
+                assets_dir.display()
+            );
             std::process::exit(1);
         }
     };
     let files = compiled.write_to(&out_dir).unwrap_or_else(|error| {
-        eprintln!("portalcast: writing the compiled assets into {}: {error}", out_dir.display());
+        eprintln!(
+            "portalcast: writing the compiled assets into {}: {error}",
+            out_dir.display()
+        );
         std::process::exit(1);
     });
     for file in files {
         println!("cargo:rerun-if-changed={}", file.display());
     }
-    std::fs::write(out_dir.join("size_report.txt"), compiled.size_report()).expect("writing the size report");
+    std::fs::write(out_dir.join("size_report.txt"), compiled.size_report())
+        .expect("writing the size report");
 
     // Only the ROM binary links with our script; host builds (tests, tools) use the host linker.
     if std::env::var("CARGO_CFG_TARGET_OS").as_deref() == Ok("none") {

@@ -30,7 +30,11 @@ pub enum Resolution {
 
 impl Resolution {
     /// All resolutions, in the order Select cycles through them.
-    pub const ALL: [Resolution; 3] = [Resolution::R120x80, Resolution::R120x160, Resolution::R240x160];
+    pub const ALL: [Resolution; 3] = [
+        Resolution::R120x80,
+        Resolution::R120x160,
+        Resolution::R240x160,
+    ];
 
     /// Logical columns.
     pub const fn width(self) -> usize {
@@ -96,7 +100,7 @@ impl Resolution {
 pub fn shown_index(page: &[u16; PAGE_HALFWORDS], resolution: Resolution, x: usize, y: usize) -> u8 {
     let page_row = (y * resolution.bg2_pd() as usize) >> 8;
     let halfword = page[page_row * PAGE_ROW_HALFWORDS + x / 2];
-    if x % 2 == 0 {
+    if x.is_multiple_of(2) {
         (halfword & 0xff) as u8
     } else {
         (halfword >> 8) as u8

@@ -70,7 +70,12 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             dv: rng.next() >> rng.below(12),
             colormap: if job % 3 == 0 { None } else { Some(&COLORMAP) },
         };
-        canvas.column(rng.below(width) as usize, row as usize, count as usize, &column);
+        canvas.column(
+            rng.below(width) as usize,
+            row as usize,
+            count as usize,
+            &column,
+        );
     }
     for job in 0..JOBS_PER_KIND {
         let log2_side = sides.start() + job % (sides.end() - sides.start() + 1);
@@ -85,6 +90,11 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             step: PackedUv::pack(step(&mut rng), step(&mut rng), log2_side),
             colormap: if job % 3 == 1 { None } else { Some(&COLORMAP) },
         };
-        canvas.flat(rng.below(height) as usize, x as usize, count as usize, &flat);
+        canvas.flat(
+            rng.below(height) as usize,
+            x as usize,
+            count as usize,
+            &flat,
+        );
     }
 }

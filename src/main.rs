@@ -62,7 +62,10 @@ mod rom {
         let map = demo::demo_map();
         let render_assets = demo::render_assets();
         let mut renderer = Renderer::new();
-        let mut settings = Settings { resolution: Resolution::R120x80, lighting: Lighting::SectorDepth };
+        let mut settings = Settings {
+            resolution: Resolution::R120x80,
+            lighting: Lighting::SectorDepth,
+        };
         let mut held_before = held_at_boot;
         let mut frame: u32 = 0;
         loop {
@@ -84,7 +87,12 @@ mod rom {
             let page = VramPage::back_of(display.shown_page());
             let address = page.address();
             let started = meter::now();
-            let stats = renderer.render(&map, &render_assets, &view, &mut VramCanvas::new(page, settings.resolution));
+            let stats = renderer.render(
+                &map,
+                &render_assets,
+                &view,
+                &mut VramCanvas::new(page, settings.resolution),
+            );
             let cycles = meter::cycles_since(started);
             display.flip_at_vblank(settings.resolution);
             log::info(format_args!(

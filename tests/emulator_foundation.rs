@@ -14,8 +14,12 @@ use portalcast_harness::Keys;
 fn rom_boots_and_prints_its_figures() {
     let mut emulator = boot();
     emulator.set_keys(Keys::B);
-    emulator.run_frames(10).unwrap_or_else(|error| panic!("{error}"));
-    let boot_line = lines_starting(&emulator, "portalcast boot").pop().expect("a boot line");
+    emulator
+        .run_frames(10)
+        .unwrap_or_else(|error| panic!("{error}"));
+    let boot_line = lines_starting(&emulator, "portalcast boot")
+        .pop()
+        .expect("a boot line");
     assert_eq!(number(&boot_line, "waitcnt"), 0x4317, "{boot_line}");
     let iwram_used = number(&boot_line, "iwram_used");
     let stack_room = number(&boot_line, "stack_room");
@@ -34,20 +38,34 @@ fn rom_boots_and_prints_its_figures() {
 }
 
 fn last_shown(emulator: &portalcast_harness::Emulator) -> (Resolution, u32) {
-    let line = lines_starting(emulator, "shown ").pop().expect("a shown line");
-    let resolution = Resolution::from_label(field(&line, "res").unwrap()).expect("a known resolution");
+    let line = lines_starting(emulator, "shown ")
+        .pop()
+        .expect("a shown line");
+    let resolution =
+        Resolution::from_label(field(&line, "res").unwrap()).expect("a known resolution");
     (resolution, number(&line, "phase") as u32)
 }
 
-fn assert_frame_is_twin(emulator: &portalcast_harness::Emulator, resolution: Resolution, phase: u32) {
+fn assert_frame_is_twin(
+    emulator: &portalcast_harness::Emulator,
+    resolution: Resolution,
+    phase: u32,
+) {
     let mut page = HostPage::new();
     testpic::draw(&mut page, resolution, phase);
     let expected = expected_frame_rgb5(&page, resolution, &testpic::PALETTE);
     let shown = shown_frame_rgb5(emulator);
     let mismatches = expected.iter().zip(&shown).filter(|(a, b)| a != b).count();
     let png = screenshot_dir().join(format!("testpic-{}.png", resolution.label()));
-    emulator.save_frame_png(&png).unwrap_or_else(|error| panic!("{error}"));
-    assert_eq!(mismatches, 0, "{resolution:?} phase {phase}: {mismatches} pixels differ (frame in {})", png.display());
+    emulator
+        .save_frame_png(&png)
+        .unwrap_or_else(|error| panic!("{error}"));
+    assert_eq!(
+        mismatches,
+        0,
+        "{resolution:?} phase {phase}: {mismatches} pixels differ (frame in {})",
+        png.display()
+    );
 }
 
 #[test]
@@ -55,9 +73,13 @@ fn test_picture_matches_the_twin_at_every_resolution() {
     let mut emulator = boot();
     // B held at boot selects the test picture.
     emulator.set_keys(Keys::B);
-    emulator.run_frames(2).unwrap_or_else(|error| panic!("{error}"));
+    emulator
+        .run_frames(2)
+        .unwrap_or_else(|error| panic!("{error}"));
     emulator.set_keys(Keys::NONE);
-    emulator.run_frames(10).unwrap_or_else(|error| panic!("{error}"));
+    emulator
+        .run_frames(10)
+        .unwrap_or_else(|error| panic!("{error}"));
     let mut seen = Vec::new();
     for _ in 0..3 {
         let (resolution, phase) = last_shown(&emulator);
@@ -66,17 +88,29 @@ fn test_picture_matches_the_twin_at_every_resolution() {
         // The ROM reads keys once per picture, and a 240x160 picture takes several frames: hold
         // Select long enough to be seen once (it acts on the press), then let the picture settle.
         emulator.set_keys(Keys::SELECT);
-        emulator.run_frames(5).unwrap_or_else(|error| panic!("{error}"));
+        emulator
+            .run_frames(5)
+            .unwrap_or_else(|error| panic!("{error}"));
         emulator.set_keys(Keys::NONE);
-        emulator.run_frames(12).unwrap_or_else(|error| panic!("{error}"));
+        emulator
+            .run_frames(12)
+            .unwrap_or_else(|error| panic!("{error}"));
     }
-    assert_eq!(seen, Resolution::ALL, "Select must cycle 120x80 -> 120x160 -> 240x160");
+    assert_eq!(
+        seen,
+        Resolution::ALL,
+        "Select must cycle 120x80 -> 120x160 -> 240x160"
+    );
 
     // Right scrolls the picture: the phase moves and the frame still matches.
     emulator.set_keys(Keys::RIGHT);
-    emulator.run_frames(9).unwrap_or_else(|error| panic!("{error}"));
+    emulator
+        .run_frames(9)
+        .unwrap_or_else(|error| panic!("{error}"));
     emulator.set_keys(Keys::NONE);
-    emulator.run_frames(12).unwrap_or_else(|error| panic!("{error}"));
+    emulator
+        .run_frames(12)
+        .unwrap_or_else(|error| panic!("{error}"));
     let (resolution, phase) = last_shown(&emulator);
     assert!(phase > 0, "holding Right did not scroll");
     assert_frame_is_twin(&emulator, resolution, phase);
@@ -89,8 +123,14 @@ fn asm_kernels_write_the_same_vram_as_their_twins() {
     emulator.set_keys(Keys::L | Keys::R);
     let mut checked = Vec::new();
     for _ in 0..60 {
-        emulator.run_frame().unwrap_or_else(|error| panic!("{error}"));
-        for line in emulator.drain_log().into_iter().filter(|line| line.is_debug_print()) {
+        emulator
+            .run_frame()
+            .unwrap_or_else(|error| panic!("{error}"));
+        for line in emulator
+            .drain_log()
+            .into_iter()
+            .filter(|line| line.is_debug_print())
+        {
             if !line.text.starts_with("kernel-check") {
                 continue;
             }
@@ -98,8 +138,19 @@ fn asm_kernels_write_the_same_vram_as_their_twins() {
             let seed = number(&line.text, "seed") as u32;
             let vram = read_page(&emulator, number(&line.text, "page") as u32);
             let mut twin = HostPage::new();
-            kernel_check::draw(&mut HostCanvas { page: &mut twin, resolution }, seed);
-            let differing = vram.halfwords.iter().zip(&twin.halfwords).filter(|(a, b)| a != b).count();
+            kernel_check::draw(
+                &mut HostCanvas {
+                    page: &mut twin,
+                    resolution,
+                },
+                seed,
+            );
+            let differing = vram
+                .halfwords
+                .iter()
+                .zip(&twin.halfwords)
+                .filter(|(a, b)| a != b)
+                .count();
             assert_eq!(differing, 0, "{}: {differing} halfwords differ", line.text);
             checked.push((resolution, seed, number(&line.text, "cycles")));
         }
@@ -108,7 +159,14 @@ fn asm_kernels_write_the_same_vram_as_their_twins() {
         }
     }
     for resolution in Resolution::ALL {
-        assert!(checked.iter().filter(|(res, ..)| *res == resolution).count() >= 2, "{resolution:?} checked twice: {checked:?}");
+        assert!(
+            checked
+                .iter()
+                .filter(|(res, ..)| *res == resolution)
+                .count()
+                >= 2,
+            "{resolution:?} checked twice: {checked:?}"
+        );
     }
     println!("kernel checks (resolution, seed, cycles): {checked:?}");
 }

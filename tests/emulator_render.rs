@@ -20,18 +20,35 @@ fn rom_frames_are_identical_to_the_host_renderer() {
     let mut renderer = Renderer::new();
     let mut compared = Vec::new();
     // Each press comes after a few compared frames: Select for resolution, A for lighting.
-    let presses = [Keys::NONE, Keys::SELECT, Keys::SELECT, Keys::A, Keys::SELECT, Keys::A, Keys::SELECT];
+    let presses = [
+        Keys::NONE,
+        Keys::SELECT,
+        Keys::SELECT,
+        Keys::A,
+        Keys::SELECT,
+        Keys::A,
+        Keys::SELECT,
+    ];
     for press in presses {
         // The ROM reads the keys once per rendered frame: hold a press for longer than one.
         emulator.set_keys(press);
-        emulator.run_frames(if press == Keys::NONE { 1 } else { 90 }).unwrap_or_else(|error| panic!("{error}"));
+        emulator
+            .run_frames(if press == Keys::NONE { 1 } else { 90 })
+            .unwrap_or_else(|error| panic!("{error}"));
         emulator.set_keys(Keys::NONE);
         emulator.drain_log();
         let mut checked_here = 0;
         // Frames take many VBlanks while the renderer is slower than its target: allow for it.
         for _ in 0..1500 {
-            emulator.run_frame().unwrap_or_else(|error| panic!("{error}"));
-            let Some(line) = emulator.drain_log().into_iter().rev().find(|line| line.is_debug_print() && line.text.starts_with("render ")) else {
+            emulator
+                .run_frame()
+                .unwrap_or_else(|error| panic!("{error}"));
+            let Some(line) = emulator
+                .drain_log()
+                .into_iter()
+                .rev()
+                .find(|line| line.is_debug_print() && line.text.starts_with("render "))
+            else {
                 continue;
             };
             let text = line.text;
@@ -40,27 +57,64 @@ fn rom_frames_are_identical_to_the_host_renderer() {
             let lighting = demo::lighting_from_label(field(&text, "lighting").unwrap()).unwrap();
             let vram = read_page(&emulator, number(&text, "page") as u32);
             let mut page = HostPage::new();
-            let view = View::new(&demo::camera_at(&map, frame), &Settings { resolution, lighting });
-            renderer.render(&map, &assets, &view, &mut HostCanvas { page: &mut page, resolution });
+            let view = View::new(
+                &demo::camera_at(&map, frame),
+                &Settings {
+                    resolution,
+                    lighting,
+                },
+            );
+            renderer.render(
+                &map,
+                &assets,
+                &view,
+                &mut HostCanvas {
+                    page: &mut page,
+                    resolution,
+                },
+            );
             let rows = resolution.height() * PAGE_ROW_HALFWORDS;
-            let differing = vram.halfwords[..rows].iter().zip(&page.halfwords[..rows]).filter(|(a, b)| a != b).count();
+            let differing = vram.halfwords[..rows]
+                .iter()
+                .zip(&page.halfwords[..rows])
+                .filter(|(a, b)| a != b)
+                .count();
             if differing != 0 {
-                let png = screenshot_dir().join(format!("render-mismatch-{}.png", resolution.label()));
-                emulator.save_frame_png(&png).unwrap_or_else(|error| panic!("{error}"));
-                panic!("{text}: {differing} halfwords differ from the host render (ROM frame in {})", png.display());
+                let png =
+                    screenshot_dir().join(format!("render-mismatch-{}.png", resolution.label()));
+                emulator
+                    .save_frame_png(&png)
+                    .unwrap_or_else(|error| panic!("{error}"));
+                panic!(
+                    "{text}: {differing} halfwords differ from the host render (ROM frame in {})",
+                    png.display()
+                );
             }
             compared.push((resolution, lighting, number(&text, "cycles")));
             checked_here += 1;
             if checked_here == 2 {
-                let png = screenshot_dir().join(format!("render-{}-{}.png", resolution.label(), demo::lighting_label(lighting)));
-                emulator.save_frame_png(&png).unwrap_or_else(|error| panic!("{error}"));
+                let png = screenshot_dir().join(format!(
+                    "render-{}-{}.png",
+                    resolution.label(),
+                    demo::lighting_label(lighting)
+                ));
+                emulator
+                    .save_frame_png(&png)
+                    .unwrap_or_else(|error| panic!("{error}"));
                 break;
             }
         }
-        assert_eq!(checked_here, 2, "the ROM stopped printing render lines after {press}");
+        assert_eq!(
+            checked_here, 2,
+            "the ROM stopped printing render lines after {press}"
+        );
     }
     for resolution in Resolution::ALL {
-        let cycles: Vec<u64> = compared.iter().filter(|(r, ..)| *r == resolution).map(|(.., c)| *c).collect();
+        let cycles: Vec<u64> = compared
+            .iter()
+            .filter(|(r, ..)| *r == resolution)
+            .map(|(.., c)| *c)
+            .collect();
         assert!(!cycles.is_empty(), "{resolution:?} never compared");
         println!("{}: cycles per frame {:?}", resolution.label(), cycles);
     }

@@ -17,7 +17,10 @@ fn start_camera(map: &MapTables) -> Camera {
     let start = map.player_start;
     let sector = map.sectors[usize::from(start.sector)];
     Camera {
-        position: WorldPoint::new(Fx24_8::from_bits(start.x_fx8), Fx24_8::from_bits(start.y_fx8)),
+        position: WorldPoint::new(
+            Fx24_8::from_bits(start.x_fx8),
+            Fx24_8::from_bits(start.y_fx8),
+        ),
         eye_z: Fx24_8::from_int(sector.floor_z + 32),
         angle: Angle::from_bits(start.angle),
         sector: start.sector,
@@ -30,7 +33,11 @@ fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
     let compiled = shipped_assets();
     let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
     let sky = compiled.sky().expect("the shipped maps show a sky").sky();
-    let assets = RenderAssets { textures: &textures, sky, colormap: compiled.colormap() };
+    let assets = RenderAssets {
+        textures: &textures,
+        sky,
+        colormap: compiled.colormap(),
+    };
     let mut renderer = Renderer::new();
     for compiled_map in compiled.maps() {
         let map = compiled_map.tables();
@@ -39,7 +46,13 @@ fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
             camera.angle = Angle::from_bits(camera.angle.to_bits().wrapping_add(turn * 8192 + 123));
             for resolution in Resolution::ALL {
                 for lighting in [Lighting::Off, Lighting::SectorDepth] {
-                    let view = View::new(&camera, &Settings { resolution, lighting });
+                    let view = View::new(
+                        &camera,
+                        &Settings {
+                            resolution,
+                            lighting,
+                        },
+                    );
                     let mut canvas = RecordingCanvas::new(resolution);
                     let stats = renderer.render(&map, &assets, &view, &mut canvas);
                     let faults = canvas.coverage_faults();
@@ -62,13 +75,27 @@ fn host_render_pngs_show_the_bench_map() {
     let compiled = shipped_assets();
     let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
     let sky = compiled.sky().expect("a sky").sky();
-    let assets = RenderAssets { textures: &textures, sky, colormap: compiled.colormap() };
+    let assets = RenderAssets {
+        textures: &textures,
+        sky,
+        colormap: compiled.colormap(),
+    };
     let map = compiled.map("bench").expect("the bench map");
     let mut renderer = Renderer::new();
-    for (turn, resolution) in [(0u16, Resolution::R240x160), (3, Resolution::R120x80), (5, Resolution::R240x160)] {
+    for (turn, resolution) in [
+        (0u16, Resolution::R240x160),
+        (3, Resolution::R120x80),
+        (5, Resolution::R240x160),
+    ] {
         let mut camera = start_camera(&map);
         camera.angle = Angle::from_bits(camera.angle.to_bits().wrapping_add(turn * 8192));
-        let view = View::new(&camera, &Settings { resolution, lighting: Lighting::SectorDepth });
+        let view = View::new(
+            &camera,
+            &Settings {
+                resolution,
+                lighting: Lighting::SectorDepth,
+            },
+        );
         let mut canvas = RecordingCanvas::new(resolution);
         let stats = renderer.render(&map, &assets, &view, &mut canvas);
         assert!(stats.sector_visits >= 2, "{stats:?}");
@@ -77,7 +104,8 @@ fn host_render_pngs_show_the_bench_map() {
             let [r, g, b] = pixels[(y * 240 + x) as usize];
             image::Rgb([r << 3, g << 3, b << 3])
         });
-        let path = screenshot_dir().join(format!("host-bench-turn{turn}-{}.png", resolution.label()));
+        let path =
+            screenshot_dir().join(format!("host-bench-turn{turn}-{}.png", resolution.label()));
         image.save(&path).expect("saving the PNG");
         println!("{} {stats:?}", path.display());
     }

@@ -32,8 +32,14 @@ pub struct VramPage {
 impl VramPage {
     /// The page that is not on screen while `shown_page` is.
     pub fn back_of(shown_page: usize) -> VramPage {
-        let base = if shown_page == 0 { 0x0600_A000 } else { 0x0600_0000 };
-        VramPage { base: base as *mut u16 }
+        let base = if shown_page == 0 {
+            0x0600_A000
+        } else {
+            0x0600_0000
+        };
+        VramPage {
+            base: base as *mut u16,
+        }
     }
 }
 
@@ -168,7 +174,10 @@ impl VramCanvas {
 
     fn row_address(&self, row: usize) -> *mut u8 {
         // SAFETY (of the arithmetic): callers check row < 160, so this stays in the page.
-        self.page.base.cast::<u8>().wrapping_add(row * crate::frame::PAGE_WIDTH)
+        self.page
+            .base
+            .cast::<u8>()
+            .wrapping_add(row * crate::frame::PAGE_WIDTH)
     }
 
     /// One native pixel written by read-modify-write of its halfword, keeping the neighbour.
@@ -177,7 +186,7 @@ impl VramCanvas {
         // SAFETY: in the page (bounds checked by the callers); VRAM takes 16-bit accesses.
         unsafe {
             let old = halfword.read_volatile();
-            let new = if x % 2 == 0 {
+            let new = if x.is_multiple_of(2) {
                 (old & 0xff00) | u16::from(index)
             } else {
                 (old & 0x00ff) | (u16::from(index) << 8)
@@ -197,7 +206,9 @@ impl Canvas for VramCanvas {
     }
 
     fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture) {
-        assert!(x < self.resolution.width() && row + count <= self.resolution.height() && count > 0);
+        assert!(
+            x < self.resolution.width() && row + count <= self.resolution.height() && count > 0
+        );
         assert!(COLUMN_LOG2_HEIGHTS.contains(&texture.log2_height));
         assert_eq!(texture.texels.len(), 1 << texture.log2_height);
         let (packing, byte_column) = match self.resolution.pixels_per_halfword() {
@@ -221,7 +232,9 @@ impl Canvas for VramCanvas {
     }
 
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
-        assert!(row < self.resolution.height() && x + count <= self.resolution.width() && count > 0);
+        assert!(
+            row < self.resolution.height() && x + count <= self.resolution.width() && count > 0
+        );
         assert!(FLAT_LOG2_SIDES.contains(&texture.log2_side));
         assert_eq!(texture.texels.len(), 1 << (2 * texture.log2_side));
         let lit = usize::from(texture.colormap.is_some());
@@ -238,7 +251,11 @@ impl Canvas for VramCanvas {
                 count -= 1;
             }
             if count % 2 == 1 {
-                let index = texture.advanced(count as u32 - 1).indices(1).next().unwrap_or(0);
+                let index = texture
+                    .advanced(count as u32 - 1)
+                    .indices(1)
+                    .next()
+                    .unwrap_or(0);
                 self.put_native(x + count - 1, row, index);
                 count -= 1;
             }
@@ -251,7 +268,10 @@ impl Canvas for VramCanvas {
             _ => (1, x / 2, count / 2),
         };
         let job = FlatJob {
-            dst: self.row_address(row).cast::<u16>().wrapping_add(dst_halfword),
+            dst: self
+                .row_address(row)
+                .cast::<u16>()
+                .wrapping_add(dst_halfword),
             texels: texture.texels.as_ptr(),
             pos: texture.pos.0,
             step: texture.step.0,

@@ -1,7 +1,9 @@
 //! The cycle meter: timers 2 and 3 cascaded into one free-running 32-bit CPU-cycle counter.
 //! It wraps every 2^32 cycles (256 s); spans are measured with wrapping subtraction.
 
-use gba::mmio::{TIMER2_CONTROL, TIMER2_COUNT, TIMER2_RELOAD, TIMER3_CONTROL, TIMER3_COUNT, TIMER3_RELOAD};
+use gba::mmio::{
+    TIMER2_CONTROL, TIMER2_COUNT, TIMER2_RELOAD, TIMER3_CONTROL, TIMER3_COUNT, TIMER3_RELOAD,
+};
 use gba::timers::{TimerControl, TimerScale};
 
 /// Starts the counter from zero. Timer 2 counts every cycle; timer 3 counts timer 2's overflows.
@@ -11,7 +13,11 @@ pub fn start() {
     TIMER2_RELOAD.write(0);
     TIMER3_RELOAD.write(0);
     TIMER3_CONTROL.write(TimerControl::new().with_cascade(true).with_enabled(true));
-    TIMER2_CONTROL.write(TimerControl::new().with_scale(TimerScale::_1).with_enabled(true));
+    TIMER2_CONTROL.write(
+        TimerControl::new()
+            .with_scale(TimerScale::_1)
+            .with_enabled(true),
+    );
 }
 
 /// The current count. The high half is read on both sides of the low half so a carry between

@@ -3,10 +3,10 @@
 
 use crate::frame::Resolution;
 use gba::bios::VBlankIntrWait;
+use gba::fixed::{i16fx8, i32fx8};
 use gba::interrupts::IrqBits;
 use gba::mmio::{BG2PA, BG2PB, BG2PC, BG2PD, BG2X, BG2Y, BG_PALETTE, DISPCNT, DISPSTAT, IE, IME};
 use gba::prelude::{Color, DisplayControl, DisplayStatus, VideoMode};
-use gba::fixed::{i16fx8, i32fx8};
 
 /// Owns the display: which page is shown and at which resolution.
 pub struct Display {

@@ -118,7 +118,10 @@ mod tests {
                     d.min(period - d)
                 };
                 let bound = i / 2 + carries + 2;
-                assert!(distance(u as i64, exact_u) <= bound, "u at pixel {i} ({unit_bits}-bit units)");
+                assert!(
+                    distance(u as i64, exact_u) <= bound,
+                    "u at pixel {i} ({unit_bits}-bit units)"
+                );
                 assert!(distance(v as i64, exact_v) <= i / 2 + 2, "v at pixel {i}");
                 pos = PackedUv(pos.0.wrapping_add(step.0));
                 let v_now = pos.unpack().1;

@@ -22,7 +22,9 @@ pub struct HostPage {
 impl HostPage {
     /// A page of index 0.
     pub fn new() -> HostPage {
-        HostPage { halfwords: [0; PAGE_HALFWORDS] }
+        HostPage {
+            halfwords: [0; PAGE_HALFWORDS],
+        }
     }
 }
 
@@ -43,7 +45,12 @@ impl SpanTarget for HostPage {
         packing: SpanPacking,
     ) {
         let start = row * PAGE_ROW_HALFWORDS + first_halfword;
-        span::draw_span(&mut self.halfwords[start..start + halfwords], texture, steps, packing);
+        span::draw_span(
+            &mut self.halfwords[start..start + halfwords],
+            texture,
+            steps,
+            packing,
+        );
     }
 }
 
@@ -79,7 +86,8 @@ pub struct HostCanvas<'a> {
 
 impl HostCanvas<'_> {
     fn put(&mut self, x: usize, row: usize, index: u8) {
-        let halfword = &mut self.page.halfwords[row * PAGE_ROW_HALFWORDS + x / self.resolution.pixels_per_halfword()];
+        let halfword = &mut self.page.halfwords
+            [row * PAGE_ROW_HALFWORDS + x / self.resolution.pixels_per_halfword()];
         *halfword = match (self.resolution.pixels_per_halfword(), x % 2) {
             (1, _) => u16::from(index) * 0x0101,
             (_, 0) => (*halfword & 0xff00) | u16::from(index),

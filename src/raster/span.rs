@@ -74,7 +74,12 @@ mod tests {
     fn doubled_repeats_each_texel_in_both_bytes() {
         let texture = gradient_texture();
         let mut row = [0u16; 4];
-        let steps = SpanSteps { u: 0, v: 1 << 16, du: 1 << 16, dv: 0 };
+        let steps = SpanSteps {
+            u: 0,
+            v: 1 << 16,
+            du: 1 << 16,
+            dv: 0,
+        };
         draw_span(&mut row, &texture, steps, SpanPacking::Doubled);
         assert_eq!(row, [0x4040, 0x4141, 0x4242, 0x4343]);
     }
@@ -83,7 +88,12 @@ mod tests {
     fn pairs_pack_left_texel_low() {
         let texture = gradient_texture();
         let mut row = [0u16; 2];
-        let steps = SpanSteps { u: 0, v: 0, du: 1 << 16, dv: 0 };
+        let steps = SpanSteps {
+            u: 0,
+            v: 0,
+            du: 1 << 16,
+            dv: 0,
+        };
         draw_span(&mut row, &texture, steps, SpanPacking::Pairs);
         assert_eq!(row, [0x0100, 0x0302]);
     }
@@ -93,7 +103,12 @@ mod tests {
         let texture = gradient_texture();
         let mut row = [0u16; 2];
         // Start one texel left of u = 0 with a negative step: columns 63, 62.
-        let steps = SpanSteps { u: 63 << 16, v: 0, du: (-(1i32 << 16)) as u32, dv: 0 };
+        let steps = SpanSteps {
+            u: 63 << 16,
+            v: 0,
+            du: (-(1i32 << 16)) as u32,
+            dv: 0,
+        };
         draw_span(&mut row, &texture, steps, SpanPacking::Doubled);
         assert_eq!(row, [0x3f3f, 0x3e3e]);
     }

@@ -18,14 +18,21 @@ static NO_SKY_TEXELS: [u8; 8] = [0; 8];
 
 /// The demo map from the compiled assets (the first map if there is no `bench`).
 pub fn demo_map() -> MapTables<'static> {
-    *assets::MAPS.iter().find(|map| map.name == DEMO_MAP).unwrap_or(&assets::MAPS[0])
+    *assets::MAPS
+        .iter()
+        .find(|map| map.name == DEMO_MAP)
+        .unwrap_or(&assets::MAPS[0])
 }
 
 /// The compiled textures, sky and colormap.
 pub fn render_assets() -> RenderAssets<'static> {
     RenderAssets {
         textures: assets::TEXTURES,
-        sky: assets::SKY.unwrap_or(Sky { width_log2: 0, height: 8, texels: &NO_SKY_TEXELS }),
+        sky: assets::SKY.unwrap_or(Sky {
+            width_log2: 0,
+            height: 8,
+            texels: &NO_SKY_TEXELS,
+        }),
         colormap: &assets::COLORMAP.0,
     }
 }
@@ -36,9 +43,16 @@ pub fn camera_at(map: &MapTables, frame: u32) -> Camera {
     let start = map.player_start;
     let sector = map.sectors[usize::from(start.sector)];
     Camera {
-        position: WorldPoint::new(Fx24_8::from_bits(start.x_fx8), Fx24_8::from_bits(start.y_fx8)),
+        position: WorldPoint::new(
+            Fx24_8::from_bits(start.x_fx8),
+            Fx24_8::from_bits(start.y_fx8),
+        ),
         eye_z: Fx24_8::from_int(sector.floor_z + 32),
-        angle: Angle::from_bits(start.angle.wrapping_add((frame as u16).wrapping_mul(TURN_PER_FRAME))),
+        angle: Angle::from_bits(
+            start
+                .angle
+                .wrapping_add((frame as u16).wrapping_mul(TURN_PER_FRAME)),
+        ),
         sector: start.sector,
         look_lines: 0,
     }
@@ -55,5 +69,7 @@ pub const fn lighting_label(lighting: Lighting) -> &'static str {
 
 /// Parses [`lighting_label`].
 pub fn lighting_from_label(label: &str) -> Option<Lighting> {
-    [Lighting::Off, Lighting::Sector, Lighting::SectorDepth].into_iter().find(|l| lighting_label(*l) == label)
+    [Lighting::Off, Lighting::Sector, Lighting::SectorDepth]
+        .into_iter()
+        .find(|l| lighting_label(*l) == label)
 }

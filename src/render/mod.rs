@@ -5,6 +5,7 @@
 pub mod demo;
 pub mod light;
 pub mod planes;
+pub mod ratio;
 pub mod spans;
 pub mod surface;
 pub mod view;

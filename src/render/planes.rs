@@ -10,7 +10,7 @@ use super::surface::Surface;
 use super::view::View;
 use super::walk::{is_sky, mip_level, FrameStats};
 use super::RenderAssets;
-use crate::math::Fx24_8;
+use crate::math::{recip_small, Fx24_8};
 use crate::raster::column::ColumnTexture;
 use crate::raster::flat::{FlatTexture, PackedUv, FLAT_LOG2_SIDES};
 use crate::raster::Canvas;
@@ -41,7 +41,18 @@ pub struct PlaneJob<'r> {
 
 /// Draws the visit's ceiling (or sky) and floor.
 pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
-    let PlaneJob { view, assets, sector, sector_index, first, ceiling, floor, span_start, stats, column_angles } = job;
+    let PlaneJob {
+        view,
+        assets,
+        sector,
+        sector_index,
+        first,
+        ceiling,
+        floor,
+        span_start,
+        stats,
+        column_angles,
+    } = job;
     if is_sky(sector) {
         canvas.set_surface(Surface::Sky);
         for (offset, window) in ceiling.iter().enumerate() {
@@ -52,14 +63,26 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
         }
     } else {
         canvas.set_surface(Surface::Ceiling(sector_index));
-        let plane = Plane { view, assets, sector, height: sector.ceil_z, texture: sector.ceil_texture };
+        let plane = Plane {
+            view,
+            assets,
+            sector,
+            height: sector.ceil_z,
+            texture: sector.ceil_texture,
+        };
         make_spans(ceiling, first, span_start, |row, start, end| {
             stats.span_pixels += (end - start) as u32;
             plane.span(canvas, row, start, end);
         });
     }
     canvas.set_surface(Surface::Floor(sector_index));
-    let plane = Plane { view, assets, sector, height: sector.floor_z, texture: sector.floor_texture };
+    let plane = Plane {
+        view,
+        assets,
+        sector,
+        height: sector.floor_z,
+        texture: sector.floor_texture,
+    };
     make_spans(floor, first, span_start, |row, start, end| {
         stats.span_pixels += (end - start) as u32;
         plane.span(canvas, row, start, end);
@@ -80,38 +103,70 @@ impl Plane<'_> {
     fn span(&self, canvas: &mut impl Canvas, row: usize, start: usize, end: usize) {
         let view = self.view;
         let eye_above_plane = view.eye_z - Fx24_8::from_int(self.height);
-        let Some(depth) = view.viewport.floor_depth_of_row(eye_above_plane, row as i32) else {
+        let Some(depth) = view
+            .viewport
+            .floor_depth_of_row(eye_above_plane, row as i32)
+        else {
             // Rounding put a row of this window on the far side of the horizon: nothing of the
             // plane is visible there; draw index 0 so the pixel is still written once.
-            let blank = FlatTexture { texels: &BLANK_FLAT, log2_side: 3, pos: PackedUv(0), step: PackedUv(0), colormap: None };
+            let blank = FlatTexture {
+                texels: &BLANK_FLAT,
+                log2_side: 3,
+                pos: PackedUv(0),
+                step: PackedUv(0),
+                colormap: None,
+            };
             canvas.flat(row, start, end - start, &blank);
             return;
         };
         let Some(texture) = self.assets.textures.get(usize::from(self.texture)) else {
-            let blank = FlatTexture { texels: &BLANK_FLAT, log2_side: 3, pos: PackedUv(0), step: PackedUv(0), colormap: None };
+            let blank = FlatTexture {
+                texels: &BLANK_FLAT,
+                log2_side: 3,
+                pos: PackedUv(0),
+                step: PackedUv(0),
+                colormap: None,
+            };
             canvas.flat(row, start, end - start, &blank);
             return;
         };
         let largest = texture.width_log2.min(texture.height_log2);
-        let mut level = mip_level(depth, view.viewport.focal_y, texture.mip_count, largest, largest);
+        let mut level = mip_level(
+            depth,
+            view.viewport.focal_y,
+            texture.mip_count,
+            largest,
+            largest,
+        );
         // The span kernels take flats of 8 to 64 texels a side.
         level = level.max(largest.saturating_sub(*FLAT_LOG2_SIDES.end() as u8));
         let side_log2 = u32::from(texture.level_width_log2(level));
         let texels = texture.flat_level(level);
-        let (sin, cos) = (i64::from(view.eye.sin().to_bits()), i64::from(view.eye.cos().to_bits()));
+        let (sin, cos) = (
+            i64::from(view.eye.sin().to_bits()),
+            i64::from(view.eye.cos().to_bits()),
+        );
         let depth_bits = i64::from(depth.to_bits());
-        let focal_x = i64::from(view.viewport.focal_x);
-        // Lateral offset of the first pixel centre: z'·(2·start + 1 − 2·cx)/(2·d_x), 24.8.
-        let lateral = depth_bits * (2 * start as i64 + 1 - 2 * i64::from(view.viewport.centre_x())) / (2 * focal_x);
+        // w = z'/d_x in 16.16, through the 2.30 reciprocal of 2·d_x (a table entry, no divide).
+        let inverse_twice_focal =
+            i64::from(recip_small(2 * view.viewport.focal_x as u32).to_bits());
+        let w = (depth_bits * inverse_twice_focal) >> 21;
+        // Lateral offset of the first pixel centre, (start + ½ − cx)·w, in 16.16.
+        let twice_offset = 2 * start as i64 + 1 - 2 * i64::from(view.viewport.centre_x());
+        let lateral = (twice_offset * w) >> 1;
         // Map position in 16.16: e + z'·f + lateral·r, with r = (−sin, cos), f = (cos, sin).
-        let x = (i64::from(view.eye.position.x.to_bits()) << 8) + ((depth_bits * cos - lateral * sin) >> 8);
-        let y = (i64::from(view.eye.position.y.to_bits()) << 8) + ((depth_bits * sin + lateral * cos) >> 8);
-        // Per pixel: (z'/d_x)·r.
-        let step_x = -(depth_bits * sin) / (focal_x << 8);
-        let step_y = (depth_bits * cos) / (focal_x << 8);
+        let x = (i64::from(view.eye.position.x.to_bits()) << 8) + ((depth_bits * cos) >> 8)
+            - ((lateral * sin) >> 16);
+        let y = (i64::from(view.eye.position.y.to_bits()) << 8)
+            + ((depth_bits * sin) >> 8)
+            + ((lateral * cos) >> 16);
+        // Per pixel: w·r.
+        let step_x = -((w * sin) >> 16);
+        let step_y = (w * cos) >> 16;
         // Texture coordinates wrap, so keeping the low 32 bits of each is exact.
         let at_level = |value: i64| (value >> level) as i32;
-        let colormap = light_row(self.sector.light, depth.to_int_floor(), view.lighting).map(|row| &self.assets.colormap[row]);
+        let colormap = light_row(self.sector.light, depth.to_int_floor(), view.lighting)
+            .map(|row| &self.assets.colormap[row]);
         let flat = FlatTexture {
             texels,
             log2_side: side_log2,
@@ -126,20 +181,46 @@ impl Plane<'_> {
 static BLANK_FLAT: [u8; 64] = [0; 64];
 
 /// One sky column: panorama column from the ray's map angle, rows from the horizon.
-fn sky_column(view: &View, assets: &RenderAssets, column_angles: &[i16], canvas: &mut impl Canvas, column: usize, window: Window) {
+fn sky_column(
+    view: &View,
+    assets: &RenderAssets,
+    column_angles: &[i16],
+    canvas: &mut impl Canvas,
+    column: usize,
+    window: Window,
+) {
     let sky = &assets.sky;
     let height_log2 = u32::from(sky.height).trailing_zeros();
-    debug_assert!(sky.height.is_power_of_two(), "the sky's height must be a power of two");
-    let ray_angle = view.eye.angle.to_bits().wrapping_add(column_angles[column] as u16);
+    debug_assert!(
+        sky.height.is_power_of_two(),
+        "the sky's height must be a power of two"
+    );
+    let ray_angle = view
+        .eye
+        .angle
+        .to_bits()
+        .wrapping_add(column_angles[column] as u16);
     let sky_column = (u32::from(ray_angle) << sky.width_log2) >> 16;
     let height = usize::from(sky.height);
     let texels = &sky.texels[sky_column as usize * height..(sky_column as usize + 1) * height];
     // Row r shows panorama row h/2 + floor((r + ½ − cy)·160/H); H is 80 or 160.
     let lines_per_row = 160 / view.viewport.height;
     let top = i32::from(window.top);
-    let first_line = ((2 * (top - view.viewport.horizon_y) + 1) * 80).div_euclid(view.viewport.height);
+    let first_line =
+        ((2 * (top - view.viewport.horizon_y) + 1) * 80).div_euclid(view.viewport.height);
     let v = ((i32::from(sky.height) / 2 + first_line) as u32) << (32 - height_log2);
     let dv = (lines_per_row as u32) << (32 - height_log2);
-    let texture = ColumnTexture { texels, log2_height: height_log2, v, dv, colormap: None };
-    canvas.column(column, window.top as usize, (window.bottom - window.top) as usize, &texture);
+    let texture = ColumnTexture {
+        texels,
+        log2_height: height_log2,
+        v,
+        dv,
+        colormap: None,
+    };
+    canvas.column(
+        column,
+        window.top as usize,
+        (window.bottom - window.top) as usize,
+        &texture,
+    );
 }

@@ -37,7 +37,11 @@ pub fn make_spans(
             Some(window) if !window.is_empty() => *window,
             _ => Window::EMPTY,
         };
-        let (mut top, mut bottom) = if old.is_empty() { (0, 0) } else { (old.top, old.bottom) };
+        let (mut top, mut bottom) = if old.is_empty() {
+            (0, 0)
+        } else {
+            (old.top, old.bottom)
+        };
         let outside = |row: i16| row < new.top || row >= new.bottom;
         // Rows that leave the window end their span at this column.
         while top < bottom && outside(top) {
@@ -77,8 +81,8 @@ mod tests {
         let mut scratch = vec![0i16; height];
         make_spans(windows, 0, &mut scratch, |row, start, end| {
             assert!(start < end, "empty span on row {row}");
-            for x in start..end {
-                counts[row][x] += 1;
+            for count in &mut counts[row][start..end] {
+                *count += 1;
             }
         });
         counts
@@ -88,8 +92,13 @@ mod tests {
         let counts = coverage(windows, height);
         for (x, window) in windows.iter().enumerate() {
             for (row, row_counts) in counts.iter().enumerate() {
-                let inside = !window.is_empty() && (window.top as usize..window.bottom as usize).contains(&row);
-                assert_eq!(row_counts[x], u32::from(inside), "column {x} row {row} of {windows:?}");
+                let inside = !window.is_empty()
+                    && (window.top as usize..window.bottom as usize).contains(&row);
+                assert_eq!(
+                    row_counts[x],
+                    u32::from(inside),
+                    "column {x} row {row} of {windows:?}"
+                );
             }
         }
     }
@@ -97,7 +106,19 @@ mod tests {
     #[test]
     fn staircase_and_gaps_cover_every_pixel_once() {
         let w = |top, bottom| Window { top, bottom };
-        check(&[w(2, 6), w(3, 7), w(0, 2), Window::EMPTY, w(4, 5), w(1, 8), w(1, 8), w(6, 3)], 8);
+        check(
+            &[
+                w(2, 6),
+                w(3, 7),
+                w(0, 2),
+                Window::EMPTY,
+                w(4, 5),
+                w(1, 8),
+                w(1, 8),
+                w(6, 3),
+            ],
+            8,
+        );
     }
 
     proptest! {

@@ -12,7 +12,7 @@ use super::surface::Surface;
 use super::view::View;
 use super::walls::{owned_columns, WallProjector};
 use super::RenderAssets;
-use crate::math::{EyePoint, Fx24_8, WorldPoint};
+use crate::math::{recip_small, EyePoint, Fx24_8, WorldPoint};
 use crate::raster::column::ColumnTexture;
 use crate::raster::Canvas;
 use crate::render::light::light_row;
@@ -71,33 +71,59 @@ impl Renderer {
             ceiling: [Window::EMPTY; MAX_COLUMNS],
             floor: [Window::EMPTY; MAX_COLUMNS],
             span_start: [0; MAX_ROWS],
-            stats: FrameStats { sector_visits: 0, wall_columns: 0, column_pixels: 0, span_pixels: 0, depth_cutoffs: 0 },
+            stats: FrameStats {
+                sector_visits: 0,
+                wall_columns: 0,
+                column_pixels: 0,
+                span_pixels: 0,
+                depth_cutoffs: 0,
+            },
             column_angles: [0; MAX_COLUMNS],
             column_angles_width: 0,
         }
     }
 
     /// Draws the frame `view` sees of `map` onto `canvas`.
-    pub fn render(&mut self, map: &MapTables, assets: &RenderAssets, view: &View, canvas: &mut impl Canvas) -> FrameStats {
+    pub fn render(
+        &mut self,
+        map: &MapTables,
+        assets: &RenderAssets,
+        view: &View,
+        canvas: &mut impl Canvas,
+    ) -> FrameStats {
         let width = view.viewport.width as usize;
         let height = view.viewport.height as i16;
         debug_assert_eq!(width, canvas.resolution().width());
         self.stats = FrameStats::default();
         if self.column_angles_width != view.viewport.width {
             for (column, angle) in self.column_angles[..width].iter_mut().enumerate() {
-                *angle = column_angle(2 * (column as i32 - view.viewport.centre_x()) + 1, 2 * view.viewport.focal_x);
+                *angle = column_angle(
+                    2 * (column as i32 - view.viewport.centre_x()) + 1,
+                    2 * view.viewport.focal_x,
+                );
             }
             self.column_angles_width = view.viewport.width;
         }
         for window in &mut self.clip[..width] {
-            *window = Window { top: 0, bottom: height };
+            *window = Window {
+                top: 0,
+                bottom: height,
+            };
         }
         let scene = Scene { map, assets, view };
         self.visit(&scene, canvas, view.sector, 0, width as i32, 0);
         self.stats
     }
 
-    fn visit(&mut self, scene: &Scene, canvas: &mut impl Canvas, sector_index: u16, first: i32, end: i32, depth: u32) {
+    fn visit(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        sector_index: u16,
+        first: i32,
+        end: i32,
+        depth: u32,
+    ) {
         if depth > MAX_PORTAL_DEPTH {
             self.stats.depth_cutoffs += 1;
             return;
@@ -111,14 +137,21 @@ impl Renderer {
         }
         for (offset, wall) in walls.iter().enumerate() {
             let wall_index = sector.first_wall + offset as u16;
-            let Some((a, b, start, stop)) = self.owned(scene, wall, first, end) else { continue };
+            let Some((a, b, start, stop)) = self.owned(scene, wall, first, end) else {
+                continue;
+            };
             let projector = WallProjector::new(&scene.view.viewport, a, b);
             let length = wall_length(scene.map, wall);
             for column in start..stop {
-                self.wall_column(scene, canvas, sector, wall, wall_index, &projector, length, column);
+                self.wall_column(
+                    scene, canvas, sector, wall, wall_index, &projector, length, column,
+                );
             }
         }
-        planes::draw(self.plane_job(scene, sector, sector_index, first, end), canvas);
+        planes::draw(
+            self.plane_job(scene, sector, sector_index, first, end),
+            canvas,
+        );
         for wall in walls {
             if wall.portal == NO_PORTAL {
                 continue;
@@ -129,7 +162,14 @@ impl Renderer {
         }
     }
 
-    fn plane_job<'r>(&'r mut self, scene: &'r Scene, sector: &'r Sector, sector_index: u16, first: i32, end: i32) -> planes::PlaneJob<'r> {
+    fn plane_job<'r>(
+        &'r mut self,
+        scene: &'r Scene,
+        sector: &'r Sector,
+        sector_index: u16,
+        first: i32,
+        end: i32,
+    ) -> planes::PlaneJob<'r> {
         planes::PlaneJob {
             view: scene.view,
             assets: scene.assets,
@@ -145,7 +185,13 @@ impl Renderer {
     }
 
     /// The eye-space ends of `wall` and the columns of `[first, end)` it owns, if any.
-    fn owned(&self, scene: &Scene, wall: &Wall, first: i32, end: i32) -> Option<(EyePoint, EyePoint, i32, i32)> {
+    fn owned(
+        &self,
+        scene: &Scene,
+        wall: &Wall,
+        first: i32,
+        end: i32,
+    ) -> Option<(EyePoint, EyePoint, i32, i32)> {
         let a = scene.view.eye.to_eye(vertex(scene.map, wall.start));
         let b = scene.view.eye.to_eye(vertex(scene.map, wall.end));
         let (start, stop) = owned_columns(&scene.view.viewport, a, b);
@@ -171,35 +217,90 @@ impl Renderer {
         let at = projector.at(column);
         let row_of = |height: i32| {
             let above_eye = Fx24_8::from_int(height) - view.eye_z;
-            view.viewport.first_row_at_or_after(view.viewport.projected_y(above_eye, at.inverse_depth)) as i16
+            view.viewport
+                .first_row_at_or_after(view.viewport.projected_y(above_eye, at.inverse_depth))
+                as i16
         };
         let clip = self.clip[x];
         let ceiling_row = row_of(sector.ceil_z).max(clip.top);
         let floor_row = row_of(sector.floor_z).min(clip.bottom);
-        self.ceiling[x] = Window { top: clip.top, bottom: ceiling_row.min(clip.bottom) };
-        self.floor[x] = Window { top: floor_row.max(clip.top), bottom: clip.bottom };
-        let u = Fx24_8::from_bits(((i64::from(at.along.to_bits()) * i64::from(length.to_bits())) >> 30) as i32)
-            + Fx24_8::from_int(i32::from(wall.x_offset));
-        let strip = WallStrip { scene, sector, depth: at.depth, u, column: x };
+        self.ceiling[x] = Window {
+            top: clip.top,
+            bottom: ceiling_row.min(clip.bottom),
+        };
+        self.floor[x] = Window {
+            top: floor_row.max(clip.top),
+            bottom: clip.bottom,
+        };
+        let u = Fx24_8::from_bits(
+            ((i64::from(at.along.to_bits()) * i64::from(length.to_bits())) >> 30) as i32,
+        ) + Fx24_8::from_int(i32::from(wall.x_offset));
+        let strip = WallStrip {
+            scene,
+            sector,
+            depth: at.depth,
+            u,
+            column: x,
+        };
         if wall.portal == NO_PORTAL {
-            self.draw_strip(canvas, &strip, wall.texture, sector.ceil_z, Surface::Wall(wall_index), ceiling_row, floor_row, wall.y_offset);
+            self.draw_strip(
+                canvas,
+                &strip,
+                wall.texture,
+                sector.ceil_z,
+                Surface::Wall(wall_index),
+                ceiling_row,
+                floor_row,
+                wall.y_offset,
+            );
             self.clip[x] = Window::EMPTY;
             return;
         }
         let neighbour = &scene.map.sectors[usize::from(wall.portal)];
-        let neighbour_ceiling_row = row_of(neighbour.ceil_z).clamp(ceiling_row, floor_row.max(ceiling_row));
-        let neighbour_floor_row = row_of(neighbour.floor_z).clamp(neighbour_ceiling_row.min(floor_row), floor_row);
+        let neighbour_ceiling_row =
+            row_of(neighbour.ceil_z).clamp(ceiling_row, floor_row.max(ceiling_row));
+        let neighbour_floor_row =
+            row_of(neighbour.floor_z).clamp(neighbour_ceiling_row.min(floor_row), floor_row);
         if neighbour.ceil_z < sector.ceil_z {
             let upper = Surface::Upper(wall_index);
-            self.draw_strip(canvas, &strip, wall.upper_texture, sector.ceil_z, upper, ceiling_row, neighbour_ceiling_row, wall.y_offset);
+            self.draw_strip(
+                canvas,
+                &strip,
+                wall.upper_texture,
+                sector.ceil_z,
+                upper,
+                ceiling_row,
+                neighbour_ceiling_row,
+                wall.y_offset,
+            );
         }
         if neighbour.floor_z > sector.floor_z {
             let lower = Surface::Lower(wall_index);
-            self.draw_strip(canvas, &strip, wall.lower_texture, neighbour.floor_z, lower, neighbour_floor_row, floor_row, wall.y_offset);
+            self.draw_strip(
+                canvas,
+                &strip,
+                wall.lower_texture,
+                neighbour.floor_z,
+                lower,
+                neighbour_floor_row,
+                floor_row,
+                wall.y_offset,
+            );
         }
-        let opening_top = if neighbour.ceil_z < sector.ceil_z { neighbour_ceiling_row } else { ceiling_row };
-        let opening_bottom = if neighbour.floor_z > sector.floor_z { neighbour_floor_row } else { floor_row };
-        self.clip[x] = Window { top: opening_top, bottom: opening_bottom.max(opening_top) };
+        let opening_top = if neighbour.ceil_z < sector.ceil_z {
+            neighbour_ceiling_row
+        } else {
+            ceiling_row
+        };
+        let opening_bottom = if neighbour.floor_z > sector.floor_z {
+            neighbour_floor_row
+        } else {
+            floor_row
+        };
+        self.clip[x] = Window {
+            top: opening_top,
+            bottom: opening_bottom.max(opening_top),
+        };
     }
 
     /// Draws rows `top..bottom` of one wall column with texture `texture`, whose v is anchored
@@ -223,31 +324,58 @@ impl Renderer {
         self.stats.column_pixels += count as u32;
         canvas.set_surface(surface);
         let view = strip.scene.view;
-        let colormap = light_row(strip.sector.light, strip.depth.to_int_floor(), view.lighting)
-            .map(|row| &strip.scene.assets.colormap[row]);
+        let colormap = light_row(
+            strip.sector.light,
+            strip.depth.to_int_floor(),
+            view.lighting,
+        )
+        .map(|row| &strip.scene.assets.colormap[row]);
         let Some(texture) = strip.scene.assets.textures.get(usize::from(texture)) else {
-            let column = ColumnTexture { texels: &BLANK_COLUMN, log2_height: 3, v: 0, dv: 0, colormap: None };
+            let column = ColumnTexture {
+                texels: &BLANK_COLUMN,
+                log2_height: 3,
+                v: 0,
+                dv: 0,
+                colormap: None,
+            };
             canvas.column(strip.column, top as usize, count, &column);
             return;
         };
-        let level = mip_level(strip.depth, view.viewport.focal_y, texture.mip_count, texture.width_log2, texture.height_log2);
+        let level = mip_level(
+            strip.depth,
+            view.viewport.focal_y,
+            texture.mip_count,
+            texture.width_log2,
+            texture.height_log2,
+        );
         let width_log2 = u32::from(texture.level_width_log2(level));
         let height_log2 = u32::from(texture.level_height_log2(level));
         let texels = texture.wall_level(level);
         let u_texel = (strip.u.to_int_floor() >> level) & ((1 << width_log2) - 1);
-        let column_texels = &texels[(u_texel as usize) << height_log2..((u_texel as usize) + 1) << height_log2];
+        let column_texels =
+            &texels[(u_texel as usize) << height_log2..((u_texel as usize) + 1) << height_log2];
         // v (texels at level 0) of row r: anchor − eye + y_offset + (r + ½ − cy)·z/d_y; as a
         // fraction of the texture height in 0.32 it is the same at every mip level.
         let base_log2 = u32::from(texture.height_log2);
-        let eye_to_anchor = i64::from((Fx24_8::from_int(anchor) - view.eye_z).to_bits()) + (i64::from(y_offset) << 8);
+        let eye_to_anchor = i64::from((Fx24_8::from_int(anchor) - view.eye_z).to_bits())
+            + (i64::from(y_offset) << 8);
         let twice_row_offset = 2 * (i64::from(top) - i64::from(view.viewport.horizon_y)) + 1;
         let depth_bits = i64::from(strip.depth.to_bits());
-        let focal_y = i64::from(view.viewport.focal_y);
+        // z'/d_y in 24.8 through the 2.30 reciprocal of d_y (a table entry, no divide).
+        let inverse_focal_y = i64::from(recip_small(view.viewport.focal_y as u32).to_bits());
+        let step_bits = (depth_bits * inverse_focal_y) >> 30;
         // v in 24.8 texels; then scale to 0.32 of the height: × 2^(24 − log2 height).
-        let v_bits = eye_to_anchor + twice_row_offset * depth_bits / (2 * focal_y);
+        let v_bits = eye_to_anchor + ((twice_row_offset * depth_bits * inverse_focal_y) >> 31);
         let v = (v_bits << (24 - base_log2)) as u32;
-        let dv = ((depth_bits << (24 - base_log2)) / focal_y) as u32;
-        let column = ColumnTexture { texels: column_texels, log2_height: height_log2, v, dv, colormap };
+        let dv = ((depth_bits * inverse_focal_y) >> (6 + base_log2)) as u32;
+        let _ = step_bits;
+        let column = ColumnTexture {
+            texels: column_texels,
+            log2_height: height_log2,
+            v,
+            dv,
+            colormap,
+        };
         canvas.column(strip.column, top as usize, count, &column);
     }
 }
@@ -271,7 +399,10 @@ fn vertex(map: &MapTables, index: u16) -> WorldPoint {
 
 /// A wall's length in 24.8, from the integer square root of its squared length.
 fn wall_length(map: &MapTables, wall: &Wall) -> Fx24_8 {
-    let (a, b) = (map.vertices[usize::from(wall.start)], map.vertices[usize::from(wall.end)]);
+    let (a, b) = (
+        map.vertices[usize::from(wall.start)],
+        map.vertices[usize::from(wall.end)],
+    );
     let (dx, dy) = (i64::from(b.x - a.x), i64::from(b.y - a.y));
     // (length · 256)² = (dx² + dy²) · 65536.
     Fx24_8::from_bits(isqrt(((dx * dx + dy * dy) << 16) as u64) as i32)
@@ -299,14 +430,24 @@ pub fn isqrt(n: u64) -> u64 {
 
 /// The mip level for depth `depth`: `floor(log2(depth / focal_y))`, at least 0, below
 /// `mip_count`, and keeping both sides at least 8 texels (the smallest column kernel).
-pub fn mip_level(depth: Fx24_8, focal_y: i32, mip_count: u8, width_log2: u8, height_log2: u8) -> u8 {
-    let ratio = depth.to_int_floor() / focal_y;
+pub fn mip_level(
+    depth: Fx24_8,
+    focal_y: i32,
+    mip_count: u8,
+    width_log2: u8,
+    height_log2: u8,
+) -> u8 {
+    // floor(depth / focal_y) through the 2.30 reciprocal of focal_y: no divide.
+    let ratio = ((i64::from(depth.to_bits()) * i64::from(recip_small(focal_y as u32).to_bits()))
+        >> 38) as i32;
     let mut level = 0u8;
     while (ratio >> (level + 1)) > 0 {
         level += 1;
     }
     let smallest_side = width_log2.min(height_log2);
-    level.min(mip_count.saturating_sub(1)).min(smallest_side.saturating_sub(3))
+    level
+        .min(mip_count.saturating_sub(1))
+        .min(smallest_side.saturating_sub(3))
 }
 
 pub(crate) fn is_sky(sector: &Sector) -> bool {
@@ -325,7 +466,9 @@ pub fn column_angle(q: i32, twice_focal: i32) -> i16 {
         let middle = (low + high + 1).div_euclid(2);
         let (sin, cos) = Angle::from_bits(middle as u16).sin_cos();
         // tan(middle) ≤ q/2d  ⇔  sin·2d ≤ q·cos (cos > 0 here).
-        if i64::from(sin.to_bits()) * i64::from(twice_focal) <= i64::from(q) * i64::from(cos.to_bits()) {
+        if i64::from(sin.to_bits()) * i64::from(twice_focal)
+            <= i64::from(q) * i64::from(cos.to_bits())
+        {
             low = middle;
         } else {
             high = middle - 1;

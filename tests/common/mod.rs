@@ -14,7 +14,8 @@ pub fn boot() -> Emulator {
 
 /// The value of `key=value` in a ROM log line.
 pub fn field<'a>(line: &'a str, key: &str) -> Option<&'a str> {
-    line.split_whitespace().find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
+    line.split_whitespace()
+        .find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
 }
 
 /// A numeric `key=value` field; panics with the line if missing or malformed.
@@ -48,12 +49,20 @@ pub fn read_page(emulator: &Emulator, address: u32) -> HostPage {
 }
 
 /// The 240×160 frame BG2 shows of `page` at `resolution`, through `palette`, as 5-bit channels.
-pub fn expected_frame_rgb5(page: &HostPage, resolution: Resolution, palette: &[u16; 256]) -> Vec<[u8; 3]> {
+pub fn expected_frame_rgb5(
+    page: &HostPage,
+    resolution: Resolution,
+    palette: &[u16; 256],
+) -> Vec<[u8; 3]> {
     let mut pixels = Vec::with_capacity(PAGE_WIDTH * PAGE_HEIGHT);
     for y in 0..PAGE_HEIGHT {
         for x in 0..PAGE_WIDTH {
             let colour = palette[usize::from(shown_index(&page.halfwords, resolution, x, y))];
-            pixels.push([(colour & 31) as u8, ((colour >> 5) & 31) as u8, ((colour >> 10) & 31) as u8]);
+            pixels.push([
+                (colour & 31) as u8,
+                ((colour >> 5) & 31) as u8,
+                ((colour >> 10) & 31) as u8,
+            ]);
         }
     }
     pixels
@@ -61,12 +70,18 @@ pub fn expected_frame_rgb5(page: &HostPage, resolution: Resolution, palette: &[u
 
 /// The emulator's current frame as 5-bit channels (mGBA expands BGR555 to 8 bits per channel).
 pub fn shown_frame_rgb5(emulator: &Emulator) -> Vec<[u8; 3]> {
-    emulator.frame_rgb().pixels().map(|pixel| [pixel[0] >> 3, pixel[1] >> 3, pixel[2] >> 3]).collect()
+    emulator
+        .frame_rgb()
+        .pixels()
+        .map(|pixel| [pixel[0] >> 3, pixel[1] >> 3, pixel[2] >> 3])
+        .collect()
 }
 
 /// Where tests leave PNGs for people (and the README) to look at.
 pub fn screenshot_dir() -> PathBuf {
-    let dir = portalcast_xtask::workspace_root().join("target").join("screenshots");
+    let dir = portalcast_xtask::workspace_root()
+        .join("target")
+        .join("screenshots");
     std::fs::create_dir_all(&dir).expect("creating target/screenshots");
     dir
 }
@@ -135,7 +150,11 @@ impl Canvas for RecordingCanvas {
         for (offset, index) in indices.into_iter().enumerate() {
             self.record(x, row + offset, index);
         }
-        HostCanvas { page: &mut self.page, resolution: self.resolution }.column(x, row, count, texture);
+        HostCanvas {
+            page: &mut self.page,
+            resolution: self.resolution,
+        }
+        .column(x, row, count, texture);
     }
 
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
@@ -143,7 +162,11 @@ impl Canvas for RecordingCanvas {
         for (offset, index) in indices.into_iter().enumerate() {
             self.record(x + offset, row, index);
         }
-        HostCanvas { page: &mut self.page, resolution: self.resolution }.flat(row, x, count, texture);
+        HostCanvas {
+            page: &mut self.page,
+            resolution: self.resolution,
+        }
+        .flat(row, x, count, texture);
     }
 
     fn set_surface(&mut self, surface: Surface) {

@@ -59,9 +59,20 @@ fn percent(count: usize, total: usize) -> f64 {
 /// Panics if the engine slices are not `oracle.width · oracle.height` long.
 pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Frame) -> Comparison {
     let pixels = oracle.width * oracle.height;
-    assert_eq!(engine_surfaces.len(), pixels, "engine surfaces do not match the oracle frame size");
-    assert_eq!(engine_indices.len(), pixels, "engine indices do not match the oracle frame size");
-    let mut result = Comparison { pixels, ..Comparison::default() };
+    assert_eq!(
+        engine_surfaces.len(),
+        pixels,
+        "engine surfaces do not match the oracle frame size"
+    );
+    assert_eq!(
+        engine_indices.len(),
+        pixels,
+        "engine indices do not match the oracle frame size"
+    );
+    let mut result = Comparison {
+        pixels,
+        ..Comparison::default()
+    };
     // Mismatched pixels grouped by the surface the engine drew, one distance map per surface.
     let mut misplaced: HashMap<Surface, Vec<usize>> = HashMap::new();
     let mut engine_sectors = BTreeSet::new();
@@ -82,13 +93,20 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
         }
     }
     for (surface, pixels) in &misplaced {
-        let distances = chebyshev_distances(&oracle.surfaces, oracle.width, oracle.height, *surface);
+        let distances =
+            chebyshev_distances(&oracle.surfaces, oracle.width, oracle.height, *surface);
         for &pixel in pixels {
             result.max_edge_error_px = result.max_edge_error_px.max(distances[pixel]);
         }
     }
-    result.missed_sectors = oracle_sectors.difference(&engine_sectors).copied().collect();
-    result.extra_sectors = engine_sectors.difference(&oracle_sectors).copied().collect();
+    result.missed_sectors = oracle_sectors
+        .difference(&engine_sectors)
+        .copied()
+        .collect();
+    result.extra_sectors = engine_sectors
+        .difference(&oracle_sectors)
+        .copied()
+        .collect();
     result
 }
 
@@ -96,9 +114,17 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
 /// `max(width, height)` (which also stands for "nowhere").
 ///
 /// The two-pass 8-neighbour chamfer with unit weights is exact for the Chebyshev metric.
-fn chebyshev_distances(surfaces: &[Surface], width: usize, height: usize, surface: Surface) -> Vec<u32> {
+fn chebyshev_distances(
+    surfaces: &[Surface],
+    width: usize,
+    height: usize,
+    surface: Surface,
+) -> Vec<u32> {
     let far = width.max(height) as u32;
-    let mut d: Vec<u32> = surfaces.iter().map(|&s| if s == surface { 0 } else { far }).collect();
+    let mut d: Vec<u32> = surfaces
+        .iter()
+        .map(|&s| if s == surface { 0 } else { far })
+        .collect();
     for y in 0..height {
         for x in 0..width {
             let mut best = d[y * width + x];
@@ -174,9 +200,14 @@ const GAP: usize = 4;
 /// mask is black where the surfaces agree, red where they differ and yellow for engine holes.
 pub fn write_diff_png(engine_surfaces: &[Surface], oracle: &Frame, path: &Path) -> io::Result<()> {
     let (width, height) = (oracle.width, oracle.height);
-    assert_eq!(engine_surfaces.len(), width * height, "engine surfaces do not match the oracle frame size");
+    assert_eq!(
+        engine_surfaces.len(),
+        width * height,
+        "engine surfaces do not match the oracle frame size"
+    );
     let total_width = 3 * width + 2 * GAP;
-    let mut image = image::RgbImage::from_pixel(total_width as u32, height as u32, image::Rgb([64, 64, 64]));
+    let mut image =
+        image::RgbImage::from_pixel(total_width as u32, height as u32, image::Rgb([64, 64, 64]));
     for y in 0..height {
         for x in 0..width {
             let engine = engine_surfaces[y * width + x];
@@ -188,12 +219,21 @@ pub fn write_diff_png(engine_surfaces: &[Surface], oracle: &Frame, path: &Path) 
             } else {
                 [0, 0, 0]
             };
-            for (panel, colour) in [surface_colour(engine), surface_colour(expected), mask].into_iter().enumerate() {
-                image.put_pixel((panel * (width + GAP) + x) as u32, y as u32, image::Rgb(colour));
+            for (panel, colour) in [surface_colour(engine), surface_colour(expected), mask]
+                .into_iter()
+                .enumerate()
+            {
+                image.put_pixel(
+                    (panel * (width + GAP) + x) as u32,
+                    y as u32,
+                    image::Rgb(colour),
+                );
             }
         }
     }
-    image.save_with_format(path, image::ImageFormat::Png).map_err(io::Error::other)
+    image
+        .save_with_format(path, image::ImageFormat::Png)
+        .map_err(io::Error::other)
 }
 
 #[cfg(test)]
@@ -215,8 +255,17 @@ mod tests {
     #[test]
     fn surface_colours_are_stable_and_distinct() {
         assert_eq!(surface_colour(Surface::None), [0, 0, 0]);
-        assert_eq!(surface_colour(Surface::Wall(3)), surface_colour(Surface::Wall(3)));
-        assert_ne!(surface_colour(Surface::Wall(3)), surface_colour(Surface::Wall(4)));
-        assert_ne!(surface_colour(Surface::Floor(3)), surface_colour(Surface::Ceiling(3)));
+        assert_eq!(
+            surface_colour(Surface::Wall(3)),
+            surface_colour(Surface::Wall(3))
+        );
+        assert_ne!(
+            surface_colour(Surface::Wall(3)),
+            surface_colour(Surface::Wall(4))
+        );
+        assert_ne!(
+            surface_colour(Surface::Floor(3)),
+            surface_colour(Surface::Ceiling(3))
+        );
     }
 }

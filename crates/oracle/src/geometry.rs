@@ -40,7 +40,10 @@ pub(crate) fn vertex(map: &MapTables, index: u16) -> Vec2 {
 /// Sectors are convex, so "strictly right of every wall" is the whole test.
 pub fn find_sector(map: &MapTables, x: f64, y: f64) -> Option<u16> {
     let p = Vec2::new(x, y);
-    map.sectors.iter().position(|sector| strictly_inside(map, sector, p)).map(|i| i as u16)
+    map.sectors
+        .iter()
+        .position(|sector| strictly_inside(map, sector, p))
+        .map(|i| i as u16)
 }
 
 fn strictly_inside(map: &MapTables, sector: &Sector, p: Vec2) -> bool {
@@ -91,19 +94,32 @@ fn off_wall(s: f64) -> f64 {
 /// `None` only for a degenerate ray (`d = 0`) or sector.
 pub(crate) fn exit_wall(map: &MapTables, sector: &Sector, p: Vec2, d: Vec2) -> Option<Exit> {
     let first = sector.first_wall;
-    let crossings = map.sector_walls(sector).iter().enumerate().filter_map(|(offset, wall)| {
-        let a = vertex(map, wall.start);
-        let e = vertex(map, wall.end).sub(a);
-        let outward = e.cross(d);
-        if outward >= 0.0 {
-            return None;
-        }
-        let pa = p.sub(a);
-        Some(Exit { wall: first + offset as u16, t: -e.cross(pa) / outward, s: pa.cross(d) / outward })
-    });
-    let nearest = crossings.clone().map(|exit| exit.t).min_by(f64::total_cmp)?;
+    let crossings = map
+        .sector_walls(sector)
+        .iter()
+        .enumerate()
+        .filter_map(|(offset, wall)| {
+            let a = vertex(map, wall.start);
+            let e = vertex(map, wall.end).sub(a);
+            let outward = e.cross(d);
+            if outward >= 0.0 {
+                return None;
+            }
+            let pa = p.sub(a);
+            Some(Exit {
+                wall: first + offset as u16,
+                t: -e.cross(pa) / outward,
+                s: pa.cross(d) / outward,
+            })
+        });
+    let nearest = crossings
+        .clone()
+        .map(|exit| exit.t)
+        .min_by(f64::total_cmp)?;
     let tolerance = TIE_RELATIVE * nearest.abs().max(1.0);
-    crossings.filter(|exit| exit.t <= nearest + tolerance).min_by(|x, y| off_wall(x.s).total_cmp(&off_wall(y.s)))
+    crossings
+        .filter(|exit| exit.t <= nearest + tolerance)
+        .min_by(|x, y| off_wall(x.s).total_cmp(&off_wall(y.s)))
 }
 
 /// Distance from `p` to the segment `a → b`.

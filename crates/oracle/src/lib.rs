@@ -10,25 +10,33 @@
 //! # The ray of a pixel
 //!
 //! Conventions of `docs/ARCHITECTURE.md`: forward `f = (cos a, sin a)`, right
-//! `r = (−sin a, cos a)`. Column `c` is sampled at `c + ½`: slope `m = (c + ½ − width/2) / focal_x`,
-//! 2D ray `P + t·D` with `D = f + m·r`, so `t` is the eye-space depth `z'`. Row `y` is sampled at
-//! `y + ½`: `k = (y + ½ − horizon_y) / focal_y`, and the 3D ray is at height
-//! `h(t) = eye_z − k·t`.
+//! `r = (−sin a, cos a)`. Column `c` is sampled at `c + ½`: slope
+//! `m = (c + ½ − width/2) / focal_x`, 2D ray `P + t·D` with `D = f + m·r`, so `t` is the
+//! eye-space depth `z'`. Row `y` is sampled at `y + ½`: `k = (y + ½ − horizon_y) / focal_y`, and
+//! the 3D ray is at height `h(t) = eye_z − k·t`.
 //!
 //! # The march
 //!
-//! In sector `S` over `t ∈ [t_in, t_out)`, with `t_out` where the 2D ray leaves `S` through wall
-//! `w` (parameter `s ∈ [0, 1)` along `w`: a ray through a vertex leaves through the wall that
-//! *starts* there, as the engine's column rule `x0 ≤ c + ½ < x1` assigns it):
-//! - the ceiling of `S` if `k < 0` and `h(t_out) > ceil_z` (the plane is reached before
-//!   `t_out`), the sky if that ceiling is [`SKY`](portalcast_format::SKY); the floor if `k > 0`
-//!   and `h(t_out) < floor_z`;
+//! In sector `S`, from `t_in` (0 in the eye's sector) to `t_out` where the 2D ray leaves `S`
+//! through wall `w` (parameter `s ∈ [0, 1)` along `w`: a ray through a vertex leaves through the
+//! wall that *starts* there, as the engine's column rule `x0 ≤ c + ½ < x1` assigns it), with
+//! `h = h(t_out)`:
+//! - the ceiling of `S` if `k < 0` and `h > ceil_z` (the plane is reached before `t_out`), the
+//!   sky if that ceiling is [`SKY`](portalcast_format::SKY); the floor if `k > 0` and
+//!   `h ≤ floor_z`;
 //! - else, at `t_out`: a solid `w` is [`Surface::Wall`]; through a portal to `N`,
-//!   [`Surface::Upper`] if `N.ceil_z < S.ceil_z` and `h(t_out) ≥ N.ceil_z` (but [`Surface::Sky`]
-//!   when both ceilings are sky: that strip is never drawn, the panorama shows through);
-//!   [`Surface::Lower`] if `h(t_out) < N.floor_z`; otherwise the march goes on in `N` from
-//!   `t_in = t_out`;
+//!   [`Surface::Upper`] if `N.ceil_z < S.ceil_z` and `h > N.ceil_z` (but [`Surface::Sky`] when
+//!   both ceilings are sky: that strip is never drawn, the panorama shows through);
+//!   [`Surface::Lower`] if `N.floor_z > S.floor_z` and `h ≤ N.floor_z`; otherwise the march
+//!   goes on in `N` from `t_in = t_out`;
 //! - after `sectors + 8` sectors without a hit (a broken map), [`Surface::None`].
+//!
+//! The strict and non-strict comparisons settle exact ties (a pixel centre exactly on the
+//! projection of an edge) the way the engine's row rule does: a vertical span `[y0, y1)` owns
+//! the rows with `y0 ≤ y + ½ < y1`, so a tied pixel belongs to the surface *below* the edge on
+//! screen (the wall under a ceiling edge, the floor under a wall's foot, the opening under an
+//! upper strip, the lower strip under the opening), as a tied column belongs to the wall on the
+//! right.
 //!
 //! The 2D part does not depend on the row, so it runs once per column.
 
@@ -42,9 +50,9 @@ mod render;
 
 pub use compare::{compare, surface_colour, write_diff_png, Comparison};
 pub use geometry::find_sector;
-pub use poses::sample_poses;
 pub use portalcast::render::light::Lighting;
 pub use portalcast::render::surface::Surface;
+pub use poses::sample_poses;
 pub use render::{mip_level, render};
 
 use portalcast::math::Viewport;
@@ -68,7 +76,13 @@ pub struct Camera {
 impl Camera {
     /// The camera at an engine pose: position and eye height in 24.8 fixed point, binary angle
     /// (65536 per turn). Every engine pose is exactly representable here.
-    pub fn from_fixed(x_fx8: i32, y_fx8: i32, eye_z_fx8: i32, angle: u16, sector: Option<u16>) -> Camera {
+    pub fn from_fixed(
+        x_fx8: i32,
+        y_fx8: i32,
+        eye_z_fx8: i32,
+        angle: u16,
+        sector: Option<u16>,
+    ) -> Camera {
         Camera {
             x: f64::from(x_fx8) / 256.0,
             y: f64::from(y_fx8) / 256.0,
@@ -92,7 +106,9 @@ pub fn angle_from_bits(bits: u16) -> f64 {
 /// The binary angle nearest to `radians`, wrapped into one turn; exact inverse of
 /// [`angle_from_bits`].
 pub fn angle_to_bits(radians: f64) -> u16 {
-    (radians / core::f64::consts::TAU * 65536.0).round().rem_euclid(65536.0) as u16
+    (radians / core::f64::consts::TAU * 65536.0)
+        .round()
+        .rem_euclid(65536.0) as u16
 }
 
 /// The screen: size, focal lengths, horizon and lighting rule.
@@ -152,8 +168,8 @@ pub struct Frame {
     /// Eye-space depth `z'` of each pixel's hit; `f64::INFINITY` for the sky and for
     /// [`Surface::None`].
     pub depths: Vec<f64>,
-    /// The sector owning each wall of the map (wall index → sector), so [`compare`] can tell
-    /// which sectors a frame shows without the map.
+    /// The sector owning each wall of the map (wall index → sector; `u16::MAX` for a wall no
+    /// sector lists), so [`compare`] can tell which sectors a frame shows without the map.
     pub wall_sectors: Vec<u16>,
 }
 
@@ -179,7 +195,8 @@ impl Frame {
         match surface {
             Surface::Floor(s) | Surface::Ceiling(s) => Some(s),
             Surface::Wall(w) | Surface::Upper(w) | Surface::Lower(w) => {
-                self.wall_sectors.get(usize::from(w)).copied()
+                let owner = self.wall_sectors.get(usize::from(w)).copied();
+                owner.filter(|&s| s != u16::MAX)
             }
             Surface::Sky | Surface::None => None,
         }

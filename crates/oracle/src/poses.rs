@@ -32,7 +32,12 @@ pub fn sample_poses(map: &MapTables, count: usize, seed: u64) -> Vec<Camera> {
     }
     let (mut min_x, mut min_y, mut max_x, mut max_y) = (i32::MAX, i32::MAX, i32::MIN, i32::MIN);
     for v in map.vertices {
-        (min_x, min_y, max_x, max_y) = (min_x.min(v.x), min_y.min(v.y), max_x.max(v.x), max_y.max(v.y));
+        (min_x, min_y, max_x, max_y) = (
+            min_x.min(v.x),
+            min_y.min(v.y),
+            max_x.max(v.x),
+            max_y.max(v.y),
+        );
     }
     let mut rng = Rng(seed);
     let mut tries = 1000 * (count + 1);
@@ -41,7 +46,9 @@ pub fn sample_poses(map: &MapTables, count: usize, seed: u64) -> Vec<Camera> {
         let x = on_fx8_grid(f64::from(min_x) + rng.unit() * f64::from(max_x - min_x));
         let y = on_fx8_grid(f64::from(min_y) + rng.unit() * f64::from(max_y - min_y));
         let angle = angle_from_bits(rng.next() as u16);
-        let Some(sector_index) = find_sector(map, x, y) else { continue };
+        let Some(sector_index) = find_sector(map, x, y) else {
+            continue;
+        };
         let sector = &map.sectors[usize::from(sector_index)];
         let p = Vec2::new(x, y);
         let clear = map.sector_walls(sector).iter().all(|wall| {
@@ -56,7 +63,13 @@ pub fn sample_poses(map: &MapTables, count: usize, seed: u64) -> Vec<Camera> {
         } else {
             (f64::from(sector.floor_z) + f64::from(sector.ceil_z)) / 2.0
         };
-        poses.push(Camera { x, y, eye_z, angle, sector: Some(sector_index) });
+        poses.push(Camera {
+            x,
+            y,
+            eye_z,
+            angle,
+            sector: Some(sector_index),
+        });
     }
     poses
 }

@@ -23,9 +23,21 @@ struct Segment {
 enum Hit {
     Sky,
     /// A floor or ceiling of `sector`, reached at depth `t`.
-    Flat { surface: Surface, sector: u16, texture: u16, t: f64 },
-    /// A wall or strip of `wall` seen from `sector`, `v` measured down from `anchor`.
-    Wall { surface: Surface, sector: u16, texture: u16, t: f64, u: f64, v: f64 },
+    Flat {
+        surface: Surface,
+        sector: u16,
+        texture: u16,
+        t: f64,
+    },
+    /// A wall or strip seen from `sector`, with its level-0 texture coordinates.
+    Wall {
+        surface: Surface,
+        sector: u16,
+        texture: u16,
+        t: f64,
+        u: f64,
+        v: f64,
+    },
     None,
 }
 
@@ -39,8 +51,8 @@ enum Hit {
 /// - floors and ceilings: the map point `P + t·D` at the plane hit, mip level from that `t`;
 /// - the sky: column `floor(angle(D) / 2π · sky_width) mod sky_width`, row
 ///   `floor((y + ½ − horizon_y) · 160 / height) + sky_height / 2` clamped to the image;
-/// - a texture slot of [`NO_TEXTURE`] (or a ceiling slot that is neither a texture nor
-///   [`SKY`]) where a surface is drawn gives texel 0, as the engine's blank column.
+/// - a texture slot of [`NO_TEXTURE`] (or [`SKY`] anywhere but a ceiling) where a surface is
+///   drawn gives texel 0, as the engine's blank column does.
 ///
 /// Light: the final index is `colormap[row][texel]` with
 /// `row = light_row(light, floor(depth), lighting)` when that is `Some`, else the texel; the
@@ -63,7 +75,10 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
         depths: vec![f64::INFINITY; width * height],
         wall_sectors: wall_sectors(map),
     };
-    let Some(start) = camera.sector.or_else(|| find_sector(map, camera.x, camera.y)) else {
+    let Some(start) = camera
+        .sector
+        .or_else(|| find_sector(map, camera.x, camera.y))
+    else {
         return frame;
     };
     let eye = Vec2::new(camera.x, camera.y);
@@ -81,14 +96,30 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
             let pixel = row * width + column;
             let (surface, index, depth) = match hit {
                 Hit::None => (Surface::None, 0, f64::INFINITY),
-                Hit::Sky => (Surface::Sky, sky_texel(assets, view, sky_column, row), f64::INFINITY),
-                Hit::Flat { surface, sector, texture, t } => {
+                Hit::Sky => (
+                    Surface::Sky,
+                    sky_texel(assets, view, sky_column, row),
+                    f64::INFINITY,
+                ),
+                Hit::Flat {
+                    surface,
+                    sector,
+                    texture,
+                    t,
+                } => {
                     let x = eye.x + t * d.x;
                     let y = eye.y + t * d.y;
                     let texel = flat_texel(assets, texture, t, view.focal_y, x, y);
                     (surface, lit(map, assets, view, sector, t, texel), t)
                 }
-                Hit::Wall { surface, sector, texture, t, u, v } => {
+                Hit::Wall {
+                    surface,
+                    sector,
+                    texture,
+                    t,
+                    u,
+                    v,
+                } => {
                     let texel = wall_texel(assets, texture, t, view.focal_y, u, v);
                     (surface, lit(map, assets, view, sector, t, texel), t)
                 }
@@ -101,7 +132,7 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
     frame
 }
 
-/// The owner sector of every wall.
+/// The owner sector of every wall (`u16::MAX` for a wall no sector lists).
 fn wall_sectors(map: &MapTables) -> Vec<u16> {
     let mut owners = vec![u16::MAX; map.walls.len()];
     for (index, sector) in map.sectors.iter().enumerate() {
@@ -115,15 +146,29 @@ fn wall_sectors(map: &MapTables) -> Vec<u16> {
 
 /// The sectors the 2D ray `eye + t·d` crosses from `start`, up to its solid wall or
 /// `max_steps` sectors.
-fn trace_column(map: &MapTables, start: u16, eye: Vec2, d: Vec2, max_steps: usize, path: &mut Vec<Segment>) {
+fn trace_column(
+    map: &MapTables,
+    start: u16,
+    eye: Vec2,
+    d: Vec2,
+    max_steps: usize,
+    path: &mut Vec<Segment>,
+) {
     path.clear();
     let mut sector = start;
     let mut t_in = 0.0;
     while path.len() < max_steps {
-        let Some(exit) = exit_wall(map, &map.sectors[usize::from(sector)], eye, d) else { return };
+        let Some(exit) = exit_wall(map, &map.sectors[usize::from(sector)], eye, d) else {
+            return;
+        };
         // Rounding may put the exit an ulp before the entry; depth never runs backwards.
         let t_out = exit.t.max(t_in);
-        path.push(Segment { sector, t_out, wall: exit.wall, s: exit.s });
+        path.push(Segment {
+            sector,
+            t_out,
+            wall: exit.wall,
+            s: exit.s,
+        });
         match map.walls[usize::from(exit.wall)].neighbour() {
             None => return,
             Some(next) => {
@@ -140,20 +185,32 @@ fn shade_ray(map: &MapTables, path: &[Segment], eye_z: f64, k: f64) -> Hit {
         let sector = &map.sectors[usize::from(segment.sector)];
         let (ceil_z, floor_z) = (f64::from(sector.ceil_z), f64::from(sector.floor_z));
         let h_out = eye_z - k * segment.t_out;
-        // h is monotonic in t and was within the sector's heights at t_in, so passing the plane
-        // by t_out means hitting it in [t_in, t_out).
+        // h is monotonic in t and was within the sector's heights at t_in, so passing a plane's
+        // height by t_out means hitting the plane in [t_in, t_out]. Exact ties go to the surface
+        // below on screen, as the engine's row rule `y0 ≤ y + ½ < y1` does: the wall under a
+        // ceiling, the floor under a wall.
         if k < 0.0 && h_out > ceil_z {
             if sector.ceil_texture == SKY {
                 return Hit::Sky;
             }
             let t = (eye_z - ceil_z) / k;
             let surface = Surface::Ceiling(segment.sector);
-            return Hit::Flat { surface, sector: segment.sector, texture: sector.ceil_texture, t };
+            return Hit::Flat {
+                surface,
+                sector: segment.sector,
+                texture: sector.ceil_texture,
+                t,
+            };
         }
-        if k > 0.0 && h_out < floor_z {
+        if k > 0.0 && h_out <= floor_z {
             let t = (eye_z - floor_z) / k;
             let surface = Surface::Floor(segment.sector);
-            return Hit::Flat { surface, sector: segment.sector, texture: sector.floor_texture, t };
+            return Hit::Flat {
+                surface,
+                sector: segment.sector,
+                texture: sector.floor_texture,
+                t,
+            };
         }
         let wall = &map.walls[usize::from(segment.wall)];
         let u = segment.s * wall_length(map, wall) + f64::from(wall.x_offset);
@@ -169,14 +226,24 @@ fn shade_ray(map: &MapTables, path: &[Segment], eye_z: f64, k: f64) -> Hit {
             return at(Surface::Wall(segment.wall), wall.texture, sector.ceil_z);
         };
         let neighbour = &map.sectors[usize::from(next)];
-        if neighbour.ceil_z < sector.ceil_z && h_out >= f64::from(neighbour.ceil_z) {
+        // Ties again go down the screen: past the upper strip's bottom edge into the opening,
+        // onto the lower strip at its top edge.
+        if neighbour.ceil_z < sector.ceil_z && h_out > f64::from(neighbour.ceil_z) {
             if sector.ceil_texture == SKY && neighbour.ceil_texture == SKY {
                 return Hit::Sky;
             }
-            return at(Surface::Upper(segment.wall), wall.upper_texture, sector.ceil_z);
+            return at(
+                Surface::Upper(segment.wall),
+                wall.upper_texture,
+                sector.ceil_z,
+            );
         }
-        if h_out < f64::from(neighbour.floor_z) {
-            return at(Surface::Lower(segment.wall), wall.lower_texture, neighbour.floor_z);
+        if neighbour.floor_z > sector.floor_z && h_out <= f64::from(neighbour.floor_z) {
+            return at(
+                Surface::Lower(segment.wall),
+                wall.lower_texture,
+                neighbour.floor_z,
+            );
         }
     }
     Hit::None
@@ -213,11 +280,18 @@ fn texture<'a>(assets: &Assets<'a>, slot: u16) -> Option<&'a Texture<'a>> {
         return None;
     }
     let texture = assets.textures.get(usize::from(slot));
-    Some(texture.unwrap_or_else(|| panic!("texture slot {slot} out of range ({} textures)", assets.textures.len())))
+    Some(texture.unwrap_or_else(|| {
+        panic!(
+            "texture slot {slot} out of range ({} textures)",
+            assets.textures.len()
+        )
+    }))
 }
 
 fn wall_texel(assets: &Assets, slot: u16, depth: f64, focal_y: f64, u: f64, v: f64) -> u8 {
-    let Some(texture) = texture(assets, slot) else { return 0 };
+    let Some(texture) = texture(assets, slot) else {
+        return 0;
+    };
     let level = mip_level(depth, focal_y, texture.mip_count);
     let u = texel_coordinate(u, texture.width_log2, level);
     let v = texel_coordinate(v, texture.height_log2, level);
@@ -225,7 +299,9 @@ fn wall_texel(assets: &Assets, slot: u16, depth: f64, focal_y: f64, u: f64, v: f
 }
 
 fn flat_texel(assets: &Assets, slot: u16, depth: f64, focal_y: f64, x: f64, y: f64) -> u8 {
-    let Some(texture) = texture(assets, slot) else { return 0 };
+    let Some(texture) = texture(assets, slot) else {
+        return 0;
+    };
     let level = mip_level(depth, focal_y, texture.mip_count);
     let u = texel_coordinate(x, texture.width_log2, level);
     let v = texel_coordinate(y, texture.height_log2, level);

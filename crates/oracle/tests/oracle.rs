@@ -10,11 +10,12 @@
 use std::collections::BTreeSet;
 
 use portalcast_format::{
-    Colormap, MapTables, PlayerStart, Sector, Sky, Texture, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY,
+    Colormap, MapTables, PlayerStart, Sector, Sky, Texture, Vertex, Wall, NO_PORTAL, NO_TEXTURE,
+    SKY,
 };
 use portalcast_oracle::{
-    angle_from_bits, angle_to_bits, compare, find_sector, render, sample_poses, write_diff_png, Assets, Camera,
-    Frame, Lighting, Surface, View,
+    angle_from_bits, angle_to_bits, compare, find_sector, render, sample_poses, write_diff_png,
+    Assets, Camera, Frame, Lighting, Surface, View,
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -58,7 +59,14 @@ impl OwnedTexture {
     }
 
     fn texture(&self) -> Texture<'_> {
-        Texture { name: "t", width_log2: 3, height_log2: 3, mip_count: 4, columns: &self.columns, rows: &self.rows }
+        Texture {
+            name: "t",
+            width_log2: 3,
+            height_log2: 3,
+            mip_count: 4,
+            columns: &self.columns,
+            rows: &self.rows,
+        }
     }
 }
 
@@ -93,13 +101,26 @@ impl Fixture {
                 sky_texels.push(sky_pattern(u, v));
             }
         }
-        Fixture { textures: (0..4).map(OwnedTexture::new).collect(), sky_texels, sky_height, colormap: colormap() }
+        Fixture {
+            textures: (0..4).map(OwnedTexture::new).collect(),
+            sky_texels,
+            sky_height,
+            colormap: colormap(),
+        }
     }
 
     fn render(&self, map: &MapTables, camera: &Camera, view: &View) -> Frame {
         let textures: Vec<Texture> = self.textures.iter().map(OwnedTexture::texture).collect();
-        let sky = Sky { width_log2: 3, height: self.sky_height, texels: &self.sky_texels };
-        let assets = Assets { textures: &textures, sky: &sky, colormap: &self.colormap };
+        let sky = Sky {
+            width_log2: 3,
+            height: self.sky_height,
+            texels: &self.sky_texels,
+        };
+        let assets = Assets {
+            textures: &textures,
+            sky: &sky,
+            colormap: &self.colormap,
+        };
         render(map, &assets, camera, view)
     }
 }
@@ -117,7 +138,12 @@ impl OwnedMap {
             vertices: &self.vertices,
             walls: &self.walls,
             sectors: &self.sectors,
-            player_start: PlayerStart { x_fx8: 0, y_fx8: 0, angle: 0, sector: 0 },
+            player_start: PlayerStart {
+                x_fx8: 0,
+                y_fx8: 0,
+                angle: 0,
+                sector: 0,
+            },
             things: &[],
         }
     }
@@ -138,7 +164,15 @@ fn wall(start: u16, end: u16, portal: u16) -> Wall {
 }
 
 fn sector(first_wall: u16, floor_z: i32, ceil_z: i32, ceil_texture: u16, light: u8) -> Sector {
-    Sector { first_wall, wall_count: 4, floor_z, ceil_z, floor_texture: FLOOR_TEX, ceil_texture, light }
+    Sector {
+        first_wall,
+        wall_count: 4,
+        floor_z,
+        ceil_z,
+        floor_texture: FLOOR_TEX,
+        ceil_texture,
+        light,
+    }
 }
 
 /// Room A alone, `x ∈ [−64, east]`; the east wall (1) is solid, or a portal to `east_portal`.
@@ -150,18 +184,35 @@ fn room(east: i32, east_portal: u16) -> OwnedMap {
             Vertex { x: east, y: 32 },
             Vertex { x: -64, y: 32 },
         ],
-        walls: vec![wall(0, 1, NO_PORTAL), wall(1, 2, east_portal), wall(2, 3, NO_PORTAL), wall(3, 0, NO_PORTAL)],
+        walls: vec![
+            wall(0, 1, NO_PORTAL),
+            wall(1, 2, east_portal),
+            wall(2, 3, NO_PORTAL),
+            wall(3, 0, NO_PORTAL),
+        ],
         sectors: vec![sector(0, 0, 64, CEIL_TEX, 128)],
     }
 }
 
 /// Room A with its east wall a portal to room B, `x ∈ [64, 192]`, `y ∈ [−32, 32]`. B's walls are
 /// 4 north `(64,−32)→(192,−32)`, 5 east `(192,−32)→(192,32)`, 6 south, 7 the portal back.
-fn two_rooms(b_floor: i32, b_ceil: i32, a_ceil_texture: u16, b_ceil_texture: u16, b_light: u8) -> OwnedMap {
+fn two_rooms(
+    b_floor: i32,
+    b_ceil: i32,
+    a_ceil_texture: u16,
+    b_ceil_texture: u16,
+    b_light: u8,
+) -> OwnedMap {
     let mut map = room(64, 1);
     map.sectors[0].ceil_texture = a_ceil_texture;
-    map.vertices.extend([Vertex { x: 192, y: -32 }, Vertex { x: 192, y: 32 }]);
-    map.walls.extend([wall(1, 4, NO_PORTAL), wall(4, 5, NO_PORTAL), wall(5, 2, NO_PORTAL), wall(2, 1, 0)]);
+    map.vertices
+        .extend([Vertex { x: 192, y: -32 }, Vertex { x: 192, y: 32 }]);
+    map.walls.extend([
+        wall(1, 4, NO_PORTAL),
+        wall(4, 5, NO_PORTAL),
+        wall(5, 2, NO_PORTAL),
+        wall(2, 1, 0),
+    ]);
     let mut b = sector(4, b_floor, b_ceil, b_ceil_texture, b_light);
     b.floor_texture = CEIL_TEX;
     map.sectors.push(b);
@@ -169,11 +220,24 @@ fn two_rooms(b_floor: i32, b_ceil: i32, a_ceil_texture: u16, b_ceil_texture: u16
 }
 
 fn view(lighting: Lighting) -> View {
-    View { width: 240, height: 160, focal_x: 120.0, focal_y: 120.0, horizon_y: 80.0, lighting }
+    View {
+        width: 240,
+        height: 160,
+        focal_x: 120.0,
+        focal_y: 120.0,
+        horizon_y: 80.0,
+        lighting,
+    }
 }
 
 fn centre_camera() -> Camera {
-    Camera { x: 0.0, y: 0.0, eye_z: 32.0, angle: 0.0, sector: Some(0) }
+    Camera {
+        x: 0.0,
+        y: 0.0,
+        eye_z: 32.0,
+        angle: 0.0,
+        sector: Some(0),
+    }
 }
 
 /// The surfaces of column `x`, as `(first row, last row, surface)` runs.
@@ -204,7 +268,11 @@ fn single_room_centre_column_and_symmetry() {
 
     assert_eq!(
         runs(&frame, 120),
-        vec![(0, 19, Surface::Ceiling(0)), (20, 139, Surface::Wall(1)), (140, 159, Surface::Floor(0))]
+        vec![
+            (0, 19, Surface::Ceiling(0)),
+            (20, 139, Surface::Wall(1)),
+            (140, 159, Surface::Floor(0))
+        ]
     );
     let row_80: Vec<Surface> = (0..240).map(|x| frame.surface(x, 80)).collect();
     assert!(row_80[..60].iter().all(|&s| s == Surface::Wall(0)));
@@ -213,7 +281,15 @@ fn single_room_centre_column_and_symmetry() {
     assert_eq!(frame.depth(120, 80), 64.0);
 
     // Mirror symmetry: column c ↔ 239 − c swaps walls 0 and 2; row y ↔ 159 − y swaps the
-    // ceiling and the floor (the eye is at mid-height, the horizon mid-screen).
+    // ceiling and the floor (the eye is at mid-height, the horizon mid-screen), except on the
+    // diagonals |y + ½ − 80| = |c + ½ − 120| of the side-wall columns, where the side wall at
+    // `t = 32/|m|` meets the ceiling or floor exactly (`|k|·t = 32`): ties go down the screen,
+    // to the wall at the top edge and to the floor at the bottom edge. Column 40 (`m = −0.6625`)
+    // rows 0 and 159 are such an exact tie in f64.
+    assert_eq!(
+        (frame.surface(40, 0), frame.surface(40, 159)),
+        (Surface::Wall(0), Surface::Floor(0))
+    );
     let mirror_x = |s: Surface| match s {
         Surface::Wall(0) => Surface::Wall(2),
         Surface::Wall(2) => Surface::Wall(0),
@@ -224,12 +300,29 @@ fn single_room_centre_column_and_symmetry() {
         Surface::Floor(0) => Surface::Ceiling(0),
         other => other,
     };
+    let mut ties = 0;
     for y in 0..160 {
         for x in 0..240 {
-            assert_eq!(frame.surface(239 - x, y), mirror_x(frame.surface(x, y)), "column mirror at ({x}, {y})");
-            assert_eq!(frame.surface(x, 159 - y), mirror_y(frame.surface(x, y)), "row mirror at ({x}, {y})");
+            let surface = frame.surface(x, y);
+            assert_eq!(
+                frame.surface(239 - x, y),
+                mirror_x(surface),
+                "column mirror at ({x}, {y})"
+            );
+            let mirrored = frame.surface(x, 159 - y);
+            // Each pair once, from its top pixel.
+            if y < 80 && mirrored != mirror_y(surface) {
+                let on_diagonal = (y as f64 + 0.5 - 80.0).abs() == (x as f64 + 0.5 - 120.0).abs();
+                let tie = matches!(surface, Surface::Wall(_)) && mirrored == Surface::Floor(0);
+                assert!(
+                    on_diagonal && tie,
+                    "row mirror at ({x}, {y}): {surface:?} / {mirrored:?}"
+                );
+                ties += 1;
+            }
         }
     }
+    assert!(ties >= 1);
 }
 
 /// Texels of room A, lighting off. Wall 1 with offsets (3, 5) at (120, 80): hit at y = 64/240,
@@ -262,24 +355,38 @@ fn single_room_texels() {
 fn corridor_mip_levels_and_depth_light() {
     let map = room(1000, NO_PORTAL);
     let fixture = Fixture::new(200);
-    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::SectorDepth));
+    let frame = fixture.render(
+        &map.tables(),
+        &centre_camera(),
+        &view(Lighting::SectorDepth),
+    );
 
     assert_eq!(frame.surface(120, 80), Surface::Wall(1));
-    assert_eq!(frame.index(120, 80), fixture.colormap[12][usize::from(pattern(WALL_TEX, 3, 0, 0))]);
+    assert_eq!(
+        frame.index(120, 80),
+        fixture.colormap[12][usize::from(pattern(WALL_TEX, 3, 0, 0))]
+    );
     assert_eq!(frame.surface(120, 92), Surface::Floor(0));
-    assert_eq!(frame.index(120, 92), fixture.colormap[17][usize::from(pattern(FLOOR_TEX, 1, 1, 0))]);
+    assert_eq!(
+        frame.index(120, 92),
+        fixture.colormap[17][usize::from(pattern(FLOOR_TEX, 1, 1, 0))]
+    );
 }
 
-/// A's east wall is a portal to B (floor 16, ceiling 48, light 200). Centre column:
-/// - A's ceiling where `h(64) > 64`: rows 0..=19;
-/// - upper strip where `h(64) ≥ 48`, `k ≤ −¼`, `y + ½ ≤ 50`: rows 20..=49;
-/// - B's ceiling where `h(192) > 48`, `k < −1/12`, `y + ½ < 70`: rows 50..=69;
-/// - B's east wall 5 while `h(192) ≥ 16`, `k ≤ 1/12`, `y + ½ ≤ 90`: rows 70..=89;
-/// - B's floor while `h(64) ≥ 16`, `k ≤ ¼`, `y + ½ ≤ 110`: rows 90..=109;
-/// - lower strip while `h(64) ≥ 0`, `k ≤ ½`: rows 110..=139; A's floor below.
+/// A's east wall is a portal to B (floor 20, ceiling 44, light 200). Centre column:
+/// - A's ceiling where `h(64) > 64`, `k < −½`, `y + ½ < 20`: rows 0..=19;
+/// - upper strip where `h(64) > 44`, `k < −3/16`, `y + ½ < 57.5`: rows 20..=56;
+/// - B's ceiling where `h(192) > 44`, `k < −1/16`, `y + ½ < 72.5`: rows 57..=71;
+/// - B's east wall 5 while `h(192) > 20`, `k < 1/16`, `y + ½ < 87.5`: rows 72..=86;
+/// - B's floor while `h(64) > 20`, `k < 3/16`, `y + ½ < 102.5`: rows 87..=101;
+/// - lower strip while `h(64) > 0`, `k < ½`: rows 102..=139; A's floor below.
+///
+/// Rows 57, 72, 87 and 102 sit exactly on an edge (`k` and `t` are exact in f64, so `h` is
+/// exactly 44, 44, 20 and 20): each goes to the surface below the edge on screen, as the
+/// engine's row rule `y0 ≤ y + ½ < y1` gives them.
 #[test]
 fn portal_to_a_raised_room_shows_strips_and_the_far_floor() {
-    let mut map = two_rooms(16, 48, CEIL_TEX, CEIL_TEX, 200);
+    let mut map = two_rooms(20, 44, CEIL_TEX, CEIL_TEX, 200);
     map.walls[5].x_offset = 2;
     let fixture = Fixture::new(200);
     let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Sector));
@@ -288,11 +395,11 @@ fn portal_to_a_raised_room_shows_strips_and_the_far_floor() {
         runs(&frame, 120),
         vec![
             (0, 19, Surface::Ceiling(0)),
-            (20, 49, Surface::Upper(1)),
-            (50, 69, Surface::Ceiling(1)),
-            (70, 89, Surface::Wall(5)),
-            (90, 109, Surface::Floor(1)),
-            (110, 139, Surface::Lower(1)),
+            (20, 56, Surface::Upper(1)),
+            (57, 71, Surface::Ceiling(1)),
+            (72, 86, Surface::Wall(5)),
+            (87, 101, Surface::Floor(1)),
+            (102, 139, Surface::Lower(1)),
             (140, 159, Surface::Floor(0)),
         ]
     );
@@ -300,21 +407,35 @@ fn portal_to_a_raised_room_shows_strips_and_the_far_floor() {
     // `u = 32.27` → 0.
     let cm = &fixture.colormap;
     // Upper at row 30: `k = −49.5/120`, `h(64) = 58.4`, anchored at A's ceiling: `v = 5.6` → 5.
-    assert_eq!(frame.index(120, 30), cm[16][usize::from(pattern(STRIP_TEX, 0, 0, 5))]);
-    // Lower at row 130: `k = 50.5/120`, `h(64) = 5.07`, anchored at B's floor: `v = 10.93` → 2.
-    assert_eq!(frame.index(120, 130), cm[16][usize::from(pattern(STRIP_TEX, 0, 0, 2))]);
-    // B's floor at row 100: `k = 20.5/120`, `t = 16/k = 93.66`, point (93.66, 0.39) → (5, 0).
-    assert_eq!(frame.index(120, 100), cm[25][usize::from(pattern(CEIL_TEX, 0, 5, 0))]);
-    // Wall 5 at row 73: hit y = 0.8, `u = 32.8 + 2` → 2; `h = 32 + 192·6.5/120 = 42.4`,
-    // `v = 48 − 42.4 = 5.6` → 5.
-    assert_eq!(frame.index(120, 73), cm[25][usize::from(pattern(WALL_TEX, 0, 2, 5))]);
-    assert_eq!(frame.depth(120, 73), 192.0);
+    assert_eq!(
+        frame.index(120, 30),
+        cm[16][usize::from(pattern(STRIP_TEX, 0, 0, 5))]
+    );
+    // Lower at row 130: `k = 50.5/120`, `h(64) = 5.07`, anchored at B's floor: `v = 14.93` → 6
+    // (A's floor would give `floor(−5.07) mod 8 = 2`).
+    assert_eq!(
+        frame.index(120, 130),
+        cm[16][usize::from(pattern(STRIP_TEX, 0, 0, 6))]
+    );
+    // B's floor at row 100: `k = 20.5/120`, `t = 12/k = 70.24`, point (70.24, 0.29) → (6, 0).
+    assert_eq!(
+        frame.index(120, 100),
+        cm[25][usize::from(pattern(CEIL_TEX, 0, 6, 0))]
+    );
+    // Wall 5 at row 75: hit y = 0.8, `u = 32.8 + 2` → 2; `h = 32 + 192·4.5/120 = 39.2`,
+    // `v = 44 − 39.2 = 4.8` → 4.
+    assert_eq!(
+        frame.index(120, 75),
+        cm[25][usize::from(pattern(WALL_TEX, 0, 2, 4))]
+    );
+    assert_eq!(frame.depth(120, 75), 192.0);
 }
 
 /// Both rooms open to the sky (B's ceiling 48, floor 0): rows 0..=69 of the centre column
-/// are all sky, the upper strip included (both ceilings are sky, so it is never drawn); B's wall
-/// 5 while `h(192) ≥ 0`, `k ≤ 1/6`, `y + ½ ≤ 100`: rows 70..=99; B's floor while
-/// `h(64) ≥ 0`: rows 100..=139.
+/// are all sky (A's where `h(64) > 64`: rows 0..=19; the upper strip where `h(64) > 48`,
+/// `y + ½ < 50`, never drawn as both ceilings are sky; B's where `h(192) > 48`, `y + ½ < 70`);
+/// B's wall 5 while `h(192) > 0`, `k < 1/6`, `y + ½ < 100`: rows 70..=99; B's floor while
+/// `h(64) > 0`: rows 100..=139.
 /// Sky texels: column 120 looks at `atan(1/240) > 0` → sky column 0, column 119 at `−atan(1/240)`
 /// → column 7; row y → `floor(y + ½ − 80) + 200/2 = y + 20`; never lit (light 200, lit view).
 #[test]
@@ -341,7 +462,14 @@ fn sky_sectors_show_the_unlit_panorama() {
     // Only B open to the sky: the strip is drawn, B's ceiling is sky.
     let map = two_rooms(0, 48, CEIL_TEX, SKY, 200);
     let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Sector));
-    assert_eq!(runs(&frame, 120)[..3], [(0, 19, Surface::Ceiling(0)), (20, 49, Surface::Upper(1)), (50, 69, Surface::Sky)]);
+    assert_eq!(
+        runs(&frame, 120)[..3],
+        [
+            (0, 19, Surface::Ceiling(0)),
+            (20, 49, Surface::Upper(1)),
+            (50, 69, Surface::Sky)
+        ]
+    );
 
     // A 100-row panorama: row y → `clamp(y − 80 + 50)`, so rows 0..=30 show its top row.
     let fixture = Fixture::new(100);
@@ -351,6 +479,21 @@ fn sky_sectors_show_the_unlit_panorama() {
     assert_eq!(frame.index(120, 30), sky_pattern(0, 0));
     assert_eq!(frame.index(120, 31), sky_pattern(0, 1));
     assert_eq!(frame.index(120, 69), sky_pattern(0, 39));
+
+    // Half the rows (80, focal_y 60, horizon 40): the row offset is scaled by 160/80, row y →
+    // `floor(2y + 1 − 80) + 100 = 2y + 21`. A's ceiling needs `k = (y + ½ − 40)/60 < −½`:
+    // rows 0..=9.
+    let fixture = Fixture::new(200);
+    let half = View {
+        height: 80,
+        focal_y: 60.0,
+        horizon_y: 40.0,
+        ..view(Lighting::Off)
+    };
+    let frame = fixture.render(&map.tables(), &centre_camera(), &half);
+    assert_eq!(frame.surface(120, 9), Surface::Sky);
+    assert_eq!(frame.index(120, 0), sky_pattern(0, 21));
+    assert_eq!(frame.index(120, 9), sky_pattern(0, 39));
 }
 
 /// A square room `[−64, 64]²` with `focal_x = 119.5`: column 239 has `m = 119.5/119.5 = 1`
@@ -366,11 +509,19 @@ fn a_ray_through_a_vertex_takes_the_wall_starting_there() {
             Vertex { x: 64, y: 64 },
             Vertex { x: -64, y: 64 },
         ],
-        walls: vec![wall(0, 1, NO_PORTAL), wall(1, 2, NO_PORTAL), wall(2, 3, NO_PORTAL), wall(3, 0, NO_PORTAL)],
+        walls: vec![
+            wall(0, 1, NO_PORTAL),
+            wall(1, 2, NO_PORTAL),
+            wall(2, 3, NO_PORTAL),
+            wall(3, 0, NO_PORTAL),
+        ],
         sectors: vec![sector(0, 0, 64, CEIL_TEX, 128)],
     };
     let fixture = Fixture::new(200);
-    let view = View { focal_x: 119.5, ..view(Lighting::Off) };
+    let view = View {
+        focal_x: 119.5,
+        ..view(Lighting::Off)
+    };
     let frame = fixture.render(&map.tables(), &centre_camera(), &view);
     assert_eq!(frame.surface(239, 80), Surface::Wall(2));
     assert_eq!(frame.surface(0, 80), Surface::Wall(1));
@@ -387,7 +538,11 @@ fn portal_loops_end_as_holes() {
     let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
     assert_eq!(
         runs(&frame, 120),
-        vec![(0, 19, Surface::Ceiling(0)), (20, 139, Surface::None), (140, 159, Surface::Floor(0))]
+        vec![
+            (0, 19, Surface::Ceiling(0)),
+            (20, 139, Surface::None),
+            (140, 159, Surface::Floor(0))
+        ]
     );
 }
 
@@ -398,7 +553,10 @@ fn missing_texture_draws_texel_zero() {
     map.walls[1].texture = NO_TEXTURE;
     let fixture = Fixture::new(200);
     let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
-    assert_eq!((frame.surface(120, 80), frame.index(120, 80)), (Surface::Wall(1), 0));
+    assert_eq!(
+        (frame.surface(120, 80), frame.index(120, 80)),
+        (Surface::Wall(1), 0)
+    );
     let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Sector));
     assert_eq!(frame.index(120, 80), 16);
 }
@@ -429,9 +587,20 @@ fn render_finds_the_camera_sector() {
     let map = two_rooms(16, 48, CEIL_TEX, CEIL_TEX, 200);
     let fixture = Fixture::new(200);
     let known = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
-    let found = fixture.render(&map.tables(), &Camera { sector: None, ..centre_camera() }, &view(Lighting::Off));
+    let found = fixture.render(
+        &map.tables(),
+        &Camera {
+            sector: None,
+            ..centre_camera()
+        },
+        &view(Lighting::Off),
+    );
     assert_eq!(known, found);
-    let on_portal = Camera { x: 64.0, sector: None, ..centre_camera() };
+    let on_portal = Camera {
+        x: 64.0,
+        sector: None,
+        ..centre_camera()
+    };
     let frame = fixture.render(&map.tables(), &on_portal, &view(Lighting::Off));
     assert!(frame.surfaces.iter().all(|&s| s == Surface::None));
 }
@@ -452,8 +621,15 @@ fn sample_poses_are_valid_and_reproducible() {
         let sector = pose.sector.expect("poses carry their sector");
         sectors.insert(sector);
         assert_eq!(find_sector(&map, pose.x, pose.y), Some(sector));
-        let (x0, x1) = if sector == 0 { (-64.0, 64.0) } else { (64.0, 192.0) };
-        let clearance = (pose.x - x0).min(x1 - pose.x).min(pose.y + 32.0).min(32.0 - pose.y);
+        let (x0, x1) = if sector == 0 {
+            (-64.0, 64.0)
+        } else {
+            (64.0, 192.0)
+        };
+        let clearance = (pose.x - x0)
+            .min(x1 - pose.x)
+            .min(pose.y + 32.0)
+            .min(32.0 - pose.y);
         assert!(clearance >= 2.0, "{pose:?} within 2 of a wall");
         assert_eq!(pose.eye_z, if sector == 0 { 32.0 } else { 40.0 });
         assert_eq!((pose.x * 256.0).fract(), 0.0);
@@ -466,7 +642,10 @@ fn sample_poses_are_valid_and_reproducible() {
 #[test]
 fn camera_from_fixed_is_exact() {
     let camera = Camera::from_fixed(-3 * 256 + 1, 512, 32 * 256, 16384, Some(2));
-    assert_eq!((camera.x, camera.y, camera.eye_z), (-3.0 + 1.0 / 256.0, 2.0, 32.0));
+    assert_eq!(
+        (camera.x, camera.y, camera.eye_z),
+        (-3.0 + 1.0 / 256.0, 2.0, 32.0)
+    );
     assert_eq!(camera.angle, std::f64::consts::FRAC_PI_2);
     assert_eq!(camera.angle_bits(), 16384);
 }
@@ -489,22 +668,47 @@ fn oracle_frame(surfaces: Vec<Surface>, width: usize, height: usize) -> Frame {
 /// Oracle                      Engine
 /// C0 C0 C1 C1                 C0* C0 C0 C1        (* index 11 instead of 10)
 /// W1 W1 W5 W5                 W1  W1 W1 --
-/// F0 F0 F0 Sky                F0  F0 F0 W9
-/// Surface mismatches: (2,0) C0 for C1, (2,1) W1 for W5, (3,1) hole, (3,2) W9: 4 of 12.
-/// Texel mismatches: (0,0) only (the engine's index at (2,0) differs too, but that pixel already
-/// is a surface mismatch). Edge error: C0 and W1 are 1 pixel from where the oracle draws them;
-/// wall 9 is nowhere in the oracle: `max(4, 3) = 4`. Sectors: both frames show 0 and 1 (wall 9
-/// has no sector).
+/// F0 F0 F0 Sky                F0  F0 F0 F0
+/// Surface mismatches: (2,0) C0 for C1, (2,1) W1 for W5, (3,1) hole, (3,2) F0 for the sky: 4 of
+/// 12. Texel mismatches: (0,0) only (the engine's index at (2,0) differs too, but that pixel
+/// already is a surface mismatch). Edge error: C0, W1 and F0 are each 1 pixel from where the
+/// oracle draws them; the hole does not count (no oracle pixel is a hole, it would be
+/// `max(4, 3) = 4`). Sectors: both frames show 0 and 1.
 #[test]
 fn compare_counts_mismatches_holes_and_edge_error() {
     use Surface::*;
     let oracle = oracle_frame(
-        vec![Ceiling(0), Ceiling(0), Ceiling(1), Ceiling(1), Wall(1), Wall(1), Wall(5), Wall(5), Floor(0), Floor(0), Floor(0), Sky],
+        vec![
+            Ceiling(0),
+            Ceiling(0),
+            Ceiling(1),
+            Ceiling(1),
+            Wall(1),
+            Wall(1),
+            Wall(5),
+            Wall(5),
+            Floor(0),
+            Floor(0),
+            Floor(0),
+            Sky,
+        ],
         4,
         3,
     );
-    let engine =
-        [Ceiling(0), Ceiling(0), Ceiling(0), Ceiling(1), Wall(1), Wall(1), Wall(1), None, Floor(0), Floor(0), Floor(0), Wall(9)];
+    let engine = [
+        Ceiling(0),
+        Ceiling(0),
+        Ceiling(0),
+        Ceiling(1),
+        Wall(1),
+        Wall(1),
+        Wall(1),
+        None,
+        Floor(0),
+        Floor(0),
+        Floor(0),
+        Floor(0),
+    ];
     let mut indices = [10u8; 12];
     indices[0] = 11;
     indices[2] = 12;
@@ -513,7 +717,7 @@ fn compare_counts_mismatches_holes_and_edge_error() {
     assert_eq!(result.surface_mismatches, 4);
     assert_eq!(result.texel_mismatches, 1);
     assert_eq!(result.holes, 1);
-    assert_eq!(result.max_edge_error_px, 4);
+    assert_eq!(result.max_edge_error_px, 1);
     assert!(result.missed_sectors.is_empty() && result.extra_sectors.is_empty());
     assert!((result.surface_mismatch_percent() - 100.0 * 4.0 / 12.0).abs() < 1e-12);
     assert!((result.texel_mismatch_percent() - 100.0 / 12.0).abs() < 1e-12);
@@ -527,30 +731,48 @@ fn compare_measures_edge_displacement() {
     let oracle = oracle_frame(vec![Wall(0), Wall(0), Wall(1), Wall(1), Wall(1)], 5, 1);
     let engine = [Wall(0), Wall(0), Wall(0), Wall(0), Wall(1)];
     let result = compare(&engine, &[10; 5], &oracle);
-    assert_eq!((result.surface_mismatches, result.max_edge_error_px, result.holes), (2, 2, 0));
+    assert_eq!(
+        (
+            result.surface_mismatches,
+            result.max_edge_error_px,
+            result.holes
+        ),
+        (2, 2, 0)
+    );
 
     let result = compare(&oracle.surfaces, &[10; 5], &oracle);
-    assert_eq!(result, portalcast_oracle::Comparison { pixels: 5, ..Default::default() });
+    assert_eq!(
+        result,
+        portalcast_oracle::Comparison {
+            pixels: 5,
+            ..Default::default()
+        }
+    );
 }
 
 /// The oracle shows sectors 0 (floor) and 1 (wall 6 is sector 1's); the engine shows 0
-/// (wall 2) and 2 (its ceiling) and the sky (no sector): missed [1], extra [2].
+/// (wall 2), 2 (its ceiling) and wall 9, which is no sector's: missed [1], extra [2]. None of
+/// the engine's surfaces is in the oracle frame: edge error `max(3, 1) = 3`.
 #[test]
 fn compare_lists_missed_and_extra_sectors() {
     use Surface::*;
     let oracle = oracle_frame(vec![Floor(0), Wall(6), Sky], 3, 1);
-    let engine = [Wall(2), Ceiling(2), Sky];
+    let engine = [Wall(2), Ceiling(2), Wall(9)];
     let result = compare(&engine, &[10; 3], &oracle);
     assert_eq!(result.missed_sectors, vec![1]);
     assert_eq!(result.extra_sectors, vec![2]);
-    assert_eq!(result.surface_mismatches, 2);
+    assert_eq!(
+        (result.surface_mismatches, result.max_edge_error_px),
+        (3, 3)
+    );
 }
 
 #[test]
 fn diff_png_has_three_panels() {
     use Surface::*;
     let oracle = oracle_frame(vec![Floor(0), Wall(6), Sky], 3, 1);
-    let path = std::env::temp_dir().join(format!("portalcast-oracle-diff-{}.png", std::process::id()));
+    let path =
+        std::env::temp_dir().join(format!("portalcast-oracle-diff-{}.png", std::process::id()));
     write_diff_png(&[Floor(0), None, Sky], &oracle, &path).unwrap();
     let image = image::open(&path).unwrap().to_rgb8();
     std::fs::remove_file(&path).unwrap();
@@ -560,5 +782,8 @@ fn diff_png_has_three_panels() {
     assert_eq!(image.get_pixel(14, 0).0, [0, 0, 0]);
     assert_eq!(image.get_pixel(15, 0).0, [255, 255, 0]);
     assert_eq!(image.get_pixel(16, 0).0, [0, 0, 0]);
-    assert_eq!(image.get_pixel(7, 0).0, portalcast_oracle::surface_colour(Floor(0)));
+    assert_eq!(
+        image.get_pixel(7, 0).0,
+        portalcast_oracle::surface_colour(Floor(0))
+    );
 }

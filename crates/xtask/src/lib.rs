@@ -55,7 +55,10 @@ pub fn rom_target_dir() -> PathBuf {
 
 /// The linked ROM ELF.
 pub fn elf_path() -> PathBuf {
-    rom_target_dir().join(ROM_TARGET).join("release").join("portalcast")
+    rom_target_dir()
+        .join(ROM_TARGET)
+        .join("release")
+        .join("portalcast")
 }
 
 fn cargo() -> Command {
@@ -87,7 +90,9 @@ fn tool_exists(tool: &str) -> bool {
 /// Never updates the toolchain.
 pub fn ensure_rust_src() -> TaskResult<()> {
     if !tool_exists("rustup") {
-        return fail("rustup is not installed: install it (https://rustup.rs), then run this command again");
+        return fail(
+            "rustup is not installed: install it (https://rustup.rs), then run this command again",
+        );
     }
     let installed = Command::new("rustup")
         .args(["component", "list", "--toolchain", "nightly", "--installed"])
@@ -96,7 +101,10 @@ pub fn ensure_rust_src() -> TaskResult<()> {
     if !installed.status.success() {
         return fail("the nightly toolchain is missing: run `rustup toolchain install nightly`, then this command again");
     }
-    if String::from_utf8_lossy(&installed.stdout).lines().any(|line| line.starts_with("rust-src")) {
+    if String::from_utf8_lossy(&installed.stdout)
+        .lines()
+        .any(|line| line.starts_with("rust-src"))
+    {
         return Ok(());
     }
     eprintln!("setup: rustup component add rust-src --toolchain nightly");
@@ -115,8 +123,11 @@ fn debian_package_installed(package: &str) -> bool {
 
 /// Installs [`DEBIAN_PACKAGES`] with apt-get if any is missing (apt-get update first).
 pub fn ensure_debian_packages() -> TaskResult<()> {
-    let missing: Vec<&str> =
-        DEBIAN_PACKAGES.iter().copied().filter(|package| !debian_package_installed(package)).collect();
+    let missing: Vec<&str> = DEBIAN_PACKAGES
+        .iter()
+        .copied()
+        .filter(|package| !debian_package_installed(package))
+        .collect();
     if missing.is_empty() {
         return Ok(());
     }
@@ -124,20 +135,27 @@ pub fn ensure_debian_packages() -> TaskResult<()> {
     if !tool_exists("apt-get") {
         return fail(format!("missing {list} and no apt-get here: install mGBA's library and player ({list}) with your package manager"));
     }
-    let is_root = Command::new("id").arg("-u").output().is_ok_and(|out| out.stdout.starts_with(b"0"));
+    let is_root = Command::new("id")
+        .arg("-u")
+        .output()
+        .is_ok_and(|out| out.stdout.starts_with(b"0"));
     let sudo: &[&str] = if is_root {
         &[]
     } else if tool_exists("sudo") {
         &["sudo"]
     } else {
-        return fail(format!("missing {list}: run `apt-get update && apt-get install -y {list}` as root"));
+        return fail(format!(
+            "missing {list}: run `apt-get update && apt-get install -y {list}` as root"
+        ));
     };
     let apt = |args: &[&str]| {
         let mut full: Vec<&str> = sudo.to_vec();
         full.push("apt-get");
         full.extend_from_slice(args);
         let mut command = Command::new(full[0]);
-        command.args(&full[1..]).env("DEBIAN_FRONTEND", "noninteractive");
+        command
+            .args(&full[1..])
+            .env("DEBIAN_FRONTEND", "noninteractive");
         command
     };
     eprintln!("setup: apt-get update && apt-get install -y {list}");
@@ -159,7 +177,13 @@ pub fn build_rom() -> TaskResult<PathBuf> {
     ensure_rust_src()?;
     run(
         cargo()
-            .args(["build", "--release", "--target", ROM_TARGET, "-Zbuild-std=core"])
+            .args([
+                "build",
+                "--release",
+                "--target",
+                ROM_TARGET,
+                "-Zbuild-std=core",
+            ])
             .args(["-p", "portalcast", "--bin", "portalcast", "--target-dir"])
             .arg(rom_target_dir()),
         "building the ROM",
@@ -172,8 +196,12 @@ pub fn build_rom() -> TaskResult<PathBuf> {
 /// Converts a linked ELF into a `.gba` with a valid header (logo, complement check, title, game
 /// code). Writes a temporary file and renames it, so a failure leaves no half-written ROM.
 pub fn elf_to_gba(elf: &Path, gba: &Path) -> TaskResult<()> {
-    let elf_bytes = std::fs::read(elf)
-        .map_err(|error| TaskError(format!("{}: cannot read the ROM ELF ({error}); build it with `cargo rom`", elf.display())))?;
+    let elf_bytes = std::fs::read(elf).map_err(|error| {
+        TaskError(format!(
+            "{}: cannot read the ROM ELF ({error}); build it with `cargo rom`",
+            elf.display()
+        ))
+    })?;
     let header = agb_gbafix::GbaHeader {
         start_code: [0; 4],
         game_title: *b"PORTALCAST\0\0",
@@ -182,8 +210,19 @@ pub fn elf_to_gba(elf: &Path, gba: &Path) -> TaskResult<()> {
         software_version: 0,
     };
     let mut rom = Vec::new();
-    agb_gbafix::write_gba_file(&elf_bytes, header, agb_gbafix::PaddingBehaviour::DoNotPad, false, &mut rom)
-        .map_err(|error| TaskError(format!("{}: cannot convert to .gba: {error}", elf.display())))?;
+    agb_gbafix::write_gba_file(
+        &elf_bytes,
+        header,
+        agb_gbafix::PaddingBehaviour::DoNotPad,
+        false,
+        &mut rom,
+    )
+    .map_err(|error| {
+        TaskError(format!(
+            "{}: cannot convert to .gba: {error}",
+            elf.display()
+        ))
+    })?;
     let partial = gba.with_extension("gba.partial");
     std::fs::write(&partial, &rom)
         .and_then(|()| std::fs::rename(&partial, gba))

@@ -68,35 +68,69 @@ fn play() -> TaskResult<()> {
     println!("ROM: {}", gba.display());
     if has_display() {
         if let Some(player) = find_player() {
-            return run(Command::new(player).arg(&gba), &format!("{player} {}", gba.display()));
+            return run(
+                Command::new(player).arg(&gba),
+                &format!("{player} {}", gba.display()),
+            );
         }
     }
     let out = workspace_root().join("target").join("play");
-    let script = workspace_root().join("assets").join("demo").join("play.keys");
+    let script = workspace_root()
+        .join("assets")
+        .join("demo")
+        .join("play.keys");
     let mut headless = cargo();
     headless
-        .args(["run", "--quiet", "--release", "-p", "portalcast-harness", "--bin", "pc-run", "--"])
+        .args([
+            "run",
+            "--quiet",
+            "--release",
+            "-p",
+            "portalcast-harness",
+            "--bin",
+            "pc-run",
+            "--",
+        ])
         .arg(&gba)
         .args(["--frames", "600", "--png-every", "60", "--summary", "--out"])
         .arg(&out)
         .arg("--keys")
         .arg(&script);
-    run(&mut headless, "no display: running the demo headless in the real mGBA core")?;
+    run(
+        &mut headless,
+        "no display: running the demo headless in the real mGBA core",
+    )?;
     println!("PNG frames: {}", out.display());
     Ok(())
 }
 
 fn test() -> TaskResult<()> {
     ensure_setup()?;
-    run(cargo().args(["fmt", "--all", "--", "--check"]), "cargo fmt --check")?;
     run(
-        cargo().args(["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"]),
+        cargo().args(["fmt", "--all", "--", "--check"]),
+        "cargo fmt --check",
+    )?;
+    run(
+        cargo().args([
+            "clippy",
+            "--workspace",
+            "--all-targets",
+            "--",
+            "-D",
+            "warnings",
+        ]),
         "cargo clippy (host)",
     )?;
     let rom_target_dir = portalcast_xtask::rom_target_dir();
     run(
         cargo()
-            .args(["clippy", "--release", "--target", portalcast_xtask::ROM_TARGET, "-Zbuild-std=core"])
+            .args([
+                "clippy",
+                "--release",
+                "--target",
+                portalcast_xtask::ROM_TARGET,
+                "-Zbuild-std=core",
+            ])
             .args(["-p", "portalcast", "--target-dir"])
             .arg(&rom_target_dir)
             .args(["--", "-D", "warnings"]),
@@ -104,7 +138,9 @@ fn test() -> TaskResult<()> {
     )?;
     let gba = build_rom()?;
     run(
-        cargo().args(["test", "--workspace"]).env("PORTALCAST_GBA", &gba),
+        cargo()
+            .args(["test", "--workspace"])
+            .env("PORTALCAST_GBA", &gba),
         "cargo test --workspace",
     )
 }
