@@ -261,7 +261,11 @@ impl Renderer {
             row_of(neighbour.ceil_z).clamp(ceiling_row, floor_row.max(ceiling_row));
         let neighbour_floor_row =
             row_of(neighbour.floor_z).clamp(neighbour_ceiling_row.min(floor_row), floor_row);
-        if neighbour.ceil_z < sector.ceil_z {
+        // Between two sky sectors the lower ceiling's strip is sky too: leave it open so the
+        // neighbour's sky fills it (Doom's sky hack; the oracle draws the same).
+        let upper_drawn =
+            neighbour.ceil_z < sector.ceil_z && !(is_sky(sector) && is_sky(neighbour));
+        if upper_drawn {
             let upper = Surface::Upper(wall_index);
             self.draw_strip(
                 canvas,
