@@ -25,7 +25,22 @@ fn rom() -> TaskResult<()> {
     let gba = build_rom()?;
     let size = std::fs::metadata(&gba).map(|meta| meta.len()).unwrap_or(0);
     println!("ROM: {} ({size} bytes)", gba.display());
+    if let Some(report) = newest_size_report() {
+        print!("{report}");
+    }
     Ok(())
+}
+
+/// The asset compiler's size report from the newest ROM build (build.rs writes it to OUT_DIR).
+fn newest_size_report() -> Option<String> {
+    let build_dir = portalcast_xtask::rom_target_dir().join(portalcast_xtask::ROM_TARGET).join("release").join("build");
+    let newest = std::fs::read_dir(build_dir)
+        .ok()?
+        .filter_map(Result::ok)
+        .map(|entry| entry.path().join("out").join("size_report.txt"))
+        .filter(|path| path.is_file())
+        .max_by_key(|path| path.metadata().and_then(|meta| meta.modified()).ok())?;
+    std::fs::read_to_string(newest).ok()
 }
 
 fn cargo() -> Command {
