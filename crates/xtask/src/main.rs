@@ -33,7 +33,10 @@ fn rom() -> TaskResult<()> {
 
 /// The asset compiler's size report from the newest ROM build (build.rs writes it to OUT_DIR).
 fn newest_size_report() -> Option<String> {
-    let build_dir = portalcast_xtask::rom_target_dir().join(portalcast_xtask::ROM_TARGET).join("release").join("build");
+    let build_dir = portalcast_xtask::rom_target_dir()
+        .join(portalcast_xtask::ROM_TARGET)
+        .join("release")
+        .join("build");
     let newest = std::fs::read_dir(build_dir)
         .ok()?
         .filter_map(Result::ok)
