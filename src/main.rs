@@ -24,6 +24,7 @@ mod rom {
     const KEY_A: u16 = 1 << 0;
     const KEY_B: u16 = 1 << 1;
     const KEY_SELECT: u16 = 1 << 2;
+    const KEY_START: u16 = 1 << 3;
     const KEY_RIGHT: u16 = 1 << 4;
     const KEY_LEFT: u16 = 1 << 5;
     const KEY_R: u16 = 1 << 8;
@@ -57,9 +58,9 @@ mod rom {
     }
 
     /// The engine: the demo camera path through the bench map. Select cycles the resolution,
-    /// A toggles lighting.
+    /// A the lighting, Start the map.
     fn render_scene(display: &mut Display, held_at_boot: u16) -> ! {
-        let map = demo::demo_map();
+        let mut map = demo::demo_map();
         let render_assets = demo::render_assets();
         let mut renderer = Renderer::new();
         let mut settings = Settings {
@@ -74,6 +75,10 @@ mod rom {
             held_before = held;
             if pressed & KEY_SELECT != 0 {
                 settings.resolution = settings.resolution.next();
+            }
+            if pressed & KEY_START != 0 {
+                map = demo::next_map(&map);
+                frame = 0;
             }
             if pressed & KEY_A != 0 {
                 settings.lighting = match settings.lighting {
@@ -96,7 +101,8 @@ mod rom {
             let cycles = meter::cycles_since(started);
             display.flip_at_vblank(settings.resolution);
             log::info(format_args!(
-                "render frame={frame} res={} lighting={} page=0x{address:08x} cycles={cycles} visits={} columns={} span_px={} column_px={}",
+                "render map={} frame={frame} res={} lighting={} page=0x{address:08x} cycles={cycles} visits={} columns={} span_px={} column_px={}",
+                map.name,
                 settings.resolution.label(),
                 demo::lighting_label(settings.lighting),
                 stats.sector_visits,
@@ -146,6 +152,7 @@ mod rom {
     /// L+R held at boot: draw the kernel check at every resolution with a few seeds, printing
     /// where each page is, so the emulator test can compare VRAM with the host twins.
     fn kernel_check_scene(display: &mut Display) -> ! {
+        measure_kernels(display);
         let mut seed = 1u32;
         loop {
             for resolution in Resolution::ALL {
@@ -166,6 +173,83 @@ mod rom {
                 seed = seed.wrapping_add(1);
             }
         }
+    }
+
+    /// Cycles per pixel of the main kernel variants, with texels and colormap in IWRAM (on the
+    /// stack): the difference between a 160-pixel and a 32-pixel run, divided by 128, so the
+    /// call and set-up cost cancels. Printed in hundredths of a cycle.
+    fn measure_kernels(display: &mut Display) {
+        use portalcast::raster::column::ColumnTexture;
+        use portalcast::raster::flat::{FlatTexture, PackedUv};
+        use portalcast::raster::Canvas;
+        let mut texels = [0u8; 4096];
+        for (index, texel) in texels.iter_mut().enumerate() {
+            *texel = (index * 37 % 251) as u8;
+        }
+        let colormap: [u8; 256] = core::array::from_fn(|index| (255 - index) as u8);
+        let column_cost = |canvas: &mut VramCanvas, lit: bool, x: usize| {
+            let mut run = |count: usize| {
+                let column = ColumnTexture {
+                    texels: &texels[..64],
+                    log2_height: 6,
+                    v: 0,
+                    dv: 0x0123_4567,
+                    colormap: if lit { Some(&colormap) } else { None },
+                };
+                let started = meter::now();
+                canvas.column(x, 0, count, &column);
+                meter::cycles_since(started)
+            };
+            (run(160) - run(32)) * 100 / 128
+        };
+        let flat_cost = |canvas: &mut VramCanvas, lit: bool| {
+            let mut run = |count: usize| {
+                let flat = FlatTexture {
+                    texels: &texels,
+                    log2_side: 6,
+                    pos: PackedUv(0),
+                    step: PackedUv::pack(0x1_2345, -0x0_4321, 6),
+                    colormap: if lit { Some(&colormap) } else { None },
+                };
+                let started = meter::now();
+                canvas.flat(0, 0, count, &flat);
+                meter::cycles_since(started)
+            };
+            (run(160) - run(32)) * 100 / 128
+        };
+        let page = || VramPage::back_of(display.shown_page());
+        let mut doubled = VramCanvas::new(page(), Resolution::R120x160);
+        let (col_unlit, col_lit) = (
+            column_cost(&mut doubled, false, 7),
+            column_cost(&mut doubled, true, 7),
+        );
+        let mut native = VramCanvas::new(page(), Resolution::R240x160);
+        let col_native_lit = column_cost(&mut native, true, 7);
+        let mut wide = VramCanvas::new(page(), Resolution::R240x160);
+        let (flat_pair_unlit, flat_pair_lit) =
+            (flat_cost(&mut wide, false), flat_cost(&mut wide, true));
+        // 160 doubled pixels do not fit a 120-wide row: measure the doubled span on 120 vs 32.
+        let flat_dbl = |canvas: &mut VramCanvas, lit: bool| {
+            let mut run = |count: usize| {
+                let flat = FlatTexture {
+                    texels: &texels,
+                    log2_side: 6,
+                    pos: PackedUv(0),
+                    step: PackedUv::pack(0x1_2345, -0x0_4321, 6),
+                    colormap: if lit { Some(&colormap) } else { None },
+                };
+                let started = meter::now();
+                canvas.flat(0, 0, count, &flat);
+                meter::cycles_since(started)
+            };
+            (run(120) - run(24)) * 100 / 96
+        };
+        let (flat_dbl_unlit, flat_dbl_lit) =
+            (flat_dbl(&mut doubled, false), flat_dbl(&mut doubled, true));
+        log::info(format_args!(
+            "kernel-cycles-x100 col_dbl_unlit={col_unlit} col_dbl_lit={col_lit} col_native_lit={col_native_lit} \
+             flat_dbl_unlit={flat_dbl_unlit} flat_dbl_lit={flat_dbl_lit} flat_pair_unlit={flat_pair_unlit} flat_pair_lit={flat_pair_lit}"
+        ));
     }
 
     #[panic_handler]

@@ -170,3 +170,33 @@ fn asm_kernels_write_the_same_vram_as_their_twins() {
     }
     println!("kernel checks (resolution, seed, cycles): {checked:?}");
 }
+
+#[test]
+fn kernel_costs_are_measured_with_iwram_texels() {
+    let mut emulator = boot();
+    emulator.set_keys(Keys::L | Keys::R);
+    emulator
+        .run_frames(40)
+        .unwrap_or_else(|error| panic!("{error}"));
+    let line = lines_starting(&emulator, "kernel-cycles-x100")
+        .pop()
+        .expect("the ROM prints its kernel costs");
+    for name in [
+        "col_dbl_unlit",
+        "col_dbl_lit",
+        "col_native_lit",
+        "flat_dbl_unlit",
+        "flat_dbl_lit",
+        "flat_pair_unlit",
+        "flat_pair_lit",
+    ] {
+        let hundredths = number(&line, name);
+        // Sanity only (a benchmark reports, it does not time-test): between 3 and 30 cycles.
+        assert!((300..3000).contains(&hundredths), "{name}: {line}");
+        println!(
+            "{name}: {}.{:02} cycles per pixel",
+            hundredths / 100,
+            hundredths % 100
+        );
+    }
+}

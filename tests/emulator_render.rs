@@ -15,10 +15,10 @@ use portalcast_harness::Keys;
 #[test]
 fn rom_frames_are_identical_to_the_host_renderer() {
     let mut emulator = boot();
-    let map = demo::demo_map();
     let assets = demo::render_assets();
     let mut renderer = Renderer::new();
     let mut compared = Vec::new();
+    let mut maps_seen = std::collections::BTreeSet::new();
     // Each press comes after a few compared frames: Select for resolution, A for lighting.
     let presses = [
         Keys::NONE,
@@ -27,7 +27,10 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         Keys::A,
         Keys::SELECT,
         Keys::A,
+        Keys::START,
+        Keys::START,
         Keys::SELECT,
+        Keys::START,
     ];
     for press in presses {
         // The ROM reads the keys once per rendered frame: hold a press for longer than one.
@@ -53,6 +56,8 @@ fn rom_frames_are_identical_to_the_host_renderer() {
             };
             let text = line.text;
             let frame = number(&text, "frame") as u32;
+            let map_name = field(&text, "map").unwrap().to_owned();
+            let map = demo::map_named(&map_name).expect("the ROM names a compiled map");
             let resolution = Resolution::from_label(field(&text, "res").unwrap()).unwrap();
             let lighting = demo::lighting_from_label(field(&text, "lighting").unwrap()).unwrap();
             let vram = read_page(&emulator, number(&text, "page") as u32);
@@ -91,10 +96,11 @@ fn rom_frames_are_identical_to_the_host_renderer() {
                 );
             }
             compared.push((resolution, lighting, number(&text, "cycles")));
+            maps_seen.insert(map_name.clone());
             checked_here += 1;
             if checked_here == 2 {
                 let png = screenshot_dir().join(format!(
-                    "render-{}-{}.png",
+                    "render-{map_name}-{}-{}.png",
                     resolution.label(),
                     demo::lighting_label(lighting)
                 ));
@@ -109,6 +115,15 @@ fn rom_frames_are_identical_to_the_host_renderer() {
             "the ROM stopped printing render lines after {press}"
         );
     }
+    let compiled: Vec<&str> = portalcast::assets::MAPS
+        .iter()
+        .map(|map| map.name)
+        .collect();
+    assert_eq!(
+        maps_seen.iter().map(String::as_str).collect::<Vec<_>>(),
+        compiled,
+        "Start must reach every shipped map"
+    );
     for resolution in Resolution::ALL {
         let cycles: Vec<u64> = compared
             .iter()

@@ -1,5 +1,5 @@
-//! The demo the ROM plays and the emulator tests replay on the host: the bench map, seen from
-//! its player start, turning a full circle every 256 frames.
+//! The demo the ROM plays and the emulator tests replay on the host: a map (the bench map
+//! first; Start switches), seen from its player start, turning a full circle every 256 frames.
 
 use portalcast_format::{MapTables, Sky};
 
@@ -22,6 +22,20 @@ pub fn demo_map() -> MapTables<'static> {
         .iter()
         .find(|map| map.name == DEMO_MAP)
         .unwrap_or(&assets::MAPS[0])
+}
+
+/// The compiled map called `name`.
+pub fn map_named(name: &str) -> Option<MapTables<'static>> {
+    assets::MAPS.iter().find(|map| map.name == name).copied()
+}
+
+/// The map after `map` in the compiled order (wrapping): what Start switches to.
+pub fn next_map(map: &MapTables) -> MapTables<'static> {
+    let index = assets::MAPS
+        .iter()
+        .position(|candidate| candidate.name == map.name)
+        .unwrap_or(0);
+    assets::MAPS[(index + 1) % assets::MAPS.len()]
 }
 
 /// The compiled textures, sky and colormap.

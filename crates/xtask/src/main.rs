@@ -155,10 +155,51 @@ fn test() -> TaskResult<()> {
         "cargo clippy (GBA)",
     )?;
     let gba = build_rom()?;
-    run(
+    run_tests_and_count(
         cargo()
             .args(["test", "--workspace"])
             .env("PORTALCAST_GBA", &gba),
-        "cargo test --workspace",
     )
+}
+
+/// Runs `cargo test`, passing its output through, and closes with one line that adds up every
+/// test binary's `test result:` line, so the run ends on the total rather than on the last
+/// (often empty) doc-test binary.
+fn run_tests_and_count(command: &mut Command) -> TaskResult<()> {
+    use std::io::{BufRead, BufReader};
+    eprintln!("== cargo test --workspace");
+    let mut child = command
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .map_err(|error| TaskError(format!("cargo test: could not start: {error}")))?;
+    let (mut passed, mut failed) = (0u64, 0u64);
+    if let Some(stdout) = child.stdout.take() {
+        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+            println!("{line}");
+            if let Some(result) = line.strip_prefix("test result: ") {
+                passed += count_before(result, "passed");
+                failed += count_before(result, "failed");
+            }
+        }
+    }
+    let status = child
+        .wait()
+        .map_err(|error| TaskError(format!("cargo test: {error}")))?;
+    println!("{passed} passed, {failed} failed");
+    if status.success() {
+        Ok(())
+    } else {
+        Err(TaskError(format!(
+            "cargo test --workspace failed ({status})"
+        )))
+    }
+}
+
+/// The number before `word` in a `test result:` line such as `ok. 3 passed; 0 failed; …`.
+fn count_before(result: &str, word: &str) -> u64 {
+    result
+        .split(';')
+        .filter_map(|part| part.trim().strip_suffix(word))
+        .filter_map(|number| number.trim().rsplit(' ').next()?.parse::<u64>().ok())
+        .sum()
 }
