@@ -62,7 +62,7 @@ mod rom {
     fn render_scene(display: &mut Display, held_at_boot: u16) -> ! {
         let mut map = demo::demo_map();
         let render_assets = demo::render_assets();
-        let mut renderer = Renderer::new();
+        let mut renderer = Renderer::new().with_clock(meter::now);
         let mut settings = Settings {
             resolution: Resolution::R120x80,
             lighting: Lighting::SectorDepth,
@@ -101,10 +101,12 @@ mod rom {
             let cycles = meter::cycles_since(started);
             display.flip_at_vblank(settings.resolution);
             log::info(format_args!(
-                "render map={} frame={frame} res={} lighting={} page=0x{address:08x} cycles={cycles} visits={} columns={} span_px={} column_px={}",
+                "render map={} frame={frame} res={} lighting={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
                 map.name,
                 settings.resolution.label(),
                 demo::lighting_label(settings.lighting),
+                stats.wall_ticks,
+                stats.plane_ticks,
                 stats.sector_visits,
                 stats.wall_columns,
                 stats.span_pixels,

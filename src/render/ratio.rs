@@ -1,39 +1,34 @@
-//! Division without a divide instruction for the renderer's per-column and per-span set-up:
-//! the divisor is normalised to 32 bits and multiplied by its table-and-Newton reciprocal
+//! Division without a divide instruction for the renderer's per-wall and per-span set-up: the
+//! divisor is normalised to 32 significant bits and multiplied by its table-and-Newton reciprocal
 //! ([`recip_pow2`], relative error ≤ 1e-9), so a quotient costs a few multiplies instead of a
 //! 64-bit library divide. Host and GBA run this same code, so the twins stay identical.
 
 use crate::math::recip_pow2;
 
-/// Approximately `num / den`, rounded to nearest (ties away from zero). `den != 0`, `|num| < 2^62`.
-/// Relative error below `2^-28` (the divisor keeps 32 significant bits, the reciprocal 29), plus
-/// one unit from the rounding.
+/// Approximately `num · 2^shift / den`, rounded to nearest. `den != 0`, `|num| < 2^63`, and the
+/// quotient must fit i64. Relative error below `2^-28` (the divisor keeps 32 significant bits,
+/// its reciprocal 29), plus ½ from the rounding.
 #[inline]
-pub fn ratio(num: i64, den: i64) -> i64 {
+pub fn ratio_shifted(num: i64, shift: u32, den: i64) -> i64 {
     debug_assert!(den != 0, "ratio with a zero divisor");
     let negative = (num < 0) != (den < 0);
     let d = den.unsigned_abs();
-    // Adding half the divisor first rounds to nearest instead of truncating.
-    let n = num.unsigned_abs() + (d >> 1);
-    // d = mantissa · 2^shift with the mantissa in [2^31, 2^32).
-    let bits = 64 - d.leading_zeros() as i32;
-    let shift = bits - 32;
-    let mantissa = if shift >= 0 {
-        (d >> shift) as u32
+    // d ≈ mantissa · 2^exponent with the mantissa in [2^31, 2^32).
+    let exponent = 32 - d.leading_zeros() as i32;
+    let mantissa = if exponent >= 0 {
+        (d >> exponent) as u32
     } else {
-        (d << -shift) as u32
+        (d << -exponent) as u32
     };
     // 2^61 / mantissa, in (2^29, 2^30].
-    let reciprocal = u64::from(recip_pow2(mantissa, 61));
-    // n / d = n · reciprocal / 2^(61 + shift); n is split in 32-bit halves so no product
-    // exceeds 64 bits.
-    let total_shift = 61 + shift;
-    let low = (n & 0xffff_ffff) * reciprocal;
-    let high = (n >> 32) * reciprocal;
-    let quotient = if total_shift >= 32 {
-        (high >> (total_shift - 32)) + (low >> total_shift.min(63))
+    let reciprocal = u128::from(recip_pow2(mantissa, 61));
+    // num · 2^shift / d = num · reciprocal / 2^(61 + exponent − shift).
+    let product = u128::from(num.unsigned_abs()) * reciprocal;
+    let right = 61 + exponent - shift as i32;
+    let quotient = if right > 0 {
+        ((product >> (right - 1)) + 1) >> 1
     } else {
-        (high << (32 - total_shift)) + (low >> total_shift)
+        product << -right
     };
     let quotient = quotient as i64;
     if negative {
@@ -41,6 +36,12 @@ pub fn ratio(num: i64, den: i64) -> i64 {
     } else {
         quotient
     }
+}
+
+/// Approximately `num / den`, rounded to nearest; see [`ratio_shifted`].
+#[inline]
+pub fn ratio(num: i64, den: i64) -> i64 {
+    ratio_shifted(num, 0, den)
 }
 
 #[cfg(test)]
@@ -51,12 +52,17 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(5000))]
         #[test]
-        fn within_the_documented_error_of_the_exact_quotient(num in -(1i64 << 61)..(1i64 << 61), den in prop_oneof![1i64..1000, -(1i64 << 40)..(1i64 << 40)]) {
+        fn within_the_documented_error_of_the_exact_quotient(
+            num in -(1i64 << 42)..(1i64 << 42),
+            shift in 0u32..20,
+            den in prop_oneof![1i64..1000, -(1i64 << 55)..(1i64 << 55)],
+        ) {
             prop_assume!(den != 0);
-            let exact = (num as f64 / den as f64).round() as i64;
-            let approximate = ratio(num, den);
-            let bound = (exact.unsigned_abs() >> 28) + 2;
-            prop_assert!(approximate.abs_diff(exact) <= bound, "{num}/{den}: {approximate} vs {exact}");
+            let exact = ((i128::from(num) << shift) as f64 / den as f64).round();
+            prop_assume!(exact.abs() < 2f64.powi(62));
+            let approximate = ratio_shifted(num, shift, den) as f64;
+            let bound = exact.abs() / 2f64.powi(28) + 1.0;
+            prop_assert!((approximate - exact).abs() <= bound, "{num}<<{shift}/{den}: {approximate} vs {exact}");
         }
     }
 
@@ -65,6 +71,8 @@ mod tests {
         assert_eq!(ratio(0, 7), 0);
         assert_eq!(ratio(7, 1), 7);
         assert_eq!(ratio(-9, 3), -3);
-        assert!((ratio(1 << 61, 3) - (1 << 61) / 3).abs() <= (1 << 32));
+        assert_eq!(ratio(7, 2), 4);
+        assert!((ratio_shifted(3, 30, 3) - (1 << 30)).abs() <= 1);
+        assert!((ratio(1 << 61, 3) - (1 << 61) / 3).abs() <= (1 << 34));
     }
 }

@@ -10,7 +10,7 @@ use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
 use super::view::View;
-use super::walls::{owned_columns, WallProjector};
+use super::walls::{owned_columns, WallColumn, WallProjector};
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, WorldPoint};
 use crate::raster::column::ColumnTexture;
@@ -37,6 +37,11 @@ pub struct FrameStats {
     pub span_pixels: u32,
     /// Portal chains cut at [`MAX_PORTAL_DEPTH`].
     pub depth_cutoffs: u32,
+    /// Clock ticks in the wall stage (ownership, projection, wall and strip columns), when the
+    /// renderer has a clock (the ROM's cycle meter); 0 otherwise.
+    pub wall_ticks: u32,
+    /// Clock ticks in the plane stage (spans, floors, ceilings, sky).
+    pub plane_ticks: u32,
 }
 
 /// The renderer's per-frame working memory: clip windows, plane windows, span starts.
@@ -48,6 +53,11 @@ pub struct Renderer {
     stats: FrameStats,
     column_angles: [i16; MAX_COLUMNS],
     column_angles_width: i32,
+    clock: fn() -> u32,
+}
+
+fn no_clock() -> u32 {
+    0
 }
 
 impl Default for Renderer {
@@ -64,6 +74,13 @@ struct Scene<'s, 'a> {
 }
 
 impl Renderer {
+    /// Times the wall and plane stages with `clock` (a free-running counter, e.g. the ROM's
+    /// cycle meter), reported in [`FrameStats`].
+    pub fn with_clock(mut self, clock: fn() -> u32) -> Renderer {
+        self.clock = clock;
+        self
+    }
+
     /// A renderer with empty working memory.
     pub const fn new() -> Renderer {
         Renderer {
@@ -77,9 +94,12 @@ impl Renderer {
                 column_pixels: 0,
                 span_pixels: 0,
                 depth_cutoffs: 0,
+                wall_ticks: 0,
+                plane_ticks: 0,
             },
             column_angles: [0; MAX_COLUMNS],
             column_angles_width: 0,
+            clock: no_clock,
         }
     }
 
@@ -135,6 +155,7 @@ impl Renderer {
             self.ceiling[column as usize] = Window::EMPTY;
             self.floor[column as usize] = Window::EMPTY;
         }
+        let walls_started = (self.clock)();
         for (offset, wall) in walls.iter().enumerate() {
             let wall_index = sector.first_wall + offset as u16;
             let Some((a, b, start, stop)) = self.owned(scene, wall, first, end) else {
@@ -142,16 +163,19 @@ impl Renderer {
             };
             let projector = WallProjector::new(&scene.view.viewport, a, b);
             let length = wall_length(scene.map, wall);
+            let mut stepper = projector.stepper(start);
             for column in start..stop {
-                self.wall_column(
-                    scene, canvas, sector, wall, wall_index, &projector, length, column,
-                );
+                let at = stepper.next_column();
+                self.wall_column(scene, canvas, sector, wall, wall_index, at, length, column);
             }
         }
+        let planes_started = (self.clock)();
+        self.stats.wall_ticks += planes_started.wrapping_sub(walls_started);
         planes::draw(
             self.plane_job(scene, sector, sector_index, first, end),
             canvas,
         );
+        self.stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
         for wall in walls {
             if wall.portal == NO_PORTAL {
                 continue;
@@ -207,14 +231,13 @@ impl Renderer {
         sector: &Sector,
         wall: &Wall,
         wall_index: u16,
-        projector: &WallProjector,
+        at: WallColumn,
         length: Fx24_8,
         column: i32,
     ) {
         self.stats.wall_columns += 1;
         let x = column as usize;
         let view = scene.view;
-        let at = projector.at(column);
         let row_of = |height: i32| {
             let above_eye = Fx24_8::from_int(height) - view.eye_z;
             view.viewport

@@ -14,7 +14,7 @@
 //! `K = a.z·Δx − a.x·Δz`. `N` and `D` are linear in `c`. The depth is clamped to the near plane
 //! (`NEAR_DEPTH`), so an eye closer than that to a wall sees it as at the near plane.
 
-use super::ratio::ratio;
+use super::ratio::{ratio, ratio_shifted};
 use crate::math::{EyePoint, Fx24_8, Fx2_30, Side, Viewport, NEAR_DEPTH};
 
 /// The columns `[start, end)` where a monotone predicate over `0..width` holds.
@@ -109,9 +109,102 @@ impl WallProjector {
     }
 }
 
+/// Steps a wall's `1/z'` and `t/z'` across its columns: both are affine in the column, so after
+/// an exact start (through [`ratio`]) each column costs two 32-bit adds, one reciprocal and one
+/// multiply. The steps are rounded once, so after `n` columns `1/z'` is within `n/2 + 1` units
+/// of 2^-30 of the exact value (at most 1.2e-7 across 240 columns).
+#[derive(Clone, Copy, Debug)]
+pub struct WallStepper {
+    inverse_depth: i32,
+    inverse_depth_step: i32,
+    along_over_depth: i32,
+    along_over_depth_step: i32,
+}
+
+/// `1/z'` of the far limit, in 2.30: the stepper never goes below it.
+const SMALLEST_INVERSE_DEPTH: i32 = (1 << 30) / portalcast_format::limits::EYE_DEPTH_MAX;
+
+impl WallProjector {
+    /// A stepper starting at the owned column `first_column`.
+    pub fn stepper(&self, first_column: i32) -> WallStepper {
+        let q = 2 * (i64::from(first_column) - self.centre_x) + 1;
+        let numerator = self.a_z * q - self.twice_focal * self.a_x;
+        let denominator = self.twice_focal * self.delta_x - q * self.delta_z;
+        // With D in 2^-8 and 2dK in 2^-16 units, 1/z' = D/(2dK) is in 2^-8 units and
+        // t/z' = N/(2dK) likewise: × 2^38 / (2dK) gives 2.30.
+        let scale = self.twice_focal * self.cross;
+        let to_fx2_30 = |value: i64| {
+            ratio_shifted(value, 38, scale).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+        };
+        WallStepper {
+            inverse_depth: to_fx2_30(denominator),
+            inverse_depth_step: to_fx2_30(-2 * self.delta_z),
+            along_over_depth: to_fx2_30(numerator),
+            along_over_depth_step: to_fx2_30(2 * self.a_z),
+        }
+    }
+}
+
+impl WallStepper {
+    /// The current column's depth and position along the wall; then steps to the next column.
+    pub fn next_column(&mut self) -> WallColumn {
+        // The near plane caps 1/z' at 1; the far limit keeps it positive whatever the rounding.
+        let inverse_depth = self.inverse_depth.clamp(SMALLEST_INVERSE_DEPTH, 1 << 30);
+        let inverse_depth = Fx2_30::from_bits(inverse_depth);
+        let depth = inverse_depth.recip_fx24_8();
+        let along = (i64::from(self.along_over_depth) * i64::from(depth.to_bits())) >> 8;
+        self.inverse_depth = self.inverse_depth.wrapping_add(self.inverse_depth_step);
+        self.along_over_depth = self
+            .along_over_depth
+            .wrapping_add(self.along_over_depth_step);
+        WallColumn {
+            depth,
+            inverse_depth,
+            along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_stepper_stays_close_to_the_exact_projection() {
+        let viewport = Viewport::new(240, 160);
+        let walls = [
+            ((-300, 40), (500, 900)),
+            ((-60, 60), (60, 60)),
+            ((-9000, 200), (9000, 20000)),
+            ((-5, 2), (5, 3)),
+        ];
+        for ((ax, az), (bx, bz)) in walls {
+            let (a, b) = (eye(ax, az), eye(bx, bz));
+            let (start, stop) = owned_columns(&viewport, a, b);
+            let projector = WallProjector::new(&viewport, a, b);
+            let mut stepper = projector.stepper(start);
+            for column in start..stop {
+                let stepped = stepper.next_column();
+                // The exact 1/z' from the geometry, in f64, in units of 2^-30.
+                let q = f64::from(2 * (column - viewport.centre_x()) + 1);
+                let d2 = f64::from(2 * viewport.focal_x);
+                let (fa_x, fa_z) = (f64::from(a.x.to_bits()), f64::from(a.z.to_bits()));
+                let (dx, dz) = (
+                    f64::from(b.x.to_bits()) - fa_x,
+                    f64::from(b.z.to_bits()) - fa_z,
+                );
+                let denominator = d2 * dx - q * dz;
+                let cross = fa_z * dx - fa_x * dz;
+                let exact = (denominator / (d2 * cross) * 2f64.powi(38)).min(f64::from(1 << 30));
+                let steps = f64::from(column - start);
+                let error = (f64::from(stepped.inverse_depth.to_bits()) - exact).abs();
+                assert!(
+                    error <= steps / 2.0 + 2.0 + exact * 2f64.powi(-27),
+                    "wall {a:?}-{b:?} column {column}: 1/z off by {error}"
+                );
+            }
+        }
+    }
 
     fn eye(x: i32, z: i32) -> EyePoint {
         EyePoint::new(Fx24_8::from_int(x), Fx24_8::from_int(z))
