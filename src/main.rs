@@ -49,6 +49,10 @@ mod rom {
             display.set_palette(&testpic::PALETTE);
             kernel_check_scene(&mut display);
         }
+        if held_at_boot & (KEY_L | KEY_R) == KEY_R {
+            display.set_palette(&assets::PALETTE);
+            bench_scene(&mut display);
+        }
         if held_at_boot & KEY_B != 0 {
             display.set_palette(&testpic::PALETTE);
             test_picture_scene(&mut display, held_at_boot);
@@ -113,6 +117,55 @@ mod rom {
                 stats.column_pixels,
             ));
             frame += 1;
+        }
+    }
+
+    /// Frames of the camera path per benchmark setting: a full turn in 8-step increments.
+    const BENCH_FRAMES: u32 = 32;
+
+    /// R held at boot: every shipped map × resolution × lighting, `BENCH_FRAMES` frames each along
+    /// the demo path (a full turn), one line per frame, then `bench done`. `cargo xtask-bench`
+    /// (the xtask's `bench` command) aggregates the lines.
+    fn bench_scene(display: &mut Display) -> ! {
+        let render_assets = demo::render_assets();
+        let mut renderer = Renderer::new().with_clock(meter::now);
+        for map in assets::MAPS {
+            for resolution in Resolution::ALL {
+                for lighting in [Lighting::SectorDepth, Lighting::Off] {
+                    let settings = Settings {
+                        resolution,
+                        lighting,
+                    };
+                    for frame in 0..BENCH_FRAMES {
+                        let camera = demo::camera_at(map, frame * 8);
+                        let view = View::new(&camera, &settings);
+                        let page = VramPage::back_of(display.shown_page());
+                        let started = meter::now();
+                        let stats = renderer.render(
+                            map,
+                            &render_assets,
+                            &view,
+                            &mut VramCanvas::new(page, resolution),
+                        );
+                        let cycles = meter::cycles_since(started);
+                        display.flip_at_vblank(resolution);
+                        log::info(format_args!(
+                            "bench map={} res={} lighting={} frame={frame} cycles={cycles} wall_cycles={} plane_cycles={} span_px={} column_px={}",
+                            map.name,
+                            resolution.label(),
+                            demo::lighting_label(lighting),
+                            stats.wall_ticks,
+                            stats.plane_ticks,
+                            stats.span_pixels,
+                            stats.column_pixels,
+                        ));
+                    }
+                }
+            }
+        }
+        log::info(format_args!("bench done"));
+        loop {
+            display.wait_vblank();
         }
     }
 

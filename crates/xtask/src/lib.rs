@@ -9,8 +9,26 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-/// The GBA target the ROM is built for.
+/// The GBA target the ROM is built for: Thumb code by default, with the hot kernels in ARM.
 pub const ROM_TARGET: &str = "thumbv4t-none-eabi";
+/// The ARM-everywhere target, selectable with `PORTALCAST_ROM_TARGET` to measure what ARM code
+/// for the renderer's set-up would gain (a benchmark knob; the shipped ROM is Thumb).
+pub const ROM_TARGET_ARM: &str = "armv4t-none-eabi";
+/// The environment variable that selects the ROM target.
+pub const ROM_TARGET_ENV: &str = "PORTALCAST_ROM_TARGET";
+
+/// The target the ROM is built for: [`ROM_TARGET`], or [`ROM_TARGET_ARM`] when
+/// `PORTALCAST_ROM_TARGET=armv4t-none-eabi`.
+pub fn rom_target() -> TaskResult<&'static str> {
+    match std::env::var(ROM_TARGET_ENV).as_deref() {
+        Err(_) | Ok("") => Ok(ROM_TARGET),
+        Ok(target) if target == ROM_TARGET => Ok(ROM_TARGET),
+        Ok(target) if target == ROM_TARGET_ARM => Ok(ROM_TARGET_ARM),
+        Ok(other) => fail(format!(
+            "{ROM_TARGET_ENV}={other} is not a ROM target: use {ROM_TARGET} or {ROM_TARGET_ARM}"
+        )),
+    }
+}
 /// Debian packages the harness (libmgba) and the play command (an mGBA window) need.
 pub const DEBIAN_PACKAGES: [&str; 2] = ["libmgba-dev", "mgba-sdl"];
 
@@ -56,7 +74,7 @@ pub fn rom_target_dir() -> PathBuf {
 /// The linked ROM ELF.
 pub fn elf_path() -> PathBuf {
     rom_target_dir()
-        .join(ROM_TARGET)
+        .join(rom_target().unwrap_or(ROM_TARGET))
         .join("release")
         .join("portalcast")
 }
@@ -181,7 +199,7 @@ pub fn build_rom() -> TaskResult<PathBuf> {
                 "build",
                 "--release",
                 "--target",
-                ROM_TARGET,
+                rom_target()?,
                 "-Zbuild-std=core",
             ])
             .args(["-p", "portalcast", "--bin", "portalcast", "--target-dir"])

@@ -14,7 +14,7 @@ use std::process::ExitCode;
 use portalcast_harness::{Emulator, HarnessError, KeyScript, LogLevel};
 
 const USAGE: &str =
-    "usage: pc-run ROM [--frames N] [--keys SCRIPTFILE] [--png-every K] [--out DIR] [--summary]";
+    "usage: pc-run ROM [--frames N] [--keys SCRIPTFILE] [--png-every K] [--out DIR] [--summary] [--until TEXT]";
 
 const HELP: &str = "\
 Runs a GBA ROM (or ELF) headless in mGBA.
@@ -23,6 +23,7 @@ Runs a GBA ROM (or ELF) headless in mGBA.
   --keys FILE       key script: lines `FRAMES: KEYS`, e.g. `10: A`, `20-30: UP+L`, `40-: START`
   --png-every K     write every K-th frame as a PNG; 0 = only the last (default 60)
   --out DIR         where the PNGs go (default target/frames/)
+  --until TEXT      stop after the frame in which a debug print contains TEXT
   --summary         at the end, print frames and CPU cycles run, and min/mean/max of every
                     `NAME=NUMBER` field whose name ends in `cycles` in the debug lines
 
@@ -36,6 +37,7 @@ struct Options {
     png_every: u32,
     out: PathBuf,
     summary: bool,
+    until: Option<String>,
 }
 
 fn main() -> ExitCode {
@@ -69,6 +71,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         png_every: 60,
         out: PathBuf::from("target/frames"),
         summary: false,
+        until: None,
     };
     let mut args = args.iter();
     while let Some(arg) = args.next() {
@@ -79,6 +82,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         };
         match arg.as_str() {
             "--frames" => options.frames = parse_count("--frames", &value("--frames")?)?,
+            "--until" => options.until = Some(value("--until")?.to_string()),
             "--png-every" => {
                 options.png_every = parse_count("--png-every", &value("--png-every")?)?
             }
@@ -116,13 +120,13 @@ fn run(options: &Options) -> Result<(), HarnessError> {
     for frame in 0..options.frames {
         emulator.set_keys(script.keys_at(frame));
         outcome = emulator.run_frame();
-        print_log(&mut emulator, &mut cycle_fields);
+        let stop = print_log(&mut emulator, &mut cycle_fields, options.until.as_deref());
         let done = emulator.frames_run();
-        let last = outcome.is_err() || frame + 1 == options.frames;
+        let last = outcome.is_err() || stop || frame + 1 == options.frames;
         if last || (options.png_every != 0 && done % u64::from(options.png_every) == 0) {
             save_frame(&emulator, &options.out, done)?;
         }
-        if outcome.is_err() {
+        if outcome.is_err() || stop {
             break;
         }
     }
@@ -134,15 +138,19 @@ fn run(options: &Options) -> Result<(), HarnessError> {
 }
 
 /// Debug prints to stdout as they happen; mGBA's own errors to stderr; the rest is noise here.
-fn print_log(emulator: &mut Emulator, cycle_fields: &mut CycleFields) {
+/// True if a debug print contains `until`.
+fn print_log(emulator: &mut Emulator, cycle_fields: &mut CycleFields, until: Option<&str>) -> bool {
+    let mut seen = false;
     for line in emulator.drain_log() {
         if line.is_debug_print() {
             println!("{}", line.text);
             cycle_fields.record(&line.text);
+            seen |= until.is_some_and(|text| line.text.contains(text));
         } else if matches!(line.level, LogLevel::Fatal | LogLevel::Error) {
             eprintln!("mgba: {line}");
         }
     }
+    seen
 }
 
 fn save_frame(emulator: &Emulator, dir: &Path, frame: u64) -> Result<(), HarnessError> {
