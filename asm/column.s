@@ -16,7 +16,7 @@
 @                               wide. dst = page + row*240 + 2*x.
 @   pc_col_even_{unlit,lit}_hN  240-wide mode, even x: read-modify-write of the halfword, keeping
 @   pc_col_odd_{unlit,lit}_hN   the neighbour's byte. dst = page + row*240 + (x & ~1).
-@ Per pixel (IWRAM texels and colormap, no VRAM contention): dbl unlit 6 cycles, dbl lit 9.
+@ Per pixel (IWRAM texels and colormap): measured by the ROM's kernel check, see docs/BENCH.md.
 
     .macro PIXEL_DBL shift, lit
     ldrb    r0, [r2, r3, lsr #\shift]
@@ -44,42 +44,40 @@
     strh    r12, [r1], #240
     .endm
 
-    @ One kernel: the remainder (count % 8) one pixel at a time, then blocks of 8 unrolled.
-    .macro COLUMN_KERNEL name, kind, shift, lit
+    @ One kernel: the remainder (count % block) one pixel at a time, then unrolled blocks. The
+    @ 120-wide kernels use blocks of 8 (they carry most pixels); the 240-wide read-modify-write
+    @ ones blocks of 4, to halve the IWRAM footprint of their 24 variants.
+    .macro PIXEL_ANY kind, shift, lit
+    .ifc \kind, dbl
+    PIXEL_DBL \shift, \lit
+    .endif
+    .ifc \kind, even
+    PIXEL_RMW \shift, \lit, 0
+    .endif
+    .ifc \kind, odd
+    PIXEL_RMW \shift, \lit, 1
+    .endif
+    .endm
+
+    .macro COLUMN_KERNEL name, kind, shift, lit, block_log2
     .global \name
     .type \name, %function
     .align 2
 \name:
     push    {r4-r7}
     ldmia   r0, {r1-r6}
-    ands    r7, r5, #7
+    ands    r7, r5, #((1 << \block_log2) - 1)
     beq     2f
 1:
-    .ifc \kind, dbl
-    PIXEL_DBL \shift, \lit
-    .endif
-    .ifc \kind, even
-    PIXEL_RMW \shift, \lit, 0
-    .endif
-    .ifc \kind, odd
-    PIXEL_RMW \shift, \lit, 1
-    .endif
+    PIXEL_ANY \kind, \shift, \lit
     subs    r7, r7, #1
     bne     1b
 2:
-    movs    r5, r5, lsr #3
+    movs    r5, r5, lsr #\block_log2
     beq     4f
 3:
-    .rept 8
-    .ifc \kind, dbl
-    PIXEL_DBL \shift, \lit
-    .endif
-    .ifc \kind, even
-    PIXEL_RMW \shift, \lit, 0
-    .endif
-    .ifc \kind, odd
-    PIXEL_RMW \shift, \lit, 1
-    .endif
+    .rept (1 << \block_log2)
+    PIXEL_ANY \kind, \shift, \lit
     .endr
     subs    r5, r5, #1
     bne     3b
@@ -93,13 +91,13 @@
     .arm
 
     .irp log2h, 3, 4, 5, 6, 7, 8
-    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, dbl, (32 - \log2h), 0
-    COLUMN_KERNEL pc_col_dbl_lit_h\log2h, dbl, (32 - \log2h), 1
-    COLUMN_KERNEL pc_col_even_unlit_h\log2h, even, (32 - \log2h), 0
-    COLUMN_KERNEL pc_col_even_lit_h\log2h, even, (32 - \log2h), 1
-    COLUMN_KERNEL pc_col_odd_unlit_h\log2h, odd, (32 - \log2h), 0
-    COLUMN_KERNEL pc_col_odd_lit_h\log2h, odd, (32 - \log2h), 1
+    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, dbl, (32 - \log2h), 0, 3
+    COLUMN_KERNEL pc_col_dbl_lit_h\log2h, dbl, (32 - \log2h), 1, 3
+    COLUMN_KERNEL pc_col_even_unlit_h\log2h, even, (32 - \log2h), 0, 2
+    COLUMN_KERNEL pc_col_even_lit_h\log2h, even, (32 - \log2h), 1, 2
+    COLUMN_KERNEL pc_col_odd_unlit_h\log2h, odd, (32 - \log2h), 0, 2
+    COLUMN_KERNEL pc_col_odd_lit_h\log2h, odd, (32 - \log2h), 1, 2
     .endr
 
-    .text
-    .thumb
+    @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
+    @ compiler emits after this file.

@@ -19,7 +19,7 @@
 @ Variants for k = 3..6:
 @   pc_flat_dbl_{unlit,lit}_kK    one logical pixel per halfword (120-wide modes; STRB mirrors)
 @   pc_flat_pair_{unlit,lit}_kK   two logical pixels per halfword (240 mode), left one low
-@ Per pixel (IWRAM texels and colormap): dbl unlit 8 cycles, dbl lit 11; pair lit 10.5.
+@ Per pixel (IWRAM texels and colormap): measured by the ROM's kernel check, see docs/BENCH.md.
 
     .macro FLAT_TEXEL k, lit, out
     and     \out, r7, r3, lsr #(16 - 2 * \k)
@@ -43,7 +43,8 @@
     .endif
     .endm
 
-    .macro FLAT_KERNEL name, kind, k, lit
+    @ Blocks of 8 output halfwords for the doubled kernels, of 4 (8 pixels) for the pair ones.
+    .macro FLAT_KERNEL name, kind, k, lit, block_log2
     .global \name
     .type \name, %function
     .align 2
@@ -52,17 +53,17 @@
     ldmia   r0, {r1-r6}
     mov     r7, #((1 << \k) - 1)
     mov     r7, r7, lsl #\k
-    ands    r8, r5, #7
+    ands    r8, r5, #((1 << \block_log2) - 1)
     beq     2f
 1:
     FLAT_OUT \kind, \k, \lit
     subs    r8, r8, #1
     bne     1b
 2:
-    movs    r5, r5, lsr #3
+    movs    r5, r5, lsr #\block_log2
     beq     4f
 3:
-    .rept 8
+    .rept (1 << \block_log2)
     FLAT_OUT \kind, \k, \lit
     .endr
     subs    r5, r5, #1
@@ -77,11 +78,11 @@
     .arm
 
     .irp k, 3, 4, 5, 6
-    FLAT_KERNEL pc_flat_dbl_unlit_k\k, dbl, \k, 0
-    FLAT_KERNEL pc_flat_dbl_lit_k\k, dbl, \k, 1
-    FLAT_KERNEL pc_flat_pair_unlit_k\k, pair, \k, 0
-    FLAT_KERNEL pc_flat_pair_lit_k\k, pair, \k, 1
+    FLAT_KERNEL pc_flat_dbl_unlit_k\k, dbl, \k, 0, 3
+    FLAT_KERNEL pc_flat_dbl_lit_k\k, dbl, \k, 1, 3
+    FLAT_KERNEL pc_flat_pair_unlit_k\k, pair, \k, 0, 2
+    FLAT_KERNEL pc_flat_pair_lit_k\k, pair, \k, 1, 2
     .endr
 
-    .text
-    .thumb
+    @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
+    @ compiler emits after this file.

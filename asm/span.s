@@ -66,5 +66,5 @@ pc_span64_pairs:
     bx      lr
     .size pc_span64_pairs, . - pc_span64_pairs
 
-    .text
-    .thumb
+    @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
+    @ compiler emits after this file.

@@ -66,7 +66,7 @@ mod rom {
     fn render_scene(display: &mut Display, held_at_boot: u16) -> ! {
         let mut map = demo::demo_map();
         let render_assets = demo::render_assets();
-        let mut renderer = Renderer::new().with_clock(meter::now);
+        let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
         let mut settings = Settings {
             resolution: Resolution::R120x80,
             lighting: Lighting::SectorDepth,
@@ -128,7 +128,7 @@ mod rom {
     /// (the xtask's `bench` command) aggregates the lines.
     fn bench_scene(display: &mut Display) -> ! {
         let render_assets = demo::render_assets();
-        let mut renderer = Renderer::new().with_clock(meter::now);
+        let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
         for map in assets::MAPS {
             for resolution in Resolution::ALL {
                 for lighting in [Lighting::SectorDepth, Lighting::Off] {

@@ -4,8 +4,21 @@ use crate::frame::{PAGE_HALFWORDS, PAGE_ROW_HALFWORDS};
 use crate::raster::span::{SpanPacking, SpanSteps, SpanTexture};
 use crate::testpic::SpanTarget;
 
-// `raw`: the file is plain assembly, so `{r4-r10}` register lists are not format arguments.
+// `raw`: the files are plain assembly, so `{r4-r10}` register lists are not format arguments.
+// Each file switches the assembler to ARM; `restore_code_mode!` switches it back to the mode
+// this crate's own code is compiled in (Thumb, or ARM under `-thumb-mode`), which the compiler
+// assumes when it emits the functions that follow.
+macro_rules! restore_code_mode {
+    () => {
+        #[cfg(target_feature = "thumb-mode")]
+        core::arch::global_asm!(".text", ".thumb");
+        #[cfg(not(target_feature = "thumb-mode"))]
+        core::arch::global_asm!(".text", ".arm");
+    };
+}
+
 core::arch::global_asm!(include_str!("../../asm/span.s"), options(raw));
+restore_code_mode!();
 
 /// The argument block of the span kernels; its layout is documented at the top of `asm/span.s`.
 #[repr(C)]
@@ -93,7 +106,9 @@ impl SpanTarget for VramPage {
 }
 
 core::arch::global_asm!(include_str!("../../asm/column.s"), options(raw));
+restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
+restore_code_mode!();
 
 use crate::frame::Resolution;
 use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};

@@ -22,3 +22,23 @@ pub fn stack_room() -> usize {
     debug_assert_eq!(start, IWRAM_START);
     STACK_TOP - (&raw const __bss_end as usize)
 }
+
+use crate::render::walk::Renderer;
+use core::mem::MaybeUninit;
+
+#[link_section = ".ewram_bss"]
+static mut RENDERER: MaybeUninit<Renderer> = MaybeUninit::uninit();
+static mut RENDERER_TAKEN: bool = false;
+
+/// The renderer's working memory (clip and plane windows, about 3.7 KB), placed in EWRAM so it
+/// does not take the IWRAM stack the portal recursion needs. Hands it out once.
+pub fn renderer_in_ewram(renderer: Renderer) -> &'static mut Renderer {
+    // SAFETY: single-threaded, and the flag makes this the only reference ever made to the
+    // static; the interrupt handler never touches either.
+    unsafe {
+        let taken = &raw mut RENDERER_TAKEN;
+        assert!(!*taken, "the renderer's memory is handed out once");
+        *taken = true;
+        (*(&raw mut RENDERER)).write(renderer)
+    }
+}
