@@ -39,6 +39,8 @@ pub fn renderer_in_ewram(renderer: Renderer) -> &'static mut Renderer {
         let taken = &raw mut RENDERER_TAKEN;
         assert!(!*taken, "the renderer's memory is handed out once");
         *taken = true;
-        (*(&raw mut RENDERER)).write(renderer)
+        let slot: *mut Renderer = (&raw mut RENDERER).cast();
+        slot.write(renderer);
+        &mut *slot
     }
 }
