@@ -13,6 +13,7 @@ pub mod kernel_check;
 pub mod math;
 pub mod raster;
 pub mod render;
+pub mod selfcheck;
 pub mod testpic;
 
 #[cfg(target_os = "none")]

@@ -37,10 +37,11 @@ mod rom {
         hw::set_waitstates();
         meter::start();
         log::info(format_args!(
-            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={}",
+            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} division_digest=0x{:08x}",
             hw::WAITCNT_SETTING,
             memory::iwram_used(),
-            memory::stack_room()
+            memory::stack_room(),
+            portalcast::selfcheck::division_digest()
         ));
 
         let mut display = Display::start(Resolution::R120x80);

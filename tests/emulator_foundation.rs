@@ -25,6 +25,12 @@ fn rom_boots_and_prints_its_figures() {
     let stack_room = number(&boot_line, "stack_room");
     assert_eq!(iwram_used + stack_room, 0x7F00, "{boot_line}");
     assert!(stack_room >= 4096, "{boot_line}");
+    // The ROM's divisions (ARM code through asm/runtime.s) against the host's.
+    assert_eq!(
+        number(&boot_line, "division_digest"),
+        u64::from(portalcast::selfcheck::division_digest()),
+        "{boot_line}"
+    );
     println!("{boot_line}");
 
     let shown = lines_starting(&emulator, "shown ");

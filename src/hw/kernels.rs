@@ -110,6 +110,11 @@ restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
 restore_code_mode!();
 
+// Interworking-safe division helpers that the ROM links in place of compiler-builtins' own
+// (`--wrap`, see the file's header); nothing here calls them by name.
+core::arch::global_asm!(include_str!("../../asm/runtime.s"), options(raw));
+restore_code_mode!();
+
 use crate::frame::Resolution;
 use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
 use crate::raster::flat::{FlatTexture, FLAT_LOG2_SIDES};

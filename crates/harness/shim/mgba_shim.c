@@ -39,6 +39,13 @@ struct pc_emu {
 	size_t log_len;
 	size_t log_cap;
 	size_t log_dropped;
+	/* The sampling profiler (pc_emu_profile_start): a timing event every `profile_period` cycles
+	 * records the PC and LR it interrupts. */
+	struct mTimingEvent profile_event;
+	uint32_t profile_period;
+	uint32_t* profile_samples; /* (pc, lr) pairs */
+	size_t profile_len;        /* pairs */
+	size_t profile_cap;
 };
 
 /* The emulator whose call is running on this thread; the global logger routes lines to it. */
@@ -201,6 +208,7 @@ void pc_emu_destroy(pc_emu* emu) {
 	}
 	PC_LEAVE();
 	free(emu->video);
+	free(emu->profile_samples);
 	pc_emu_log_clear(emu);
 	free(emu->log);
 	free(emu);
@@ -310,4 +318,61 @@ void pc_emu_log_clear(pc_emu* emu) {
 	}
 	emu->log_len = 0;
 	emu->log_dropped = 0;
+}
+
+/* The profiler's event: runs between two instructions, so r15 is the next instruction plus the
+ * pipeline offset (8 in ARM state, 4 in Thumb); the true address is stored with bit 0 set for
+ * Thumb, as in an interworking address. */
+static void pc_profile_tick(struct mTiming* timing, void* context, uint32_t cycles_late) {
+	pc_emu* emu = context;
+	struct ARMCore* cpu = emu->core->cpu;
+	int thumb = cpu->executionMode == MODE_THUMB;
+	uint32_t pc = (uint32_t) cpu->gprs[15] - (thumb ? 4u : 8u);
+	if (emu->profile_len == emu->profile_cap) {
+		size_t cap = emu->profile_cap ? emu->profile_cap * 2 : 4096;
+		uint32_t* grown = realloc(emu->profile_samples, cap * 2 * sizeof(uint32_t));
+		if (grown) {
+			emu->profile_samples = grown;
+			emu->profile_cap = cap;
+		}
+	}
+	if (emu->profile_len < emu->profile_cap) {
+		emu->profile_samples[2 * emu->profile_len] = pc | (uint32_t) thumb;
+		emu->profile_samples[2 * emu->profile_len + 1] = (uint32_t) cpu->gprs[14];
+		++emu->profile_len;
+	}
+	int32_t next = (int32_t) emu->profile_period - (int32_t) cycles_late;
+	mTimingSchedule(timing, &emu->profile_event, next > 1 ? next : 1);
+}
+
+void pc_emu_profile_start(pc_emu* emu, uint32_t period) {
+	PC_ENTER(emu);
+	if (emu->profile_period) {
+		mTimingDeschedule(emu->core->timing, &emu->profile_event);
+	}
+	emu->profile_period = period ? period : 1;
+	emu->profile_event.context = emu;
+	emu->profile_event.callback = pc_profile_tick;
+	emu->profile_event.name = "portalcast profiler";
+	emu->profile_event.priority = 0x7F;
+	mTimingSchedule(emu->core->timing, &emu->profile_event, (int32_t) emu->profile_period);
+	PC_LEAVE();
+}
+
+void pc_emu_profile_stop(pc_emu* emu) {
+	PC_ENTER(emu);
+	if (emu->profile_period) {
+		mTimingDeschedule(emu->core->timing, &emu->profile_event);
+		emu->profile_period = 0;
+	}
+	PC_LEAVE();
+}
+
+size_t pc_emu_profile_samples(const pc_emu* emu, const uint32_t** pairs) {
+	*pairs = emu->profile_samples;
+	return emu->profile_len;
+}
+
+void pc_emu_profile_clear(pc_emu* emu) {
+	emu->profile_len = 0;
 }

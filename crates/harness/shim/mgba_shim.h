@@ -45,6 +45,14 @@ void pc_emu_read_bytes(pc_emu* emu, uint32_t address, uint8_t* out, size_t len);
 uint64_t pc_emu_cycles(const pc_emu* emu);
 uint32_t pc_emu_frame_counter(pc_emu* emu);
 
+/* Sampling profiler: every `period` CPU cycles, record the (pc, lr) pair the CPU is at; pc has
+ * bit 0 set in Thumb state. Samples accumulate until pc_emu_profile_clear; `pairs` points at
+ * 2 * count words, valid until the next call into this emulator. */
+void pc_emu_profile_start(pc_emu* emu, uint32_t period);
+void pc_emu_profile_stop(pc_emu* emu);
+size_t pc_emu_profile_samples(const pc_emu* emu, const uint32_t** pairs);
+void pc_emu_profile_clear(pc_emu* emu);
+
 /* Log lines recorded since the last pc_emu_log_clear. `category` and `text` stay valid until then.
  * Returns 0 if `index` is out of range. */
 size_t pc_emu_log_count(const pc_emu* emu);

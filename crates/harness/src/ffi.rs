@@ -60,6 +60,10 @@ extern "C" {
     ) -> c_int;
     fn pc_emu_log_dropped(emu: *const PcEmu) -> usize;
     fn pc_emu_log_clear(emu: *mut PcEmu);
+    fn pc_emu_profile_start(emu: *mut PcEmu, period: u32);
+    fn pc_emu_profile_stop(emu: *mut PcEmu);
+    fn pc_emu_profile_samples(emu: *const PcEmu, pairs: *mut *const u32) -> usize;
+    fn pc_emu_profile_clear(emu: *mut PcEmu);
 }
 
 /// One log line as the shim recorded it, before the safe layer gives the level a type.
@@ -159,6 +163,38 @@ impl RawEmulator {
     pub fn cycles(&self) -> u64 {
         // SAFETY: self.emu is valid for the life of self.
         unsafe { pc_emu_cycles(self.emu.as_ptr()) }
+    }
+
+    /// Starts (or restarts) sampling `(pc, lr)` every `period` cycles.
+    pub fn profile_start(&mut self, period: u32) {
+        // SAFETY: self.emu is valid; the shim owns the event it schedules.
+        unsafe { pc_emu_profile_start(self.emu.as_ptr(), period) }
+    }
+
+    /// Stops sampling; the samples stay.
+    pub fn profile_stop(&mut self) {
+        // SAFETY: self.emu is valid.
+        unsafe { pc_emu_profile_stop(self.emu.as_ptr()) }
+    }
+
+    /// Takes the `(pc, lr)` samples recorded so far.
+    pub fn profile_take(&mut self) -> Vec<(u32, u32)> {
+        let mut pairs: *const u32 = std::ptr::null();
+        // SAFETY: self.emu is valid; the shim returns `count` pairs at `pairs`, which stay valid
+        // until the next call into this emulator, and we copy them before pc_emu_profile_clear.
+        unsafe {
+            let count = pc_emu_profile_samples(self.emu.as_ptr(), &mut pairs);
+            let samples = if count == 0 {
+                Vec::new()
+            } else {
+                std::slice::from_raw_parts(pairs, 2 * count)
+                    .chunks_exact(2)
+                    .map(|pair| (pair[0], pair[1]))
+                    .collect()
+            };
+            pc_emu_profile_clear(self.emu.as_ptr());
+            samples
+        }
     }
 
     /// mGBA's own frame counter.

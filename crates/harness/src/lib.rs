@@ -374,6 +374,24 @@ impl Emulator {
         self.raw.cycles()
     }
 
+    /// Starts a cycle-weighted sampling profile: every `period` CPU cycles the emulator records
+    /// the instruction address it is at and the link register. A prime period avoids beating
+    /// with the ROM's own loops.
+    pub fn profile_start(&mut self, period: u32) {
+        self.raw.profile_start(period);
+    }
+
+    /// Stops the profile; the samples stay until [`Emulator::profile_take`].
+    pub fn profile_stop(&mut self) {
+        self.raw.profile_stop();
+    }
+
+    /// Takes the samples recorded since the last call: `(pc, lr)`, with bit 0 of `pc` set when
+    /// the CPU was in Thumb state.
+    pub fn profile_take(&mut self) -> Vec<(u32, u32)> {
+        self.raw.profile_take()
+    }
+
     /// mGBA's own count of frames drawn since reset.
     pub fn mgba_frame_counter(&self) -> u32 {
         self.raw.frame_counter()

@@ -9,23 +9,47 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-/// The GBA target the ROM is built for: Thumb code by default, with the hot kernels in ARM.
+/// The GBA target the ROM is built for.
 pub const ROM_TARGET: &str = "thumbv4t-none-eabi";
-/// The ARM-everywhere target, selectable with `PORTALCAST_ROM_TARGET` to measure what ARM code
-/// for the renderer's set-up would gain (a benchmark knob; the shipped ROM is Thumb).
-pub const ROM_TARGET_ARM: &str = "armv4t-none-eabi";
-/// The environment variable that selects the ROM target.
-pub const ROM_TARGET_ENV: &str = "PORTALCAST_ROM_TARGET";
+/// The environment variable that selects the instruction set of the engine's own code.
+pub const ENGINE_ISA_ENV: &str = "PORTALCAST_ENGINE_ISA";
 
-/// The target the ROM is built for: [`ROM_TARGET`], or [`ROM_TARGET_ARM`] when
-/// `PORTALCAST_ROM_TARGET=armv4t-none-eabi`.
-pub fn rom_target() -> TaskResult<&'static str> {
-    match std::env::var(ROM_TARGET_ENV).as_deref() {
-        Err(_) | Ok("") => Ok(ROM_TARGET),
-        Ok(target) if target == ROM_TARGET => Ok(ROM_TARGET),
-        Ok(target) if target == ROM_TARGET_ARM => Ok(ROM_TARGET_ARM),
+/// The instruction set the `portalcast` package (engine and ROM binary) is compiled to; the rest
+/// of the ROM (core, compiler-builtins, the gba runtime) is Thumb either way, and the asm kernels
+/// ARM.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EngineIsa {
+    /// ARM code (the default): Cargo.toml's `rom` profile, `-Ctarget-feature=-thumb-mode`.
+    Arm,
+    /// Thumb code, the target's default: the `release` profile. A benchmark knob.
+    Thumb,
+}
+
+impl EngineIsa {
+    /// The cargo profile that builds this choice.
+    pub fn profile(self) -> &'static str {
+        match self {
+            EngineIsa::Arm => "rom",
+            EngineIsa::Thumb => "release",
+        }
+    }
+
+    /// The label benchmarks print.
+    pub fn label(self) -> &'static str {
+        match self {
+            EngineIsa::Arm => "arm",
+            EngineIsa::Thumb => "thumb",
+        }
+    }
+}
+
+/// The engine's instruction set: ARM unless `PORTALCAST_ENGINE_ISA=thumb`.
+pub fn engine_isa() -> TaskResult<EngineIsa> {
+    match std::env::var(ENGINE_ISA_ENV).as_deref() {
+        Err(_) | Ok("") | Ok("arm") => Ok(EngineIsa::Arm),
+        Ok("thumb") => Ok(EngineIsa::Thumb),
         Ok(other) => fail(format!(
-            "{ROM_TARGET_ENV}={other} is not a ROM target: use {ROM_TARGET} or {ROM_TARGET_ARM}"
+            "{ENGINE_ISA_ENV}={other} is not an instruction set: use arm (the default) or thumb"
         )),
     }
 }
@@ -74,8 +98,8 @@ pub fn rom_target_dir() -> PathBuf {
 /// The linked ROM ELF.
 pub fn elf_path() -> PathBuf {
     rom_target_dir()
-        .join(rom_target().unwrap_or(ROM_TARGET))
-        .join("release")
+        .join(ROM_TARGET)
+        .join(engine_isa().unwrap_or(EngineIsa::Arm).profile())
         .join("portalcast")
 }
 
@@ -197,9 +221,10 @@ pub fn build_rom() -> TaskResult<PathBuf> {
         cargo()
             .args([
                 "build",
-                "--release",
+                "--profile",
+                engine_isa()?.profile(),
                 "--target",
-                rom_target()?,
+                ROM_TARGET,
                 "-Zbuild-std=core",
             ])
             .args(["-p", "portalcast", "--bin", "portalcast", "--target-dir"])

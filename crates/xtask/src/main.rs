@@ -35,8 +35,12 @@ fn rom() -> TaskResult<()> {
 /// The asset compiler's size report from the newest ROM build (build.rs writes it to OUT_DIR).
 fn newest_size_report() -> Option<String> {
     let build_dir = portalcast_xtask::rom_target_dir()
-        .join(portalcast_xtask::rom_target().unwrap_or(portalcast_xtask::ROM_TARGET))
-        .join("release")
+        .join(portalcast_xtask::ROM_TARGET)
+        .join(
+            portalcast_xtask::engine_isa()
+                .unwrap_or(portalcast_xtask::EngineIsa::Arm)
+                .profile(),
+        )
         .join("build");
     let newest = std::fs::read_dir(build_dir)
         .ok()?
@@ -145,7 +149,8 @@ fn test() -> TaskResult<()> {
         cargo()
             .args([
                 "clippy",
-                "--release",
+                "--profile",
+                portalcast_xtask::EngineIsa::Arm.profile(),
                 "--target",
                 portalcast_xtask::ROM_TARGET,
                 "-Zbuild-std=core",
