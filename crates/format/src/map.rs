@@ -140,6 +140,7 @@ pub struct MapTables<'a> {
 
 impl<'a> MapTables<'a> {
     /// The walls of `sector`, in clockwise order.
+    #[inline]
     pub fn sector_walls(&self, sector: &Sector) -> &'a [Wall] {
         let first = sector.first_wall as usize;
         &self.walls[first..first + sector.wall_count as usize]

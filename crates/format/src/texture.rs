@@ -78,12 +78,23 @@ impl<'a> Texture<'a> {
     }
 
     /// Texels in mip level `level`.
+    #[inline]
     pub const fn level_len(&self, level: u8) -> usize {
         1 << (self.level_width_log2(level) + self.level_height_log2(level))
     }
 
     /// Offset of mip level `level` in either chain.
+    #[inline]
     pub const fn level_offset(&self, level: u8) -> usize {
+        let sides_log2 = self.width_log2 as u32 + self.height_log2 as u32;
+        if level <= self.width_log2 && level <= self.height_log2 {
+            // Neither side has stopped halving: a geometric series of ratio 1/4,
+            // Σ_{m<level} 2^(sides − 2m) = (2^(sides+2) − 2^(sides+2−2·level)) / 3, with no
+            // loop (the renderer asks for a level per wall column and per span).
+            return ((1usize << (sides_log2 + 2))
+                - (1usize << (sides_log2 + 2 - 2 * level as u32)))
+                / 3;
+        }
         let mut offset = 0;
         let mut m = 0;
         while m < level {
@@ -99,12 +110,14 @@ impl<'a> Texture<'a> {
     }
 
     /// Mip level `level` of the column-major (wall) chain. Panics if absent.
+    #[inline]
     pub fn wall_level(&self, level: u8) -> &'a [u8] {
         let start = self.level_offset(level);
         &self.columns[start..start + self.level_len(level)]
     }
 
     /// Mip level `level` of the row-major (flat) chain. Panics if absent.
+    #[inline]
     pub fn flat_level(&self, level: u8) -> &'a [u8] {
         let start = self.level_offset(level);
         &self.rows[start..start + self.level_len(level)]
@@ -178,6 +191,24 @@ mod tests {
             [(6, 4), (5, 3), (4, 2), (3, 1), (2, 0), (1, 0), (0, 0)]
         );
         assert_eq!(t.chain_len(), 1024 + 256 + 64 + 16 + 4 + 2 + 1);
+    }
+
+    #[test]
+    fn level_offsets_are_the_running_sum_of_level_sizes() {
+        for width_log2 in 0..=9u8 {
+            for height_log2 in 0..=9u8 {
+                let t = texture(width_log2, height_log2);
+                let mut running = 0;
+                for level in 0..=t.mip_count {
+                    assert_eq!(
+                        t.level_offset(level),
+                        running,
+                        "{width_log2}x{height_log2} level {level}"
+                    );
+                    running += t.level_len(level);
+                }
+            }
+        }
     }
 
     #[test]

@@ -24,7 +24,8 @@ Profiles a GBA ELF (it needs the symbols; the .gba has none) headless in mGBA.
   --skip N          frames to run before sampling starts (default 60)
   --frames N        frames to sample (default 120)
   --period CYCLES   cycles between samples (default 97, a prime)
-  --top K           rows to print (default 40)";
+  --top K           rows to print (default 40)
+  --addresses K     also print the K most sampled instruction addresses (for llvm-addr2line)";
 
 struct Options {
     elf: PathBuf,
@@ -33,6 +34,7 @@ struct Options {
     frames: u32,
     period: u32,
     top: usize,
+    addresses: usize,
 }
 
 fn main() -> ExitCode {
@@ -65,6 +67,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         frames: 120,
         period: 97,
         top: 40,
+        addresses: 0,
     };
     let mut elf = None;
     let mut args = args.iter();
@@ -84,6 +87,9 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
             "--frames" => options.frames = number("--frames", value("--frames")?)?,
             "--period" => options.period = number("--period", value("--period")?)?.max(1),
             "--top" => options.top = number("--top", value("--top")?)? as usize,
+            "--addresses" => {
+                options.addresses = number("--addresses", value("--addresses")?)? as usize
+            }
             flag if flag.starts_with("--") => return Err(format!("unknown option {flag}")),
             path if elf.is_none() => elf = Some(PathBuf::from(path)),
             extra => return Err(format!("unexpected argument `{extra}`")),
@@ -122,39 +128,9 @@ fn function_symbols(elf: &Path) -> Result<Vec<(u32, u32, String)>, String> {
     Ok(symbols)
 }
 
-/// Shortens a Rust v0/legacy mangled name enough to read: the path segments, without hashes.
+/// A readable function name: demangled, without the crate hashes.
 fn demangle(name: &str) -> String {
-    let Some(body) = name.strip_prefix("_ZN") else {
-        return name.to_string();
-    };
-    let mut rest = body;
-    let mut parts = Vec::new();
-    while let Some(digits) = rest.find(|c: char| !c.is_ascii_digit()) {
-        if digits == 0 {
-            break;
-        }
-        let Ok(length) = rest[..digits].parse::<usize>() else {
-            break;
-        };
-        let start = digits;
-        if rest.len() < start + length {
-            break;
-        }
-        let part = &rest[start..start + length];
-        if !(part.starts_with('h') && part.len() == 17) {
-            parts.push(
-                part.replace("$LT$", "<")
-                    .replace("$GT$", ">")
-                    .replace("$u20$", " "),
-            );
-        }
-        rest = &rest[start + length..];
-    }
-    if parts.is_empty() {
-        name.to_string()
-    } else {
-        parts.join("::")
-    }
+    format!("{:#}", rustc_demangle::demangle(name))
 }
 
 fn lookup(symbols: &[(u32, u32, String)], address: u32) -> Option<&str> {
@@ -242,5 +218,21 @@ fn run(options: &Options) -> Result<(), String> {
         "cycles with compiler helpers charged to their caller:",
         &with_leaf_helpers,
     );
+    if options.addresses > 0 {
+        let mut by_address: HashMap<u32, usize> = HashMap::new();
+        for &(pc, _) in &samples {
+            *by_address.entry(pc & !1).or_default() += 1;
+        }
+        let mut rows: Vec<(u32, usize)> = by_address.into_iter().collect();
+        rows.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+        println!("\ninstruction addresses:");
+        for (address, count) in rows.into_iter().take(options.addresses) {
+            println!(
+                "{:6.2}% 0x{address:08x}  {}",
+                count as f64 * 100.0 / total,
+                lookup(&symbols, address).unwrap_or("?")
+            );
+        }
+    }
     Ok(())
 }
