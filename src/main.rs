@@ -17,7 +17,7 @@ mod rom {
     use portalcast::hw::{self, log, memory, meter, video::Display};
     use portalcast::render::demo;
     use portalcast::render::light::Lighting;
-    use portalcast::render::view::{Settings, View};
+    use portalcast::render::view::{Perspective, Settings, View};
     use portalcast::render::walk::Renderer;
     use portalcast::{assets, kernel_check, testpic};
 
@@ -68,10 +68,7 @@ mod rom {
         let mut map = demo::demo_map();
         let render_assets = demo::render_assets();
         let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
-        let mut settings = Settings {
-            resolution: Resolution::R120x80,
-            lighting: Lighting::SectorDepth,
-        };
+        let mut settings = Settings::DEFAULT;
         let mut held_before = held_at_boot;
         let mut frame: u32 = 0;
         loop {
@@ -130,12 +127,21 @@ mod rom {
     fn bench_scene(display: &mut Display) -> ! {
         let render_assets = demo::render_assets();
         let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
+        // Lighting is measured at exact perspective, the perspective knob with lighting on.
+        let knobs = [
+            (Lighting::SectorDepth, Perspective::Exact),
+            (Lighting::Off, Perspective::Exact),
+            (Lighting::Sector, Perspective::Exact),
+            (Lighting::SectorDepth, Perspective::Every8),
+            (Lighting::SectorDepth, Perspective::Every16),
+        ];
         for map in assets::MAPS {
             for resolution in Resolution::ALL {
-                for lighting in [Lighting::SectorDepth, Lighting::Off] {
+                for (lighting, perspective) in knobs {
                     let settings = Settings {
                         resolution,
                         lighting,
+                        perspective,
                     };
                     for frame in 0..BENCH_FRAMES {
                         let camera = demo::camera_at(map, frame * 8);
@@ -151,10 +157,11 @@ mod rom {
                         let cycles = meter::cycles_since(started);
                         display.flip_at_vblank(resolution);
                         log::info(format_args!(
-                            "bench map={} res={} lighting={} frame={frame} cycles={cycles} wall_cycles={} plane_cycles={} span_px={} column_px={}",
+                            "bench map={} res={} lighting={} perspective={} frame={frame} cycles={cycles} wall_cycles={} plane_cycles={} span_px={} column_px={}",
                             map.name,
                             resolution.label(),
                             demo::lighting_label(lighting),
+                            perspective.label(),
                             stats.wall_ticks,
                             stats.plane_ticks,
                             stats.span_pixels,

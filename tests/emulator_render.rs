@@ -67,6 +67,7 @@ fn rom_frames_are_identical_to_the_host_renderer() {
                 &Settings {
                     resolution,
                     lighting,
+                    ..Settings::DEFAULT
                 },
             );
             renderer.render(

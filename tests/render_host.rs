@@ -8,7 +8,7 @@ use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::light::Lighting;
 use portalcast::render::surface::Surface;
-use portalcast::render::view::{Camera, Settings, View};
+use portalcast::render::view::{Camera, Perspective, Settings, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_format::{MapTables, Texture};
@@ -45,12 +45,19 @@ fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
             let mut camera = start_camera(&map);
             camera.angle = Angle::from_bits(camera.angle.to_bits().wrapping_add(turn * 8192 + 123));
             for resolution in Resolution::ALL {
-                for lighting in [Lighting::Off, Lighting::SectorDepth] {
+                let knobs = [
+                    (Lighting::Off, Perspective::Exact),
+                    (Lighting::SectorDepth, Perspective::Exact),
+                    (Lighting::SectorDepth, Perspective::Every8),
+                    (Lighting::Off, Perspective::Every16),
+                ];
+                for (lighting, perspective) in knobs {
                     let view = View::new(
                         &camera,
                         &Settings {
                             resolution,
                             lighting,
+                            perspective,
                         },
                     );
                     let mut canvas = RecordingCanvas::new(resolution);
@@ -58,7 +65,7 @@ fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
                     let faults = canvas.coverage_faults();
                     assert!(
                         faults.is_empty(),
-                        "{} turn {turn} {resolution:?}: {} pixels not drawn exactly once, first {:?}; {stats:?}",
+                        "{} turn {turn} {resolution:?} {perspective:?}: {} pixels not drawn exactly once, first {:?}; {stats:?}",
                         map.name,
                         faults.len(),
                         &faults[..faults.len().min(8)]
@@ -94,6 +101,7 @@ fn host_render_pngs_show_the_bench_map() {
             &Settings {
                 resolution,
                 lighting: Lighting::SectorDepth,
+                ..Settings::DEFAULT
             },
         );
         let mut canvas = RecordingCanvas::new(resolution);

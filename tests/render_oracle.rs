@@ -8,7 +8,7 @@ use common::*;
 use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::light::Lighting;
-use portalcast::render::view::{Camera, Settings, View};
+use portalcast::render::view::{Camera, Perspective, Settings, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_format::Texture;
@@ -32,8 +32,9 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
         colormap: compiled.colormap(),
     };
     let mut renderer = Renderer::new();
-    let mut worst = 0.0f64;
-    let mut texel_total = 0.0f64;
+    // Per perspective setting: worst surface mismatch, summed texel mismatch.
+    let mut worst = [0.0f64; Perspective::ALL.len()];
+    let mut texel_total = [0.0f64; Perspective::ALL.len()];
     let mut frames = 0usize;
     for compiled_map in compiled.maps() {
         let map = compiled_map.tables();
@@ -56,17 +57,17 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
                 look_lines: 0,
             };
             for resolution in Resolution::ALL {
-                let view = View::new(
+                let exact_view = View::new(
                     &camera,
                     &Settings {
                         resolution,
-                        lighting: Lighting::SectorDepth,
+                        ..Settings::DEFAULT
                     },
                 );
-                let mut canvas = RecordingCanvas::new(resolution);
-                renderer.render(&map, &assets, &view, &mut canvas);
-                let oracle_view =
-                    portalcast_oracle::View::from_viewport(&view.viewport, Lighting::SectorDepth);
+                let oracle_view = portalcast_oracle::View::from_viewport(
+                    &exact_view.viewport,
+                    Lighting::SectorDepth,
+                );
                 let oracle_camera = portalcast_oracle::Camera::from_fixed(
                     camera.position.x.to_bits(),
                     camera.position.y.to_bits(),
@@ -76,30 +77,47 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
                 );
                 let oracle =
                     portalcast_oracle::render(&map, &oracle_assets, &oracle_camera, &oracle_view);
-                let comparison =
-                    portalcast_oracle::compare(&canvas.surfaces, &canvas.indices, &oracle);
-                let percent = comparison.surface_mismatch_percent();
-                worst = worst.max(percent);
-                texel_total += comparison.texel_mismatch_percent();
                 frames += 1;
-                let ok = percent <= SURFACE_MISMATCH_MAX_PERCENT
-                    && comparison.holes == 0
-                    && comparison.missed_sectors.is_empty();
-                if !ok {
-                    let png = screenshot_dir().join(format!(
-                        "oracle-diff-{}-{index}-{}.png",
-                        map.name,
-                        resolution.label()
-                    ));
-                    portalcast_oracle::write_diff_png(&canvas.surfaces, &oracle, &png)
-                        .expect("writing the diff");
-                    panic!("{} pose {index} {resolution:?}: {comparison:?} ({percent:.3} % surfaces differ; diff in {})", map.name, png.display());
+                for (knob, perspective) in Perspective::ALL.into_iter().enumerate() {
+                    let view = View::new(
+                        &camera,
+                        &Settings {
+                            resolution,
+                            perspective,
+                            ..Settings::DEFAULT
+                        },
+                    );
+                    let mut canvas = RecordingCanvas::new(resolution);
+                    renderer.render(&map, &assets, &view, &mut canvas);
+                    let comparison =
+                        portalcast_oracle::compare(&canvas.surfaces, &canvas.indices, &oracle);
+                    let percent = comparison.surface_mismatch_percent();
+                    worst[knob] = worst[knob].max(percent);
+                    texel_total[knob] += comparison.texel_mismatch_percent();
+                    let ok = percent <= SURFACE_MISMATCH_MAX_PERCENT
+                        && comparison.holes == 0
+                        && comparison.missed_sectors.is_empty();
+                    if !ok {
+                        let png = screenshot_dir().join(format!(
+                            "oracle-diff-{}-{index}-{}-{}.png",
+                            map.name,
+                            resolution.label(),
+                            perspective.label()
+                        ));
+                        portalcast_oracle::write_diff_png(&canvas.surfaces, &oracle, &png)
+                            .expect("writing the diff");
+                        panic!("{} pose {index} {resolution:?} {perspective:?}: {comparison:?} ({percent:.3} % surfaces differ; diff in {})", map.name, png.display());
+                    }
                 }
             }
         }
     }
-    println!(
-        "oracle: {frames} frames, worst surface mismatch {worst:.3} %, mean texel mismatch {:.2} %",
-        texel_total / frames as f64
-    );
+    for (knob, perspective) in Perspective::ALL.into_iter().enumerate() {
+        println!(
+            "oracle, perspective {}: {frames} frames, worst surface mismatch {:.3} %, mean texel mismatch {:.2} %",
+            perspective.label(),
+            worst[knob],
+            texel_total[knob] / frames as f64
+        );
+    }
 }

@@ -32,6 +32,74 @@ pub struct Settings {
     pub resolution: Resolution,
     /// Lighting rule.
     pub lighting: Lighting,
+    /// How walls find their depth and texture column.
+    pub perspective: Perspective,
+}
+
+impl Settings {
+    /// The shipped defaults: 120×80, sector + depth lighting, exact perspective.
+    pub const DEFAULT: Settings = Settings {
+        resolution: Resolution::R120x80,
+        lighting: Lighting::SectorDepth,
+        perspective: Perspective::Exact,
+    };
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings::DEFAULT
+    }
+}
+
+/// The wall perspective knob: how often a wall's depth and texture column come from the exact
+/// reciprocal. The thesis computed them exactly every 16 columns and interpolated linearly
+/// between; that is the cheap end here. Rows (the wall's top and bottom on screen) stay exact at
+/// every setting, so no setting opens a hole or moves an edge; only texture columns, mip levels,
+/// light and the vertical texture step drift between the exact columns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Perspective {
+    /// Exact at every column (one reciprocal per column).
+    Exact,
+    /// Exact every 8 columns, linear between.
+    Every8,
+    /// Exact every 16 columns, linear between (the thesis' choice).
+    Every16,
+}
+
+impl Perspective {
+    /// Every setting, exact first.
+    pub const ALL: [Perspective; 3] = [
+        Perspective::Exact,
+        Perspective::Every8,
+        Perspective::Every16,
+    ];
+
+    /// Columns between exact evaluations (1 for exact).
+    pub const fn interval(self) -> i32 {
+        match self {
+            Perspective::Exact => 1,
+            Perspective::Every8 => 8,
+            Perspective::Every16 => 16,
+        }
+    }
+
+    /// The label the ROM prints and the benchmarks read.
+    pub const fn label(self) -> &'static str {
+        match self {
+            Perspective::Exact => "exact",
+            Perspective::Every8 => "every8",
+            Perspective::Every16 => "every16",
+        }
+    }
+
+    /// The setting after this one (the menu cycles through them).
+    pub const fn next(self) -> Perspective {
+        match self {
+            Perspective::Exact => Perspective::Every8,
+            Perspective::Every8 => Perspective::Every16,
+            Perspective::Every16 => Perspective::Exact,
+        }
+    }
 }
 
 /// Everything per frame that follows from the camera and the settings.
@@ -47,6 +115,8 @@ pub struct View {
     pub sector: u16,
     /// Lighting rule.
     pub lighting: Lighting,
+    /// Wall perspective rule.
+    pub perspective: Perspective,
 }
 
 impl View {
@@ -62,6 +132,7 @@ impl View {
             viewport,
             sector: camera.sector,
             lighting: settings.lighting,
+            perspective: settings.perspective,
         }
     }
 }

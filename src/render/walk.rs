@@ -10,7 +10,7 @@ use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
 use super::view::View;
-use super::walls::{owned_columns, WallColumn, WallProjector};
+use super::walls::{owned_columns, WallColumn, WallLerp, WallProjector};
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, WorldPoint};
 use crate::raster::column::ColumnTexture;
@@ -164,9 +164,43 @@ impl Renderer {
             let projector = WallProjector::new(&scene.view.viewport, a, b);
             let length = wall_length(scene.map, wall);
             let mut stepper = projector.stepper(start);
-            for column in start..stop {
-                let at = stepper.next_column();
-                self.wall_column(scene, canvas, sector, wall, wall_index, at, length, column);
+            let interval = scene.view.perspective.interval();
+            if interval == 1 {
+                for column in start..stop {
+                    let at = stepper.next_column();
+                    self.wall_column(scene, canvas, sector, wall, wall_index, at, length, column);
+                }
+                continue;
+            }
+            // Exact at `column` and at `last`, interpolated between; the wall's last column is
+            // always exact.
+            let mut column = start;
+            while column < stop {
+                let last = (column + interval).min(stop - 1);
+                let left = stepper.ahead(0);
+                if last == column {
+                    self.wall_column(
+                        scene, canvas, sector, wall, wall_index, left, length, column,
+                    );
+                    break;
+                }
+                let span = last - column;
+                let lerp = WallLerp::new(left, stepper.ahead(span), span);
+                for offset in 0..span {
+                    let at = lerp.at(offset, stepper.inverse_depth_ahead(offset));
+                    self.wall_column(
+                        scene,
+                        canvas,
+                        sector,
+                        wall,
+                        wall_index,
+                        at,
+                        length,
+                        column + offset,
+                    );
+                }
+                stepper.advance(span);
+                column = last;
             }
         }
         let planes_started = (self.clock)();

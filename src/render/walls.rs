@@ -15,7 +15,7 @@
 //! (`NEAR_DEPTH`), so an eye closer than that to a wall sees it as at the near plane.
 
 use super::ratio::{ratio, ratio_shifted};
-use crate::math::{EyePoint, Fx24_8, Fx2_30, Side, Viewport, NEAR_DEPTH};
+use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, Side, Viewport, NEAR_DEPTH};
 
 /// The columns `[start, end)` where a monotone predicate over `0..width` holds.
 fn columns_where(width: i32, holds: impl Fn(i32) -> bool) -> (i32, i32) {
@@ -148,17 +148,85 @@ impl WallProjector {
 impl WallStepper {
     /// The current column's depth and position along the wall; then steps to the next column.
     pub fn next_column(&mut self) -> WallColumn {
-        // The near plane caps 1/z' at 1; the far limit keeps it positive whatever the rounding.
-        let inverse_depth = self.inverse_depth.clamp(SMALLEST_INVERSE_DEPTH, 1 << 30);
-        let inverse_depth = Fx2_30::from_bits(inverse_depth);
+        let column = self.ahead(0);
+        self.advance(1);
+        column
+    }
+
+    /// The depth and position along the wall `columns` columns after the current one, without
+    /// stepping.
+    pub fn ahead(&self, columns: i32) -> WallColumn {
+        let inverse_depth = self.inverse_depth_ahead(columns);
         let depth = inverse_depth.recip_fx24_8();
-        let along = (i64::from(self.along_over_depth) * i64::from(depth.to_bits())) >> 8;
-        self.inverse_depth = self.inverse_depth.wrapping_add(self.inverse_depth_step);
-        self.along_over_depth = self
+        let along_over_depth = self
             .along_over_depth
-            .wrapping_add(self.along_over_depth_step);
+            .wrapping_add(self.along_over_depth_step.wrapping_mul(columns));
+        let along = (i64::from(along_over_depth) * i64::from(depth.to_bits())) >> 8;
         WallColumn {
             depth,
+            inverse_depth,
+            along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
+        }
+    }
+
+    /// `1/z'` alone, `columns` after the current column: exact (it is affine in the column).
+    pub fn inverse_depth_ahead(&self, columns: i32) -> Fx2_30 {
+        let inverse_depth = self
+            .inverse_depth
+            .wrapping_add(self.inverse_depth_step.wrapping_mul(columns));
+        // The near plane caps 1/z' at 1; the far limit keeps it positive whatever the rounding.
+        Fx2_30::from_bits(inverse_depth.clamp(SMALLEST_INVERSE_DEPTH, 1 << 30))
+    }
+
+    /// Steps `columns` columns on.
+    pub fn advance(&mut self, columns: i32) {
+        self.inverse_depth = self
+            .inverse_depth
+            .wrapping_add(self.inverse_depth_step.wrapping_mul(columns));
+        self.along_over_depth = self
+            .along_over_depth
+            .wrapping_add(self.along_over_depth_step.wrapping_mul(columns));
+    }
+}
+
+/// Fractional bits of the interpolation steps of [`WallLerp`].
+const LERP_FRACTION_BITS: u32 = 16;
+
+/// The cheap perspective knob's middle columns: depth and position along the wall interpolated
+/// linearly between two exact columns `span` apart (the thesis' "exact every 16 columns").
+/// `1/z'` stays exact, so rows do not move.
+#[derive(Clone, Copy, Debug)]
+pub struct WallLerp {
+    depth: i64,
+    depth_step: i64,
+    along: i64,
+    along_step: i64,
+}
+
+impl WallLerp {
+    /// From the exact column `left` to the exact column `right`, `span ≥ 1` columns later.
+    pub fn new(left: WallColumn, right: WallColumn, span: i32) -> WallLerp {
+        // × 1/span from the reciprocal table (exact for the power-of-two spans, within 2^-31
+        // for the last, shorter one): no divide.
+        let inverse_span = i64::from(recip_small(span as u32).to_bits());
+        let step = |from: i32, to: i32| {
+            ((i64::from(to) - i64::from(from)) * inverse_span) >> (30 - LERP_FRACTION_BITS)
+        };
+        WallLerp {
+            depth: i64::from(left.depth.to_bits()) << LERP_FRACTION_BITS,
+            depth_step: step(left.depth.to_bits(), right.depth.to_bits()),
+            along: i64::from(left.along.to_bits()) << LERP_FRACTION_BITS,
+            along_step: step(left.along.to_bits(), right.along.to_bits()),
+        }
+    }
+
+    /// The column `offset` after the left one, with its exact `inverse_depth`.
+    pub fn at(&self, offset: i32, inverse_depth: Fx2_30) -> WallColumn {
+        let offset = i64::from(offset);
+        let depth = (self.depth + self.depth_step * offset) >> LERP_FRACTION_BITS;
+        let along = (self.along + self.along_step * offset) >> LERP_FRACTION_BITS;
+        WallColumn {
+            depth: Fx24_8::from_bits(depth.max(i64::from(NEAR_DEPTH.to_bits())) as i32),
             inverse_depth,
             along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
         }

@@ -265,10 +265,11 @@ fn bench() -> TaskResult<()> {
         };
         let number = |key: &str| field(key).parse::<u64>().unwrap_or(0);
         let setting = format!(
-            "{} | {} | {}",
+            "{} | {} | {} | {}",
             field("map"),
             field("res"),
-            field("lighting")
+            field("lighting"),
+            field("perspective")
         );
         let sample = [
             number("cycles"),
@@ -280,8 +281,8 @@ fn bench() -> TaskResult<()> {
             None => rows.push((setting, vec![sample])),
         }
     }
-    println!("| map | resolution | lighting | frames | mean | p50 | p95 | max | fps (mean) | walls (mean) | planes (mean) |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| map | resolution | lighting | perspective | frames | mean | p50 | p95 | max | fps (mean) | walls (mean) | planes (mean) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (setting, samples) in &rows {
         let mut cycles: Vec<u64> = samples.iter().map(|sample| sample[0]).collect();
         cycles.sort_unstable();
