@@ -187,7 +187,7 @@ impl Renderer {
                 let span = last - column;
                 let lerp = WallLerp::new(left, stepper.ahead(span), span);
                 for offset in 0..span {
-                    let at = lerp.at(offset, stepper.inverse_depth_ahead(offset));
+                    let at = lerp.at(offset, stepper.near_inverse_depth_ahead(offset));
                     self.wall_column(
                         scene,
                         canvas,
@@ -274,9 +274,12 @@ impl Renderer {
         let view = scene.view;
         let row_of = |height: i32| {
             let above_eye = Fx24_8::from_int(height) - view.eye_z;
-            view.viewport
-                .first_row_at_or_after(view.viewport.projected_y(above_eye, at.inverse_depth))
-                as i16
+            let y = if at.near_inverse_depth <= 1 << 30 {
+                view.viewport.projected_y(above_eye, at.inverse_depth)
+            } else {
+                projected_y_closer_than_near(&view.viewport, above_eye, at.near_inverse_depth)
+            };
+            view.viewport.first_row_at_or_after(y) as i16
         };
         let clip = self.clip[x];
         let ceiling_row = row_of(sector.ceil_z).max(clip.top);
@@ -452,6 +455,24 @@ struct WallStrip<'s, 'a> {
 
 /// Texels for a surface whose texture is missing: palette index 0, as the oracle draws it.
 static BLANK_COLUMN: [u8; 8] = [0; 8];
+
+/// Screen `y` of a height `height_above_eye` on a wall closer than the near plane, where `1/z'`
+/// (`near_inverse_depth`, units of 2^-30) exceeds 2.30's range: the same `cy − d_y·h/z'`, with
+/// `1/z'` cut to 2^-22 units so the product stays in 64 bits, saturated to ±2^22 rows (any
+/// such row is off screen and clamps to an edge).
+fn projected_y_closer_than_near(
+    viewport: &crate::math::Viewport,
+    height_above_eye: Fx24_8,
+    near_inverse_depth: i64,
+) -> Fx24_8 {
+    // 24.8 × int × 2^-22 units → 24.8 after >> 22.
+    let offset = (i64::from(height_above_eye.to_bits())
+        * i64::from(viewport.focal_y)
+        * (near_inverse_depth >> 8))
+        >> 22;
+    let y = (i64::from(viewport.horizon_y) << 8) - offset;
+    Fx24_8::from_bits(y.clamp(-(1 << 30), 1 << 30) as i32)
+}
 
 fn vertex(map: &MapTables, index: u16) -> WorldPoint {
     let v = map.vertices[usize::from(index)];

@@ -66,6 +66,11 @@ pub struct WallColumn {
     pub depth: Fx24_8,
     /// `1 / depth`.
     pub inverse_depth: Fx2_30,
+    /// `1/z'` in units of 2^-30 before the near-plane clamp: equal to `inverse_depth` unless the
+    /// wall is closer than `NEAR_DEPTH`, where the wall's rows still need the true depth (an eye
+    /// 1/256 unit from a wall sees its edges far off screen, not where a wall 1 unit away would
+    /// put them).
+    pub near_inverse_depth: i64,
     /// Where the ray meets the wall, from its start (0) to its end (1), in 2.30.
     pub along: Fx2_30,
 }
@@ -101,24 +106,31 @@ impl WallProjector {
         };
         // 28 bits of fraction keep the shifted numerator below 2^62 at the declared limits.
         let along = (ratio(numerator << 28, denominator) << 2).clamp(0, 1 << 30);
+        let near_inverse_depth = ratio_shifted(denominator, 38, self.twice_focal * self.cross);
+        let inverse_depth = depth.recip_fx2_30();
         WallColumn {
             depth,
-            inverse_depth: depth.recip_fx2_30(),
+            inverse_depth,
+            near_inverse_depth: near_inverse_depth.max(i64::from(inverse_depth.to_bits())),
             along: Fx2_30::from_bits(along as i32),
         }
     }
 }
 
 /// Steps a wall's `1/z'` and `t/z'` across its columns: both are affine in the column, so after
-/// an exact start (through [`ratio`]) each column costs two 32-bit adds, one reciprocal and one
+/// an exact start (through [`ratio`]) each column costs two 64-bit adds, one reciprocal and one
 /// multiply. The steps are rounded once, so after `n` columns `1/z'` is within `n/2 + 1` units
 /// of 2^-30 of the exact value (at most 1.2e-7 across 240 columns).
+///
+/// The accumulators are 64-bit because `1/z'` leaves 2.30's range (above 2) wherever the wall
+/// is closer than half a unit: an eye 1/256 unit from a wall sees `1/z'` up to about 2^9. Only
+/// the values read are clamped to the near plane; the accumulators stay exact.
 #[derive(Clone, Copy, Debug)]
 pub struct WallStepper {
-    inverse_depth: i32,
-    inverse_depth_step: i32,
-    along_over_depth: i32,
-    along_over_depth_step: i32,
+    inverse_depth: i64,
+    inverse_depth_step: i64,
+    along_over_depth: i64,
+    along_over_depth_step: i64,
 }
 
 /// `1/z'` of the far limit, in 2.30: the stepper never goes below it.
@@ -133,9 +145,7 @@ impl WallProjector {
         // With D in 2^-8 and 2dK in 2^-16 units, 1/z' = D/(2dK) is in 2^-8 units and
         // t/z' = N/(2dK) likewise: × 2^38 / (2dK) gives 2.30.
         let scale = self.twice_focal * self.cross;
-        let to_fx2_30 = |value: i64| {
-            ratio_shifted(value, 38, scale).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
-        };
+        let to_fx2_30 = |value: i64| ratio_shifted(value, 38, scale);
         WallStepper {
             inverse_depth: to_fx2_30(denominator),
             inverse_depth_step: to_fx2_30(-2 * self.delta_z),
@@ -148,9 +158,23 @@ impl WallProjector {
 impl WallStepper {
     /// The current column's depth and position along the wall; then steps to the next column.
     pub fn next_column(&mut self) -> WallColumn {
-        let column = self.ahead(0);
-        self.advance(1);
-        column
+        // `ahead(0)` without its multiplies: this is the exact setting's per-column path.
+        let near_inverse_depth = self.inverse_depth.max(i64::from(SMALLEST_INVERSE_DEPTH));
+        let inverse_depth = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
+        let depth = inverse_depth.recip_fx24_8();
+        let along = if near_inverse_depth <= 1 << 30 {
+            (self.along_over_depth * i64::from(depth.to_bits())) >> 8
+        } else {
+            ratio_shifted(self.along_over_depth, 30, near_inverse_depth)
+        };
+        self.inverse_depth += self.inverse_depth_step;
+        self.along_over_depth += self.along_over_depth_step;
+        WallColumn {
+            depth,
+            inverse_depth,
+            near_inverse_depth,
+            along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
+        }
     }
 
     /// The depth and position along the wall `columns` columns after the current one, without
@@ -158,34 +182,42 @@ impl WallStepper {
     pub fn ahead(&self, columns: i32) -> WallColumn {
         let inverse_depth = self.inverse_depth_ahead(columns);
         let depth = inverse_depth.recip_fx24_8();
-        let along_over_depth = self
-            .along_over_depth
-            .wrapping_add(self.along_over_depth_step.wrapping_mul(columns));
-        let along = (i64::from(along_over_depth) * i64::from(depth.to_bits())) >> 8;
+        let along_over_depth =
+            self.along_over_depth + self.along_over_depth_step * i64::from(columns);
+        let exact_inverse_depth = self.near_inverse_depth_ahead(columns);
+        let along = if exact_inverse_depth <= 1 << 30 {
+            (along_over_depth * i64::from(depth.to_bits())) >> 8
+        } else {
+            // Closer than the near plane, where the depth read is clamped: t = (t/z')/(1/z')
+            // from the exact accumulators instead.
+            ratio_shifted(along_over_depth, 30, exact_inverse_depth)
+        };
         WallColumn {
             depth,
             inverse_depth,
+            near_inverse_depth: exact_inverse_depth,
             along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
         }
     }
 
-    /// `1/z'` alone, `columns` after the current column: exact (it is affine in the column).
+    /// `1/z'` in units of 2^-30, `columns` after the current column, clamped only at the far
+    /// limit (see [`WallColumn::near_inverse_depth`]).
+    pub fn near_inverse_depth_ahead(&self, columns: i32) -> i64 {
+        (self.inverse_depth + self.inverse_depth_step * i64::from(columns))
+            .max(i64::from(SMALLEST_INVERSE_DEPTH))
+    }
+
+    /// `1/z'` alone, `columns` after the current column: exact (it is affine in the column),
+    /// clamped to the near plane and the far limit.
     pub fn inverse_depth_ahead(&self, columns: i32) -> Fx2_30 {
-        let inverse_depth = self
-            .inverse_depth
-            .wrapping_add(self.inverse_depth_step.wrapping_mul(columns));
-        // The near plane caps 1/z' at 1; the far limit keeps it positive whatever the rounding.
-        Fx2_30::from_bits(inverse_depth.clamp(SMALLEST_INVERSE_DEPTH, 1 << 30))
+        let inverse_depth = self.inverse_depth + self.inverse_depth_step * i64::from(columns);
+        Fx2_30::from_bits(inverse_depth.clamp(i64::from(SMALLEST_INVERSE_DEPTH), 1 << 30) as i32)
     }
 
     /// Steps `columns` columns on.
     pub fn advance(&mut self, columns: i32) {
-        self.inverse_depth = self
-            .inverse_depth
-            .wrapping_add(self.inverse_depth_step.wrapping_mul(columns));
-        self.along_over_depth = self
-            .along_over_depth
-            .wrapping_add(self.along_over_depth_step.wrapping_mul(columns));
+        self.inverse_depth += self.inverse_depth_step * i64::from(columns);
+        self.along_over_depth += self.along_over_depth_step * i64::from(columns);
     }
 }
 
@@ -220,14 +252,17 @@ impl WallLerp {
         }
     }
 
-    /// The column `offset` after the left one, with its exact `inverse_depth`.
-    pub fn at(&self, offset: i32, inverse_depth: Fx2_30) -> WallColumn {
+    /// The column `offset` after the left one, with its exact `1/z'` (units of 2^-30, before
+    /// the near-plane clamp).
+    pub fn at(&self, offset: i32, near_inverse_depth: i64) -> WallColumn {
+        let inverse_depth = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
         let offset = i64::from(offset);
         let depth = (self.depth + self.depth_step * offset) >> LERP_FRACTION_BITS;
         let along = (self.along + self.along_step * offset) >> LERP_FRACTION_BITS;
         WallColumn {
             depth: Fx24_8::from_bits(depth.max(i64::from(NEAR_DEPTH.to_bits())) as i32),
             inverse_depth,
+            near_inverse_depth,
             along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
         }
     }

@@ -53,7 +53,7 @@ pub use geometry::find_sector;
 pub use portalcast::render::light::Lighting;
 pub use portalcast::render::surface::Surface;
 pub use poses::sample_poses;
-pub use render::{mip_level, render};
+pub use render::{mip_level, render, TIE_NUDGE};
 
 use portalcast::math::Viewport;
 use portalcast_format::{Colormap, Sky, Texture};

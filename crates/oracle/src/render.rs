@@ -41,6 +41,14 @@ enum Hit {
     None,
 }
 
+/// Where a pixel centre lies exactly on an edge (an axis-aligned view of integer geometry puts
+/// many there), the engine's half-open rules give the pixel to the surface below the edge
+/// (rows: a span `[y0, y1)` owns rows `ceil(y0 − ½)..`) and right of it (columns: a ray through
+/// a vertex belongs to the wall that starts there). The oracle casts through a point this far
+/// (in pixels) right of and below each centre, so exact ties break the same way, while any
+/// pixel whose centre is not on an edge is unaffected.
+pub const TIE_NUDGE: f64 = 1.0 / 1048576.0;
+
 /// Renders `map` from `camera` with one exact ray per pixel.
 ///
 /// The march and the surfaces are those of the crate documentation; the texels follow
@@ -65,6 +73,8 @@ enum Hit {
 ///
 /// Panics if a texture slot other than [`NO_TEXTURE`] is out of range of `assets.textures`
 /// or lacks the chain (columns or rows) it is drawn with.
+///
+/// Rays go through the pixel centres moved by [`TIE_NUDGE`].
 pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) -> Frame {
     let (width, height) = (view.width, view.height);
     let mut frame = Frame {
@@ -86,12 +96,12 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
     let max_steps = map.sectors.len() + 8;
     let mut path = Vec::with_capacity(max_steps);
     for column in 0..width {
-        let m = (column as f64 + 0.5 - width as f64 / 2.0) / view.focal_x;
+        let m = (column as f64 + 0.5 + TIE_NUDGE - width as f64 / 2.0) / view.focal_x;
         let d = Vec2::new(cos - m * sin, sin + m * cos);
         trace_column(map, start, eye, d, max_steps, &mut path);
         let sky_column = sky_column(assets, d);
         for row in 0..height {
-            let k = (row as f64 + 0.5 - view.horizon_y) / view.focal_y;
+            let k = (row as f64 + 0.5 + TIE_NUDGE - view.horizon_y) / view.focal_y;
             let hit = shade_ray(map, &path, camera.eye_z, k);
             let pixel = row * width + column;
             let (surface, index, depth) = match hit {
