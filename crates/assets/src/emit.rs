@@ -118,8 +118,15 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
 
     let _ = writeln!(
         s,
-        "static TEXEL_BLOB: {FORMAT}::Align4<[u8; {}]> = {FORMAT}::Align4(*include_bytes!({}));",
+        "/// Bytes of texels of every texture, both layouts, all mip levels.\n\
+         pub const TEXEL_BLOB_LEN: usize = {};\n\
+         /// Number of textures in [`TEXTURES`].\n\
+         pub const TEXTURE_COUNT: usize = {};\n\
+         /// The texels every entry of [`TEXTURES`] is a slice of (the ROM can copy it to faster\n\
+         /// memory and re-point the textures).\n\
+         pub static TEXEL_BLOB: {FORMAT}::Align4<[u8; TEXEL_BLOB_LEN]> = {FORMAT}::Align4(*include_bytes!({}));",
         blobs.texels.len(),
+        compiled.textures.len(),
         blob(TEXEL_BLOB)
     );
     let _ = writeln!(

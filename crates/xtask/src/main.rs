@@ -265,11 +265,12 @@ fn bench() -> TaskResult<()> {
         };
         let number = |key: &str| field(key).parse::<u64>().unwrap_or(0);
         let setting = format!(
-            "{} | {} | {} | {}",
+            "{} | {} | {} | {} | {}",
             field("map"),
             field("res"),
             field("lighting"),
-            field("perspective")
+            field("perspective"),
+            field("textures")
         );
         let sample = [
             number("cycles"),
@@ -281,8 +282,8 @@ fn bench() -> TaskResult<()> {
             None => rows.push((setting, vec![sample])),
         }
     }
-    println!("| map | resolution | lighting | perspective | frames | mean | p50 | p95 | max | fps (mean) | walls (mean) | planes (mean) |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| map | resolution | lighting | perspective | textures | frames | mean | p50 | p95 | max | fps (mean) | walls (mean) | planes (mean) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (setting, samples) in &rows {
         let mut cycles: Vec<u64> = samples.iter().map(|sample| sample[0]).collect();
         cycles.sort_unstable();
