@@ -424,9 +424,9 @@ mod tests {
     fn heading_recovers_table_directions() {
         for bits in (0..=u16::MAX).step_by(97) {
             let (sin, cos) = Angle::from_bits(bits).sin_cos();
-            let found = heading(cos.to_bits() >> 4, sin.to_bits() >> 4).to_bits();
+            let found = heading(cos.to_bits(), sin.to_bits()).to_bits();
             let error = found.wrapping_sub(bits) as i16;
-            assert!(error.abs() <= 2, "{bits}: {found}");
+            assert!(error.abs() <= 1, "{bits}: {found}");
         }
         assert_eq!(heading(256, 0), Angle::ZERO);
         assert_eq!(heading(0, 256), Angle::QUARTER);

@@ -12,6 +12,8 @@ fn main() {
 
 #[cfg(target_os = "none")]
 mod rom {
+    use portalcast::bench::{self, SettingsLabel, StageCycles};
+    use portalcast::flight::Flight;
     use portalcast::frame::Resolution;
     use portalcast::hw::kernels::{VramCanvas, VramPage};
     use portalcast::hw::{self, log, memory, meter, video::Display};
@@ -19,7 +21,9 @@ mod rom {
     use portalcast::render::light::Lighting;
     use portalcast::render::view::{Settings, View};
     use portalcast::render::walk::Renderer;
+    use portalcast::render::RenderAssets;
     use portalcast::{assets, kernel_check, testpic};
+    use portalcast_format::MapTables;
 
     const KEY_A: u16 = 1 << 0;
     const KEY_B: u16 = 1 << 1;
@@ -51,7 +55,7 @@ mod rom {
         }
         if held_at_boot & (KEY_L | KEY_R) == KEY_R {
             display.set_palette(&assets::PALETTE);
-            bench_scene(&mut display);
+            bench_scene(&mut display, held_at_boot & KEY_SELECT != 0);
         }
         if held_at_boot & KEY_B != 0 {
             display.set_palette(&testpic::PALETTE);
@@ -120,52 +124,61 @@ mod rom {
         }
     }
 
-    /// Frames of the camera path per benchmark setting: a full turn in 8-step increments.
-    const BENCH_FRAMES: u32 = 32;
-
-    /// R held at boot: every shipped map × resolution × lighting, `BENCH_FRAMES` frames each along
-    /// the demo path (a full turn), one line per frame, then `bench done`. `cargo xtask-bench`
-    /// (the xtask's `bench` command) aggregates the lines.
-    fn bench_scene(display: &mut Display) -> ! {
+    /// R held at boot: the benchmark. Every run of [`bench::all_runs`] (with Select also held,
+    /// only the regression guard's, [`bench::guard_runs`]) flies
+    /// [`bench::FRAMES_PER_SETTING`] frames of the map's [`Flight`], one line per frame, then
+    /// `bench done`. `cargo bench-report` and the guard test read the lines.
+    fn bench_scene(display: &mut Display, guard_only: bool) -> ! {
         let render_assets = demo::render_assets();
         let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
-        for map in assets::MAPS {
-            for resolution in Resolution::ALL {
-                for lighting in [Lighting::SectorDepth, Lighting::Off] {
-                    let settings = Settings {
-                        resolution,
-                        lighting,
-                    };
-                    for frame in 0..BENCH_FRAMES {
-                        let camera = demo::camera_at(map, frame * 8);
-                        let view = View::new(&camera, &settings);
-                        let page = VramPage::back_of(display.shown_page());
-                        let started = meter::now();
-                        let stats = renderer.render(
-                            map,
-                            &render_assets,
-                            &view,
-                            &mut VramCanvas::new(page, resolution),
-                        );
-                        let cycles = meter::cycles_since(started);
-                        display.flip_at_vblank(resolution);
-                        log::info(format_args!(
-                            "bench map={} res={} lighting={} frame={frame} cycles={cycles} wall_cycles={} plane_cycles={} span_px={} column_px={}",
-                            map.name,
-                            resolution.label(),
-                            demo::lighting_label(lighting),
-                            stats.wall_ticks,
-                            stats.plane_ticks,
-                            stats.span_pixels,
-                            stats.column_pixels,
-                        ));
-                    }
-                }
+        for (map, settings) in bench::guard_runs() {
+            bench_run(display, renderer, &render_assets, map, &settings);
+        }
+        log::info(format_args!("{}", bench::GUARD_DONE));
+        if !guard_only {
+            for (map, settings) in bench::report_runs() {
+                bench_run(display, renderer, &render_assets, map, &settings);
             }
         }
-        log::info(format_args!("bench done"));
+        log::info(format_args!("{}", bench::BENCH_DONE));
         loop {
             display.wait_vblank();
+        }
+    }
+
+    /// One setting of the benchmark. A first, unmeasured frame fills the renderer's per-resolution
+    /// tables (the column angles), so the figures are the steady per-frame cost.
+    fn bench_run(
+        display: &mut Display,
+        renderer: &mut Renderer,
+        render_assets: &RenderAssets,
+        map: &MapTables,
+        settings: &Settings,
+    ) {
+        let frames = Flight::new(map)
+            .take(1)
+            .chain(Flight::new(map).take(bench::FRAMES_PER_SETTING as usize));
+        for (index, camera) in frames.enumerate() {
+            let view = View::new(&camera, settings);
+            let page = VramPage::back_of(display.shown_page());
+            let started = meter::now();
+            let stats = renderer.render(
+                map,
+                render_assets,
+                &view,
+                &mut VramCanvas::new(page, settings.resolution),
+            );
+            let cycles = meter::cycles_since(started);
+            display.flip_at_vblank(settings.resolution);
+            if index > 0 {
+                log::info(format_args!(
+                    "bench map={} {} frame={} cycles={cycles}{}",
+                    map.name,
+                    SettingsLabel(settings),
+                    index - 1,
+                    StageCycles(&stats),
+                ));
+            }
         }
     }
 

@@ -12,6 +12,7 @@ use portalcast::render::view::{Camera, Settings, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_format::{MapTables, Texture};
+use portalcast_oracle::RecordingCanvas;
 
 fn start_camera(map: &MapTables) -> Camera {
     let start = map.player_start;

@@ -5,13 +5,14 @@
 mod common;
 
 use common::*;
+use portalcast::bench::default_settings;
 use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
-use portalcast::render::light::Lighting;
-use portalcast::render::view::{Camera, Settings, View};
+use portalcast::render::view::Camera;
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_format::Texture;
+use portalcast_oracle::{compare_with_engine, EngineComparison};
 
 const POSES_PER_MAP: usize = 12;
 const SURFACE_MISMATCH_MAX_PERCENT: f64 = 0.5;
@@ -24,11 +25,6 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
     let assets = RenderAssets {
         textures: &textures,
         sky,
-        colormap: compiled.colormap(),
-    };
-    let oracle_assets = portalcast_oracle::Assets {
-        textures: &textures,
-        sky: &sky,
         colormap: compiled.colormap(),
     };
     let mut renderer = Renderer::new();
@@ -56,28 +52,13 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
                 look_lines: 0,
             };
             for resolution in Resolution::ALL {
-                let view = View::new(
-                    &camera,
-                    &Settings {
-                        resolution,
-                        lighting: Lighting::SectorDepth,
-                    },
-                );
-                let mut canvas = RecordingCanvas::new(resolution);
-                renderer.render(&map, &assets, &view, &mut canvas);
-                let oracle_view =
-                    portalcast_oracle::View::from_viewport(&view.viewport, Lighting::SectorDepth);
-                let oracle_camera = portalcast_oracle::Camera::from_fixed(
-                    camera.position.x.to_bits(),
-                    camera.position.y.to_bits(),
-                    camera.eye_z.to_bits(),
-                    camera.angle.to_bits(),
-                    Some(sector),
-                );
-                let oracle =
-                    portalcast_oracle::render(&map, &oracle_assets, &oracle_camera, &oracle_view);
-                let comparison =
-                    portalcast_oracle::compare(&canvas.surfaces, &canvas.indices, &oracle);
+                let settings = default_settings(resolution);
+                let EngineComparison {
+                    engine,
+                    oracle,
+                    comparison,
+                    ..
+                } = compare_with_engine(&mut renderer, &map, &assets, &camera, &settings);
                 let percent = comparison.surface_mismatch_percent();
                 worst = worst.max(percent);
                 texel_total += comparison.texel_mismatch_percent();
@@ -91,7 +72,7 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
                         map.name,
                         resolution.label()
                     ));
-                    portalcast_oracle::write_diff_png(&canvas.surfaces, &oracle, &png)
+                    portalcast_oracle::write_diff_png(&engine.surfaces, &oracle, &png)
                         .expect("writing the diff");
                     panic!("{} pose {index} {resolution:?}: {comparison:?} ({percent:.3} % surfaces differ; diff in {})", map.name, png.display());
                 }

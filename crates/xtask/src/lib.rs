@@ -4,6 +4,9 @@
 //! This crate must build before any setup has run, so it depends on nothing that needs a system
 //! library (the mGBA harness is started as a separate process once setup has installed libmgba).
 
+pub mod baseline;
+pub mod bench_log;
+
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -73,8 +76,13 @@ pub fn rom_target_dir() -> PathBuf {
 
 /// The linked ROM ELF.
 pub fn elf_path() -> PathBuf {
+    elf_path_for(rom_target().unwrap_or(ROM_TARGET))
+}
+
+/// The linked ROM ELF for `target`.
+pub fn elf_path_for(target: &str) -> PathBuf {
     rom_target_dir()
-        .join(rom_target().unwrap_or(ROM_TARGET))
+        .join(target)
         .join("release")
         .join("portalcast")
 }
@@ -192,23 +200,23 @@ pub fn ensure_setup() -> TaskResult<()> {
 /// Builds the ROM ELF (release, Thumb, `core` from source) and converts it into
 /// `target/portalcast.gba` with agb-gbafix. Returns the `.gba` path.
 pub fn build_rom() -> TaskResult<PathBuf> {
+    let gba = gba_path();
+    build_rom_for(rom_target()?, &gba)?;
+    Ok(gba)
+}
+
+/// Builds the ROM ELF for `target` ([`ROM_TARGET`] or [`ROM_TARGET_ARM`]) and converts it into
+/// `gba`, whatever `PORTALCAST_ROM_TARGET` says (the benchmark report builds both).
+pub fn build_rom_for(target: &str, gba: &Path) -> TaskResult<()> {
     ensure_rust_src()?;
     run(
         cargo()
-            .args([
-                "build",
-                "--release",
-                "--target",
-                rom_target()?,
-                "-Zbuild-std=core",
-            ])
+            .args(["build", "--release", "--target", target, "-Zbuild-std=core"])
             .args(["-p", "portalcast", "--bin", "portalcast", "--target-dir"])
             .arg(rom_target_dir()),
         "building the ROM",
     )?;
-    let gba = gba_path();
-    elf_to_gba(&elf_path(), &gba)?;
-    Ok(gba)
+    elf_to_gba(&elf_path_for(target), gba)
 }
 
 /// Converts a linked ELF into a `.gba` with a valid header (logo, complement check, title, game
