@@ -102,6 +102,37 @@ impl fmt::Display for SettingsLabel<'_> {
     }
 }
 
+/// Longest line mGBA's debug log keeps whole: the ROM's logger flushes every 256 bytes.
+pub const MAX_LINE_BYTES: usize = 255;
+
+/// One frame's bench line: `bench map=NAME <settings> frame=N cycles=C <stages>`.
+pub struct BenchLine<'l> {
+    /// The map's name.
+    pub map: &'l str,
+    /// The settings the frame was drawn at.
+    pub settings: &'l Settings,
+    /// Position along the fly-through, from 0.
+    pub frame: u32,
+    /// Cycles of the whole render.
+    pub cycles: u32,
+    /// The renderer's counters for the frame (its stage timings).
+    pub stats: &'l FrameStats,
+}
+
+impl fmt::Display for BenchLine<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "bench map={} {} frame={} cycles={}{}",
+            self.map,
+            SettingsLabel(self.settings),
+            self.frame,
+            self.cycles,
+            StageCycles(self.stats)
+        )
+    }
+}
+
 /// A frame's stage timings as the `name_cycles=N` words of a bench line, each with a leading
 /// space. A new stage is one `write!` line.
 pub struct StageCycles<'s>(pub &'s FrameStats);
@@ -129,6 +160,34 @@ mod tests {
         assert_eq!(distinct.len(), labels.len(), "{labels:?}");
         assert_eq!(labels[0], "map=bench res=120x80 lighting=depth");
         assert_eq!(guard_runs().count(), Resolution::ALL.len());
+    }
+
+    #[test]
+    fn the_longest_bench_line_fits_in_one_mgba_log_line() {
+        let stats = FrameStats {
+            sector_visits: u32::MAX,
+            wall_columns: u32::MAX,
+            column_pixels: u32::MAX,
+            span_pixels: u32::MAX,
+            depth_cutoffs: u32::MAX,
+            wall_ticks: u32::MAX,
+            plane_ticks: u32::MAX,
+        };
+        for (map, settings) in all_runs() {
+            let line = BenchLine {
+                map: map.name,
+                settings: &settings,
+                frame: FRAMES_PER_SETTING,
+                cycles: u32::MAX,
+                stats: &stats,
+            }
+            .to_string();
+            assert!(
+                line.len() <= MAX_LINE_BYTES,
+                "{} bytes: {line} (shorten the knob or stage words)",
+                line.len()
+            );
+        }
     }
 
     #[test]

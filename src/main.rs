@@ -12,7 +12,7 @@ fn main() {
 
 #[cfg(target_os = "none")]
 mod rom {
-    use portalcast::bench::{self, SettingsLabel, StageCycles};
+    use portalcast::bench::{self, BenchLine};
     use portalcast::flight::Flight;
     use portalcast::frame::Resolution;
     use portalcast::hw::kernels::{VramCanvas, VramPage};
@@ -171,13 +171,14 @@ mod rom {
             let cycles = meter::cycles_since(started);
             display.flip_at_vblank(settings.resolution);
             if index > 0 {
-                log::info(format_args!(
-                    "bench map={} {} frame={} cycles={cycles}{}",
-                    map.name,
-                    SettingsLabel(settings),
-                    index - 1,
-                    StageCycles(&stats),
-                ));
+                let line = BenchLine {
+                    map: map.name,
+                    settings,
+                    frame: index as u32 - 1,
+                    cycles,
+                    stats: &stats,
+                };
+                log::info(format_args!("{line}"));
             }
         }
     }
