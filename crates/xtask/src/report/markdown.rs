@@ -314,8 +314,8 @@ fn headline(doc: &mut String, measurements: &Measurements) {
         let _ = write!(
             doc,
             "portalcast draws the bench map at {} without lighting at {:.1} fps (mean {} cycles): \
-             {comparison}. The thesis' figure is its own scene on hardware; this one is the bench \
-             map's fly-through in mGBA.\n\n",
+             {comparison}. The thesis measured its own scene; this is the bench map's \
+             fly-through in mGBA.\n\n",
             resolution_name(THESIS_RESOLUTION),
             fps(summary.mean),
             group_digits(summary.mean),
