@@ -8,6 +8,8 @@
 #![warn(missing_docs)]
 
 pub mod assets;
+pub mod bench;
+pub mod flight;
 pub mod frame;
 pub mod kernel_check;
 pub mod math;

@@ -12,15 +12,18 @@ fn main() {
 
 #[cfg(target_os = "none")]
 mod rom {
+    use portalcast::bench::{self, BenchLine};
+    use portalcast::flight::Flight;
     use portalcast::frame::Resolution;
     use portalcast::hw::kernels::{VramCanvas, VramPage};
     use portalcast::hw::{self, log, memory, meter, video::Display};
     use portalcast::render::demo;
     use portalcast::render::light::Lighting;
-    use portalcast::render::view::{Perspective, Settings, View};
+    use portalcast::render::view::{Settings, View};
     use portalcast::render::walk::Renderer;
     use portalcast::render::RenderAssets;
     use portalcast::{assets, kernel_check, testpic};
+    use portalcast_format::MapTables;
 
     const KEY_A: u16 = 1 << 0;
     const KEY_B: u16 = 1 << 1;
@@ -38,11 +41,10 @@ mod rom {
         hw::set_waitstates();
         meter::start();
         log::info(format_args!(
-            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} division_digest=0x{:08x}",
+            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={}",
             hw::WAITCNT_SETTING,
             memory::iwram_used(),
-            memory::stack_room(),
-            portalcast::selfcheck::division_digest()
+            memory::stack_room()
         ));
 
         let mut display = Display::start(Resolution::R120x80);
@@ -53,7 +55,7 @@ mod rom {
         }
         if held_at_boot & (KEY_L | KEY_R) == KEY_R {
             display.set_palette(&assets::PALETTE);
-            bench_scene(&mut display);
+            bench_scene(&mut display, held_at_boot & KEY_SELECT != 0);
         }
         if held_at_boot & KEY_B != 0 {
             display.set_palette(&testpic::PALETTE);
@@ -67,12 +69,7 @@ mod rom {
     /// A the lighting, Start the map.
     fn render_scene(display: &mut Display, held_at_boot: u16) -> ! {
         let mut map = demo::demo_map();
-        // Textures from EWRAM: the texture placement knob measured 4 % fewer cycles than
-        // reading them from the cartridge (docs/BENCH.md), for 93 KB of the 256 KB.
-        let render_assets = RenderAssets {
-            textures: memory::textures_in_ewram(),
-            ..demo::render_assets()
-        };
+        let render_assets = demo::assets_for(Settings::DEFAULT.textures, textures_in_ewram);
         let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
         let mut settings = Settings::DEFAULT;
         let mut held_before = held_at_boot;
@@ -124,74 +121,69 @@ mod rom {
         }
     }
 
-    /// Frames of the camera path per benchmark setting: a full turn in 8-step increments.
-    const BENCH_FRAMES: u32 = 32;
-
-    /// R held at boot: every shipped map × resolution × lighting, `BENCH_FRAMES` frames each along
-    /// the demo path (a full turn), one line per frame, then `bench done`. `cargo xtask-bench`
-    /// (the xtask's `bench` command) aggregates the lines.
-    fn bench_scene(display: &mut Display) -> ! {
-        let render_assets = demo::render_assets();
+    /// R held at boot: the benchmark. Every run of [`bench::all_runs`] (with Select also held,
+    /// only the regression guard's, [`bench::guard_runs`]) flies
+    /// [`bench::FRAMES_PER_SETTING`] frames of the map's [`Flight`], one line per frame, then
+    /// `bench done`. `cargo bench-report` and the guard test read the lines.
+    fn bench_scene(display: &mut Display, guard_only: bool) -> ! {
         let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
-        let ewram_assets = RenderAssets {
-            textures: memory::textures_in_ewram(),
-            ..render_assets
-        };
-        // Each knob is varied from the defaults (sector + depth light, exact perspective,
-        // textures read from the cartridge).
-        let knobs = [
-            (Lighting::SectorDepth, Perspective::Exact, "rom"),
-            (Lighting::Off, Perspective::Exact, "rom"),
-            (Lighting::Sector, Perspective::Exact, "rom"),
-            (Lighting::SectorDepth, Perspective::Every8, "rom"),
-            (Lighting::SectorDepth, Perspective::Every16, "rom"),
-            (Lighting::SectorDepth, Perspective::Exact, "ewram"),
-        ];
-        for map in assets::MAPS {
-            for resolution in Resolution::ALL {
-                for (lighting, perspective, textures) in knobs {
-                    let render_assets = if textures == "ewram" {
-                        &ewram_assets
-                    } else {
-                        &render_assets
-                    };
-                    let settings = Settings {
-                        resolution,
-                        lighting,
-                        perspective,
-                    };
-                    for frame in 0..BENCH_FRAMES {
-                        let camera = demo::camera_at(map, frame * 8);
-                        let view = View::new(&camera, &settings);
-                        let page = VramPage::back_of(display.shown_page());
-                        let started = meter::now();
-                        let stats = renderer.render(
-                            map,
-                            render_assets,
-                            &view,
-                            &mut VramCanvas::new(page, resolution),
-                        );
-                        let cycles = meter::cycles_since(started);
-                        display.flip_at_vblank(resolution);
-                        log::info(format_args!(
-                            "bench map={} res={} lighting={} perspective={} textures={textures} frame={frame} cycles={cycles} wall_cycles={} plane_cycles={} span_px={} column_px={}",
-                            map.name,
-                            resolution.label(),
-                            demo::lighting_label(lighting),
-                            perspective.label(),
-                            stats.wall_ticks,
-                            stats.plane_ticks,
-                            stats.span_pixels,
-                            stats.column_pixels,
-                        ));
-                    }
-                }
+        for (map, settings) in bench::guard_runs() {
+            let render_assets = demo::assets_for(settings.textures, textures_in_ewram);
+            bench_run(display, renderer, &render_assets, map, &settings);
+        }
+        log::info(format_args!("{}", bench::GUARD_DONE));
+        if !guard_only {
+            for (map, settings) in bench::report_runs() {
+                let render_assets = demo::assets_for(settings.textures, textures_in_ewram);
+                bench_run(display, renderer, &render_assets, map, &settings);
             }
         }
-        log::info(format_args!("bench done"));
+        log::info(format_args!("{}", bench::BENCH_DONE));
         loop {
             display.wait_vblank();
         }
+    }
+
+    /// One setting of the benchmark. A first, unmeasured frame fills the renderer's per-resolution
+    /// tables (the column angles), so the figures are the steady per-frame cost.
+    fn bench_run(
+        display: &mut Display,
+        renderer: &mut Renderer,
+        render_assets: &RenderAssets,
+        map: &MapTables,
+        settings: &Settings,
+    ) {
+        let frames = Flight::new(map)
+            .take(1)
+            .chain(Flight::new(map).take(bench::FRAMES_PER_SETTING as usize));
+        for (index, camera) in frames.enumerate() {
+            let view = View::new(&camera, settings);
+            let page = VramPage::back_of(display.shown_page());
+            let started = meter::now();
+            let stats = renderer.render(
+                map,
+                render_assets,
+                &view,
+                &mut VramCanvas::new(page, settings.resolution),
+            );
+            let cycles = meter::cycles_since(started);
+            display.flip_at_vblank(settings.resolution);
+            if index > 0 {
+                let line = BenchLine {
+                    map: map.name,
+                    settings,
+                    frame: index as u32 - 1,
+                    cycles,
+                    stats: &stats,
+                };
+                log::info(format_args!("{line}"));
+            }
+        }
+    }
+
+    /// The textures copied to EWRAM (once), for [`demo::assets_for`].
+    fn textures_in_ewram() -> &'static [portalcast_format::Texture<'static>] {
+        memory::textures_in_ewram()
     }
 
     /// B held at boot: the foundation's test picture. Select cycles the resolution, left/right

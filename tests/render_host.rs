@@ -12,6 +12,7 @@ use portalcast::render::view::{Camera, Perspective, Settings, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_format::{MapTables, Texture};
+use portalcast_oracle::RecordingCanvas;
 
 fn start_camera(map: &MapTables) -> Camera {
     let start = map.player_start;
@@ -58,6 +59,7 @@ fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
                             resolution,
                             lighting,
                             perspective,
+                            ..Settings::DEFAULT
                         },
                     );
                     let mut canvas = RecordingCanvas::new(resolution);

@@ -12,6 +12,7 @@ use portalcast::render::view::{Camera, Perspective, Settings, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_format::Texture;
+use portalcast_oracle::RecordingCanvas;
 
 const POSES_PER_MAP: usize = 12;
 const SURFACE_MISMATCH_MAX_PERCENT: f64 = 0.5;

@@ -1,10 +1,10 @@
 //! The demo the ROM plays and the emulator tests replay on the host: a map (the bench map
 //! first; Start switches), seen from its player start, turning a full circle every 256 frames.
 
-use portalcast_format::{MapTables, Sky};
+use portalcast_format::{MapTables, Sky, Texture};
 
 use super::light::Lighting;
-use super::view::Camera;
+use super::view::{Camera, TexturePlacement};
 use super::RenderAssets;
 use crate::assets;
 use crate::math::{Angle, Fx24_8, WorldPoint};
@@ -48,6 +48,22 @@ pub fn render_assets() -> RenderAssets<'static> {
             texels: &NO_SKY_TEXELS,
         }),
         colormap: &assets::COLORMAP.0,
+    }
+}
+
+/// The compiled assets with the textures `placement` asks for: `in_ewram` hands out the EWRAM
+/// copy (the ROM's `hw::memory`; the host has no such memory and passes the cartridge's own).
+pub fn assets_for(
+    placement: TexturePlacement,
+    in_ewram: fn() -> &'static [Texture<'static>],
+) -> RenderAssets<'static> {
+    let textures = match placement {
+        TexturePlacement::Rom => assets::TEXTURES,
+        TexturePlacement::Ewram => in_ewram(),
+    };
+    RenderAssets {
+        textures,
+        ..render_assets()
     }
 }
 

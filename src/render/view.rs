@@ -34,14 +34,38 @@ pub struct Settings {
     pub lighting: Lighting,
     /// How walls find their depth and texture column.
     pub perspective: Perspective,
+    /// Where the ROM reads texels from. The renderer draws whatever textures it is handed; the
+    /// ROM picks them by this knob ([`crate::render::demo::assets_for`]).
+    pub textures: TexturePlacement,
+}
+
+/// The texture placement knob: which memory the kernels read texels from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TexturePlacement {
+    /// The cartridge (5 cycles a random byte at WAITCNT 0x4317).
+    Rom,
+    /// A copy in EWRAM (3 cycles a byte), made once at boot.
+    Ewram,
+}
+
+impl TexturePlacement {
+    /// The label the ROM prints and the benchmarks read.
+    pub const fn label(self) -> &'static str {
+        match self {
+            TexturePlacement::Rom => "rom",
+            TexturePlacement::Ewram => "ewram",
+        }
+    }
 }
 
 impl Settings {
-    /// The shipped defaults: 120×80, sector + depth lighting, exact perspective.
+    /// The shipped defaults: 120×80, sector + depth lighting, exact perspective, textures in
+    /// EWRAM (each the faster or more exact choice by measurement: docs/BENCH.md).
     pub const DEFAULT: Settings = Settings {
         resolution: Resolution::R120x80,
         lighting: Lighting::SectorDepth,
         perspective: Perspective::Exact,
+        textures: TexturePlacement::Ewram,
     };
 }
 

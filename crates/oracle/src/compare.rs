@@ -24,6 +24,11 @@ pub struct Comparison {
     /// (1 for an edge one pixel off). A surface the oracle does not show at all counts
     /// `max(width, height)`. 0 when there are no such mismatches.
     pub max_edge_error_px: u32,
+    /// The largest vertical error of a wall's edges, in rows: for each column and each wall
+    /// surface (a wall, an upper or a lower strip) that both frames show in that column, the
+    /// difference between the engine's and the oracle's topmost rows of it, and between their
+    /// bottommost rows; the maximum over all of them. 0 when no wall is shown by both.
+    pub max_wall_edge_error_px: u32,
     /// Sectors the oracle frame shows (a pixel of their floor, ceiling, or one of their walls
     /// or strips) and the engine's does not, ascending.
     pub missed_sectors: Vec<u16>,
@@ -99,6 +104,12 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
             result.max_edge_error_px = result.max_edge_error_px.max(distances[pixel]);
         }
     }
+    result.max_wall_edge_error_px = max_wall_edge_error(
+        engine_surfaces,
+        &oracle.surfaces,
+        oracle.width,
+        oracle.height,
+    );
     result.missed_sectors = oracle_sectors
         .difference(&engine_sectors)
         .copied()
@@ -108,6 +119,48 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
         .copied()
         .collect();
     result
+}
+
+/// The row span (topmost, bottommost) of each wall surface in column `x`.
+fn wall_rows(
+    surfaces: &[Surface],
+    width: usize,
+    height: usize,
+    x: usize,
+) -> Vec<(Surface, u32, u32)> {
+    let mut spans: Vec<(Surface, u32, u32)> = Vec::new();
+    for y in 0..height {
+        let surface = surfaces[y * width + x];
+        if !matches!(
+            surface,
+            Surface::Wall(_) | Surface::Upper(_) | Surface::Lower(_)
+        ) {
+            continue;
+        }
+        match spans.iter_mut().find(|(s, _, _)| *s == surface) {
+            Some((_, _, bottom)) => *bottom = y as u32,
+            None => spans.push((surface, y as u32, y as u32)),
+        }
+    }
+    spans
+}
+
+/// See [`Comparison::max_wall_edge_error_px`].
+fn max_wall_edge_error(engine: &[Surface], oracle: &[Surface], width: usize, height: usize) -> u32 {
+    let mut worst = 0;
+    for x in 0..width {
+        let expected = wall_rows(oracle, width, height, x);
+        for (surface, top, bottom) in wall_rows(engine, width, height, x) {
+            if let Some(&(_, oracle_top, oracle_bottom)) =
+                expected.iter().find(|(s, _, _)| *s == surface)
+            {
+                worst = worst
+                    .max(top.abs_diff(oracle_top))
+                    .max(bottom.abs_diff(oracle_bottom));
+            }
+        }
+    }
+    worst
 }
 
 /// For each pixel, the Chebyshev distance to the nearest pixel showing `surface`, capped at
@@ -250,6 +303,40 @@ mod tests {
         // Absent surface: everything at the cap max(5, 3) = 5.
         let d = chebyshev_distances(&surfaces, 5, 3, Surface::Sky);
         assert!(d.iter().all(|&x| x == 5));
+    }
+
+    #[test]
+    fn wall_edge_error_is_the_largest_row_difference_of_a_shared_wall() {
+        // 3 columns × 6 rows. Column 0: the engine's wall 1 spans rows 1..=3, the oracle's
+        // 1..=4 (bottom one row off). Column 1: engine's upper strip of wall 2 rows 0..=1,
+        // oracle's rows 2..=3 (top and bottom two rows off). Column 2: only the engine draws
+        // wall 5 (a surface mismatch, not an edge error).
+        let (width, height) = (3, 6);
+        let mut engine = vec![Surface::Floor(0); width * height];
+        let mut oracle = engine.clone();
+        let paint =
+            |frame: &mut [Surface], x: usize, rows: std::ops::RangeInclusive<usize>, s: Surface| {
+                for y in rows {
+                    frame[y * width + x] = s;
+                }
+            };
+        paint(&mut engine, 0, 1..=3, Surface::Wall(1));
+        paint(&mut oracle, 0, 1..=4, Surface::Wall(1));
+        paint(&mut engine, 1, 0..=1, Surface::Upper(2));
+        paint(&mut oracle, 1, 2..=3, Surface::Upper(2));
+        paint(&mut engine, 2, 0..=5, Surface::Wall(5));
+        assert_eq!(max_wall_edge_error(&engine, &oracle, width, height), 2);
+        assert_eq!(max_wall_edge_error(&oracle, &oracle, width, height), 0);
+        let frame = Frame {
+            width,
+            height,
+            surfaces: oracle.clone(),
+            indices: vec![0; width * height],
+            depths: vec![1.0; width * height],
+            wall_sectors: vec![0; 8],
+        };
+        let result = compare(&engine, &vec![0; width * height], &frame);
+        assert_eq!(result.max_wall_edge_error_px, 2);
     }
 
     #[test]

@@ -44,11 +44,13 @@
 #![warn(missing_docs)]
 
 mod compare;
+mod engine;
 mod geometry;
 mod poses;
 mod render;
 
 pub use compare::{compare, surface_colour, write_diff_png, Comparison};
+pub use engine::{compare_with_engine, EngineComparison, RecordingCanvas};
 pub use geometry::find_sector;
 pub use portalcast::render::light::Lighting;
 pub use portalcast::render::surface::Surface;

@@ -4,6 +4,9 @@
 //! This crate must build before any setup has run, so it depends on nothing that needs a system
 //! library (the mGBA harness is started as a separate process once setup has installed libmgba).
 
+pub mod baseline;
+pub mod bench_log;
+
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -97,9 +100,14 @@ pub fn rom_target_dir() -> PathBuf {
 
 /// The linked ROM ELF.
 pub fn elf_path() -> PathBuf {
+    elf_path_for(engine_isa().unwrap_or(EngineIsa::Arm))
+}
+
+/// The linked ROM ELF with the engine compiled to `isa`.
+pub fn elf_path_for(isa: EngineIsa) -> PathBuf {
     rom_target_dir()
         .join(ROM_TARGET)
-        .join(engine_isa().unwrap_or(EngineIsa::Arm).profile())
+        .join(isa.profile())
         .join("portalcast")
 }
 
@@ -216,13 +224,21 @@ pub fn ensure_setup() -> TaskResult<()> {
 /// Builds the ROM ELF (release, Thumb, `core` from source) and converts it into
 /// `target/portalcast.gba` with agb-gbafix. Returns the `.gba` path.
 pub fn build_rom() -> TaskResult<PathBuf> {
+    let gba = gba_path();
+    build_rom_for(engine_isa()?, &gba)?;
+    Ok(gba)
+}
+
+/// Builds the ROM ELF with the engine compiled to `isa` and converts it into `gba`, whatever
+/// `PORTALCAST_ENGINE_ISA` says (the benchmark report builds both).
+pub fn build_rom_for(isa: EngineIsa, gba: &Path) -> TaskResult<()> {
     ensure_rust_src()?;
     run(
         cargo()
             .args([
                 "build",
                 "--profile",
-                engine_isa()?.profile(),
+                isa.profile(),
                 "--target",
                 ROM_TARGET,
                 "-Zbuild-std=core",
@@ -231,9 +247,7 @@ pub fn build_rom() -> TaskResult<PathBuf> {
             .arg(rom_target_dir()),
         "building the ROM",
     )?;
-    let gba = gba_path();
-    elf_to_gba(&elf_path(), &gba)?;
-    Ok(gba)
+    elf_to_gba(&elf_path_for(isa), gba)
 }
 
 /// Converts a linked ELF into a `.gba` with a valid header (logo, complement check, title, game

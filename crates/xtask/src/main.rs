@@ -1,8 +1,12 @@
-//! `cargo rom`, `cargo play` and `cargo xtest` (aliases in .cargo/config.toml).
+//! `cargo rom`, `cargo play`, `cargo xtest`, `cargo bench-rom` and `cargo bench-report` (aliases
+//! in .cargo/config.toml).
 use portalcast_xtask::{build_rom, ensure_setup, workspace_root, TaskError, TaskResult};
 use std::process::{Command, ExitCode};
 
-const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom";
+mod report;
+
+const USAGE: &str =
+    "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -10,7 +14,8 @@ fn main() -> ExitCode {
         Some("rom") => rom(),
         Some("play") => play(),
         Some("test") => test(),
-        Some("bench") => bench(),
+        Some("bench") => report::bench_rom(),
+        Some("report") => report::bench_report(&args[1..]),
         _ => Err(TaskError(USAGE.to_string())),
     };
     match result {
@@ -208,100 +213,4 @@ fn count_before(result: &str, word: &str) -> u64 {
         .filter_map(|part| part.trim().strip_suffix(word))
         .filter_map(|number| number.trim().rsplit(' ').next()?.parse::<u64>().ok())
         .sum()
-}
-
-/// CPU cycles per second of the GBA (2^24).
-const CPU_HZ: f64 = 16_777_216.0;
-
-/// Runs the ROM's benchmark scene (R held at power-on) in the real mGBA core and prints, per
-/// map, resolution and lighting, the cycles per frame (mean, p50, p95, max), the frame rate they
-/// imply and the mean cycles of the wall and plane stages, as a Markdown table.
-fn bench() -> TaskResult<()> {
-    ensure_setup()?;
-    let gba = build_rom()?;
-    let keys = workspace_root().join("target").join("bench.keys");
-    std::fs::write(&keys, "0-3: R\n")
-        .map_err(|error| TaskError(format!("{}: {error}", keys.display())))?;
-    let output = cargo()
-        .args([
-            "run",
-            "--quiet",
-            "--release",
-            "-p",
-            "portalcast-harness",
-            "--bin",
-            "pc-run",
-            "--",
-        ])
-        .arg(&gba)
-        .args([
-            "--frames",
-            "200000",
-            "--png-every",
-            "0",
-            "--until",
-            "bench done",
-            "--out",
-        ])
-        .arg(workspace_root().join("target").join("bench-frames"))
-        .arg("--keys")
-        .arg(&keys)
-        .output()
-        .map_err(|error| TaskError(format!("running pc-run: {error}")))?;
-    let text = String::from_utf8_lossy(&output.stdout);
-    if !output.status.success() || !text.contains("bench done") {
-        return Err(TaskError(format!(
-            "the benchmark did not finish: {}",
-            String::from_utf8_lossy(&output.stderr)
-        )));
-    }
-    let mut rows: Vec<(String, Vec<[u64; 3]>)> = Vec::new();
-    for line in text.lines().filter(|line| line.starts_with("bench map=")) {
-        let field = |key: &str| {
-            line.split_whitespace()
-                .find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
-                .unwrap_or("?")
-                .to_string()
-        };
-        let number = |key: &str| field(key).parse::<u64>().unwrap_or(0);
-        let setting = format!(
-            "{} | {} | {} | {} | {}",
-            field("map"),
-            field("res"),
-            field("lighting"),
-            field("perspective"),
-            field("textures")
-        );
-        let sample = [
-            number("cycles"),
-            number("wall_cycles"),
-            number("plane_cycles"),
-        ];
-        match rows.iter_mut().find(|(name, _)| *name == setting) {
-            Some((_, samples)) => samples.push(sample),
-            None => rows.push((setting, vec![sample])),
-        }
-    }
-    println!("| map | resolution | lighting | perspective | textures | frames | mean | p50 | p95 | max | fps (mean) | walls (mean) | planes (mean) |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-    for (setting, samples) in &rows {
-        let mut cycles: Vec<u64> = samples.iter().map(|sample| sample[0]).collect();
-        cycles.sort_unstable();
-        let count = cycles.len();
-        let mean =
-            |index: usize| samples.iter().map(|sample| sample[index]).sum::<u64>() / count as u64;
-        let percentile =
-            |p: usize| cycles[((count * p).div_ceil(100)).saturating_sub(1).min(count - 1)];
-        println!(
-            "| {setting} | {count} | {} | {} | {} | {} | {:.1} | {} | {} |",
-            mean(0),
-            percentile(50),
-            percentile(95),
-            cycles[count - 1],
-            CPU_HZ / mean(0) as f64,
-            mean(1),
-            mean(2),
-        );
-    }
-    Ok(())
 }

@@ -1,0 +1,697 @@
+//! docs/BENCH.md, written whole from the measurements. Every number in it is formatted from a
+//! measurement or from a named constant; the prose around the tables says how they are made.
+
+use std::fmt::Write;
+
+use portalcast_xtask::baseline::{self, TOLERANCE_PERCENT};
+use portalcast_xtask::bench_log::{group_digits, Run, Summary};
+
+use super::sizes::{EWRAM, IWRAM, ROM};
+use super::{Measurements, CHART_FILE, CPU_HZ, CYCLES_PER_FRAME};
+
+/// The thesis' frame rate at 120×80 without lighting (Espada Brau, 2006).
+const THESIS_FPS: u64 = 35;
+/// The resolution the thesis measured.
+const THESIS_RESOLUTION: &str = "120x80";
+
+/// The targets of issue #7: 60 fps at 120×80, 30 fps at 240×160, as (fps, cycles per frame).
+fn target(resolution: &str) -> Option<(u64, u64)> {
+    match resolution {
+        "120x80" => Some((60, CYCLES_PER_FRAME)),
+        "240x160" => Some((30, 2 * CYCLES_PER_FRAME)),
+        _ => None,
+    }
+}
+
+/// What each measured kernel is, and its target in cycles per pixel where the brief sets one.
+const KERNELS: [(&str, &str, Option<f64>); 7] = [
+    (
+        "col_dbl_unlit",
+        "column, 120-wide (STRB mirrored), unlit",
+        Some(6.0),
+    ),
+    ("col_dbl_lit", "column, 120-wide, lit", Some(9.0)),
+    (
+        "col_native_lit",
+        "column, 240-wide (read-modify-write), lit",
+        None,
+    ),
+    ("flat_dbl_unlit", "span, 120-wide, unlit", None),
+    ("flat_dbl_lit", "span, 120-wide, lit", Some(9.0)),
+    ("flat_pair_unlit", "span, 240-wide pairs, unlit", None),
+    ("flat_pair_lit", "span, 240-wide pairs, lit", Some(9.0)),
+];
+
+/// What each stage the ROM times covers.
+fn stage_meaning(stage: &str) -> &'static str {
+    match stage {
+        "walk" => "the sector walk itself: visits, clip windows, portal recursion",
+        "wall" => "walls and strips: column ownership, projection, the wall and strip columns and their kernels",
+        "plane" => "floors and ceilings: span set-up, `R_MakeSpans`, the span kernels (and the sky, while it has no stage of its own)",
+        "sky" => "the sky's columns",
+        _ => "(a stage this report has no description for yet)",
+    }
+}
+
+/// `120x80` → `120×80 (2×2)`: how the docs name a resolution.
+pub fn resolution_name(resolution: &str) -> String {
+    match resolution {
+        "120x80" => "120×80 (2×2)".to_string(),
+        other => other.replace('x', "×"),
+    }
+}
+
+fn fps(cycles: u64) -> f64 {
+    if cycles == 0 {
+        0.0
+    } else {
+        CPU_HZ as f64 / cycles as f64
+    }
+}
+
+/// The settings of `run` that differ from `base`'s, as `key=value` words.
+fn differences(base: &Run, run: &Run) -> Vec<String> {
+    run.settings
+        .iter()
+        .filter(|(key, value)| base.setting(key) != Some(value.as_str()))
+        .map(|(key, value)| format!("{key}={value}"))
+        .collect()
+}
+
+/// The settings of `run` other than the resolution, as `key=value` words.
+fn label_without_resolution(run: &Run) -> String {
+    run.settings
+        .iter()
+        .filter(|(key, _)| key != "res")
+        .map(|(key, value)| format!("{key}={value}"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The guard's run (bench map, defaults) at `run`'s resolution.
+fn default_run<'m>(measurements: &'m Measurements, run: &Run) -> Option<&'m Run> {
+    measurements
+        .guard()
+        .iter()
+        .find(|guard| guard.setting("res") == run.setting("res"))
+}
+
+/// A run's name in the chart's legend: the map, and the settings that differ from the defaults.
+pub fn short_label(measurements: &Measurements, run: &Run) -> String {
+    let Some(base) = default_run(measurements, run) else {
+        return run.key();
+    };
+    let changed = differences(base, run);
+    let mut words = vec![run.map.clone()];
+    if changed.is_empty() {
+        words.push("defaults".to_string());
+    }
+    words.extend(changed);
+    words.join(", ")
+}
+
+/// The stage names of `runs`, in order of appearance.
+fn stage_names(runs: &[&Run]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for run in runs {
+        for (name, _) in run.summary().stage_means {
+            if !names.contains(&name) {
+                names.push(name);
+            }
+        }
+    }
+    names
+}
+
+fn stage_cells(summary: &Summary, names: &[String]) -> String {
+    let mut cells = String::new();
+    for name in names {
+        let mean = summary
+            .stage_means
+            .iter()
+            .find(|(stage, _)| stage == name)
+            .map_or(0, |(_, cycles)| *cycles);
+        let _ = write!(cells, " {} |", group_digits(mean));
+    }
+    let _ = write!(cells, " {} |", group_digits(summary.other_mean));
+    cells
+}
+
+fn accuracy_cells(measurements: &Measurements, run: &Run) -> String {
+    match measurements.accuracy_of(run) {
+        Some(accuracy) => format!(
+            " {:.3} | {:.2} | {} | {} |",
+            accuracy.percent_of_pixels("surface_mismatches"),
+            accuracy.percent_of_pixels("texel_mismatches"),
+            accuracy.counter("wall_edge_px"),
+            accuracy.counter("missed_sectors"),
+        ),
+        None => " — | — | — | — |".to_string(),
+    }
+}
+
+fn cycle_cells(summary: &Summary) -> String {
+    format!(
+        " {} | {} | {} | {} | {:.1} |",
+        group_digits(summary.mean),
+        group_digits(summary.p50),
+        group_digits(summary.p95),
+        group_digits(summary.max),
+        fps(summary.mean),
+    )
+}
+
+fn stage_headers(names: &[String]) -> (String, String) {
+    let mut header = String::new();
+    let mut rule = String::new();
+    for name in names {
+        let _ = write!(header, " {name} |");
+        rule.push_str("---|");
+    }
+    header.push_str(" other |");
+    rule.push_str("---|");
+    (header, rule)
+}
+
+/// Every run's cycles as one table (`cargo bench-rom` prints it).
+pub fn cycle_table(runs: &[Run]) -> String {
+    let all: Vec<&Run> = runs.iter().collect();
+    let names = stage_names(&all);
+    let (stage_header, stage_rule) = stage_headers(&names);
+    let mut text = format!(
+        "| map | settings | frames | mean | p50 | p95 | max | fps (mean) |{stage_header}\n|---|---|---|---|---|---|---|---|{stage_rule}\n"
+    );
+    for run in runs {
+        let summary = run.summary();
+        let _ = writeln!(
+            text,
+            "| {} | {} | {} |{}{}",
+            run.map,
+            run.label(),
+            summary.frames,
+            cycle_cells(&summary),
+            stage_cells(&summary, &names)
+        );
+    }
+    text
+}
+
+/// The gap between a run and its target, in words.
+fn gap(summary: &Summary, target_cycles: u64) -> String {
+    let times = |cycles: u64| cycles as f64 / target_cycles as f64;
+    if summary.max <= target_cycles {
+        "**met**: every frame within".to_string()
+    } else if summary.mean <= target_cycles {
+        format!("mean within; **max {:.1}× over**", times(summary.max))
+    } else {
+        format!(
+            "**{:.1}× / {:.1}× over**",
+            times(summary.mean),
+            times(summary.max)
+        )
+    }
+}
+
+/// The whole of docs/BENCH.md.
+pub fn write(measurements: &Measurements) -> String {
+    let mut doc = String::new();
+    intro(&mut doc);
+    headline(&mut doc, measurements);
+    method(&mut doc, measurements);
+    knobs(&mut doc, measurements);
+    maps(&mut doc, measurements);
+    chart(&mut doc);
+    instruction_set(&mut doc, measurements);
+    kernels(&mut doc, measurements);
+    accuracy(&mut doc, measurements);
+    sizes(&mut doc, measurements);
+    doc.push_str("## Math micro-benchmarks\n\n");
+    doc.push_str(&measurements.math_section);
+    doc.push_str("\n\n");
+    guard(&mut doc, measurements);
+    doc
+}
+
+fn intro(doc: &mut String) {
+    let _ = write!(
+        doc,
+        "# portalcast benchmarks\n\n\
+         <!-- Written by `cargo bench-report` (crates/xtask/src/report/): edit the generator, not this file. -->\n\n\
+         Every figure here is measured by one command, `cargo bench-report`: it builds the ROM, runs it \
+         in the real mGBA core (Debian's libmgba) through the harness, compares the engine with the f64 \
+         oracle on the host, and writes this file and the chart [`{chart}`]({chart_link}) from nothing. \
+         mGBA's cycle counts are deterministic, so the same sources give the same file: \
+         `cargo bench-report --check` regenerates both in memory and fails if they differ from the \
+         committed ones. The CPU runs {hz} cycles a second and the display shows a frame every {frame} \
+         cycles: a frame drawn at 60 fps has {frame} cycles, at 30 fps {frame30}.\n\n",
+        chart = CHART_FILE,
+        chart_link = CHART_FILE.trim_start_matches("docs/"),
+        hz = group_digits(CPU_HZ),
+        frame = group_digits(CYCLES_PER_FRAME),
+        frame30 = group_digits(2 * CYCLES_PER_FRAME),
+    );
+}
+
+fn headline(doc: &mut String, measurements: &Measurements) {
+    let guard = measurements.guard();
+    let Some(first) = guard.first() else {
+        return;
+    };
+    let _ = write!(
+        doc,
+        "## Headline: the bench map against the targets\n\n\
+         The bench map at the default settings ({}), {} frames along its fly-through, cycles per \
+         frame of `Renderer::render` measured by the ROM:\n\n\
+         | resolution | mean | p95 | max | fps (mean) | target | gap (mean / max) |\n\
+         |---|---|---|---|---|---|---|\n",
+        label_without_resolution(first),
+        first.frames.len(),
+    );
+    for run in guard {
+        let summary = run.summary();
+        let resolution = run.setting("res").unwrap_or("?");
+        let (target_text, gap_text) = match target(resolution) {
+            Some((target_fps, cycles)) => (
+                format!("every frame ≤ {} ({target_fps} fps)", group_digits(cycles)),
+                gap(&summary, cycles),
+            ),
+            None => ("—".to_string(), "—".to_string()),
+        };
+        let _ = writeln!(
+            doc,
+            "| {} | {} | {} | {} | {:.1} | {target_text} | {gap_text} |",
+            resolution_name(resolution),
+            group_digits(summary.mean),
+            group_digits(summary.p95),
+            group_digits(summary.max),
+            fps(summary.mean),
+        );
+    }
+    doc.push('\n');
+    let thesis_cycles = CPU_HZ / THESIS_FPS;
+    let unlit = guard
+        .iter()
+        .find(|run| run.setting("res") == Some(THESIS_RESOLUTION))
+        .and_then(|base| {
+            measurements.runs.iter().find(|run| {
+                run.map == base.map && differences(base, run) == ["lighting=off".to_string()]
+            })
+        });
+    let _ = write!(
+        doc,
+        "The thesis reached {THESIS_FPS} fps at {} without lighting (about {} cycles a frame). ",
+        resolution_name(THESIS_RESOLUTION),
+        group_digits(thesis_cycles)
+    );
+    if let Some(run) = unlit {
+        let summary = run.summary();
+        let ratio = summary.mean as f64 / thesis_cycles as f64;
+        let comparison = if ratio >= 1.0 {
+            format!("**{ratio:.1}× slower than the thesis**")
+        } else {
+            format!("**{:.1}× faster than the thesis**", 1.0 / ratio)
+        };
+        let _ = write!(
+            doc,
+            "portalcast draws the bench map at {} without lighting at {:.1} fps (mean {} cycles): \
+             {comparison}. The thesis measured its own scene; this is the bench map's \
+             fly-through in mGBA.\n\n",
+            resolution_name(THESIS_RESOLUTION),
+            fps(summary.mean),
+            group_digits(summary.mean),
+        );
+    } else {
+        doc.push_str("(The bench scene measured no unlit run at that resolution.)\n\n");
+    }
+}
+
+fn method(doc: &mut String, measurements: &Measurements) {
+    let frames = measurements
+        .guard()
+        .first()
+        .map_or(0, |run| run.frames.len());
+    let mut stages = stage_names(&measurements.runs.iter().collect::<Vec<_>>());
+    stages.push("other".to_string());
+    let _ = write!(
+        doc,
+        "## How the figures are made\n\n\
+         The ROM's bench scene (R held at power-on) flies one fixed camera path through every map \
+         (`src/flight.rs`): from the player start, a depth-first tour of the sectors a walker can \
+         pass between, through the middle of each portal to the next sector's centre and back out \
+         of dead ends, at about Doom's running speed, the eye at standing height, turning smoothly \
+         towards where it goes. The path is derived from the map alone, so every map has one, and \
+         every pose is exact in the engine's formats, so the host replays the ROM's frames exactly. \
+         For each map and setting the ROM draws one unmeasured frame (it fills the per-resolution \
+         tables, the column angles), then {frames} frames along the path, timing \
+         `Renderer::render` with its cycle meter (timers 2 and 3 cascaded) and printing one line per \
+         frame with the cycles of each stage:\n\n"
+    );
+    for stage in &stages {
+        let meaning = if stage == "other" {
+            "the rest of the frame, outside the named stages"
+        } else {
+            stage_meaning(stage)
+        };
+        let _ = writeln!(doc, "- `{stage}`: {meaning};");
+    }
+    let _ = write!(
+        doc,
+        "\nmean, p50 (median), p95 and max are over the frames of a run, the stage columns are \
+         means, and fps (mean) is what the mean implies ({} / mean cycles); a frame shown at \
+         the display's pace takes a whole number of {}-cycle frames. The bench scene runs the \
+         regression guard's part first (the bench map at the default settings, at every \
+         resolution), then the rest: `cargo bench-rom` prints just its cycle tables, without the \
+         accuracy pass, and writes nothing.\n\n",
+        group_digits(CPU_HZ),
+        group_digits(CYCLES_PER_FRAME),
+    );
+}
+
+fn knob_table(doc: &mut String, measurements: &Measurements, base: &Run) {
+    let runs: Vec<&Run> = measurements
+        .runs
+        .iter()
+        .filter(|run| run.map == base.map && run.setting("res") == base.setting("res"))
+        .collect();
+    let names = stage_names(&runs);
+    let (stage_header, stage_rule) = stage_headers(&names);
+    let _ = writeln!(
+        doc,
+        "| setting | mean | p50 | p95 | max | fps (mean) |{stage_header} surface % | texel % | wall edge (px) | missed sectors |\n\
+         |---|---|---|---|---|---|{stage_rule}---|---|---|---|"
+    );
+    for run in runs {
+        let changed = differences(base, run);
+        let setting = if changed.is_empty() {
+            format!("defaults ({})", label_without_resolution(run))
+        } else {
+            changed.join(" ")
+        };
+        let summary = run.summary();
+        let _ = writeln!(
+            doc,
+            "| {setting} |{}{}{}",
+            cycle_cells(&summary),
+            stage_cells(&summary, &names),
+            accuracy_cells(measurements, run)
+        );
+    }
+    doc.push('\n');
+}
+
+fn knobs(doc: &mut String, measurements: &Measurements) {
+    let Some(first) = measurements.guard().first() else {
+        return;
+    };
+    let _ = write!(
+        doc,
+        "## Knobs on the bench map\n\n\
+         One knob at a time from the defaults ({}), at every resolution, each along the same \
+         fly-through. Cycles per frame; stage columns are means; the last four columns are the \
+         accuracy against the oracle (see [Accuracy](#accuracy-against-the-f64-oracle)).\n\n",
+        label_without_resolution(first)
+    );
+    for base in measurements.guard() {
+        let _ = write!(
+            doc,
+            "### {}\n\n",
+            resolution_name(base.setting("res").unwrap_or("?"))
+        );
+        knob_table(doc, measurements, base);
+    }
+}
+
+fn maps(doc: &mut String, measurements: &Measurements) {
+    let runs: Vec<&Run> = measurements
+        .runs
+        .iter()
+        .filter(|run| {
+            default_run(measurements, run).is_some_and(|base| differences(base, run).is_empty())
+        })
+        .collect();
+    let names = stage_names(&runs);
+    let (stage_header, stage_rule) = stage_headers(&names);
+    let _ = writeln!(
+        doc,
+        "## Every shipped map\n\n\
+         Each map's own fly-through at the default settings.\n\n\
+         | map | resolution | mean | p50 | p95 | max | fps (mean) |{stage_header} surface % | texel % | wall edge (px) | missed sectors |\n\
+         |---|---|---|---|---|---|---|{stage_rule}---|---|---|---|"
+    );
+    for run in runs {
+        let summary = run.summary();
+        let _ = writeln!(
+            doc,
+            "| {} | {} |{}{}{}",
+            run.map,
+            resolution_name(run.setting("res").unwrap_or("?")),
+            cycle_cells(&summary),
+            stage_cells(&summary, &names),
+            accuracy_cells(measurements, run)
+        );
+    }
+    doc.push('\n');
+}
+
+fn chart(doc: &mut String) {
+    let _ = write!(
+        doc,
+        "## Cycles along the fly-through\n\n\
+         ![Cycles per frame along the fly-through, one panel per resolution]({})\n\n\
+         One panel per resolution: every run's cycles per frame along its path, with the 60 and \
+         30 fps budgets dashed. The bench map's runs share one path, so their lines differ only by \
+         the knob; the other maps fly their own.\n\n",
+        CHART_FILE.trim_start_matches("docs/")
+    );
+}
+
+fn instruction_set(doc: &mut String, measurements: &Measurements) {
+    if measurements.thumb_engine_runs.is_empty() {
+        return;
+    }
+    doc.push_str(
+        "## Knob: the engine's instruction set\n\n\
+         The ROM targets `thumbv4t-none-eabi`: `core`, compiler-builtins and the gba runtime are \
+         Thumb code, and the kernels are ARM assembly. The `portalcast` package itself (the \
+         engine and the ROM binary) is compiled as ARM code by the `rom` cargo profile \
+         (`-Ctarget-feature=-thumb-mode`); its hot functions run from IWRAM, where ARM code is \
+         fetched as fast as Thumb and does its 64-bit products in one `SMULL`/`UMULL` instead of \
+         a library call. `PORTALCAST_ENGINE_ISA=thumb` builds the engine as Thumb instead (the \
+         `release` profile). The report runs the regression guard's part of the bench scene on \
+         both:\n\n\
+         | resolution | ARM engine mean | Thumb engine mean | ARM max | Thumb max | ARM speed-up (mean) |\n\
+         |---|---|---|---|---|---|\n",
+    );
+    for arm in measurements.guard() {
+        let Some(thumb) = measurements
+            .thumb_engine_runs
+            .iter()
+            .find(|thumb| thumb.key() == arm.key())
+        else {
+            continue;
+        };
+        let (a, t) = (arm.summary(), thumb.summary());
+        let _ = writeln!(
+            doc,
+            "| {} | {} | {} | {} | {} | {:.2}× |",
+            resolution_name(arm.setting("res").unwrap_or("?")),
+            group_digits(a.mean),
+            group_digits(t.mean),
+            group_digits(a.max),
+            group_digits(t.max),
+            t.mean as f64 / a.mean.max(1) as f64
+        );
+    }
+    doc.push_str(
+        "\nMixing the two needs one repair: compiler-builtins writes its four `__aeabi_*divmod` \
+         helpers by hand as Thumb code that returns with `pop {pc}`, which does not switch back to \
+         ARM state on the ARMv4T. The ROM links them `--wrap`ped to ARM versions in \
+         `asm/runtime.s`, and the boot line's `division_digest` is checked against the host's. \
+         `#[instruction_set(arm::a32)]` on single functions was the other way, and measured \
+         slower: LLVM does not inline across instruction sets.\n\n",
+    );
+}
+
+fn kernels(doc: &mut String, measurements: &Measurements) {
+    doc.push_str(
+        "## Kernels: cycles per pixel\n\n\
+         Measured by the ROM (kernel check scene, L+R held at power-on) with texels and colormap \
+         in IWRAM, as the difference between a long and a short run divided by the difference in \
+         pixels, so the call and set-up cost cancels:\n\n\
+         | kernel | cycles per pixel | target | over the target |\n|---|---|---|---|\n",
+    );
+    for (key, hundredths) in &measurements.kernels {
+        let known = KERNELS.iter().find(|(name, _, _)| name == key);
+        let description = known.map_or(key.as_str(), |(_, description, _)| description);
+        let cycles = *hundredths as f64 / 100.0;
+        let (target_text, over) = match known.and_then(|(_, _, target)| *target) {
+            Some(target) if cycles > target => {
+                (format!("≤ {target:.0}"), format!("+{:.2}", cycles - target))
+            }
+            Some(target) => (format!("≤ {target:.0}"), "met".to_string()),
+            None => ("—".to_string(), String::new()),
+        };
+        let _ = writeln!(
+            doc,
+            "| {description} | {cycles:.2} | {target_text} | {over} |"
+        );
+    }
+    doc.push_str(
+        "\n`cargo test --test emulator_foundation` also proves that every kernel variant writes \
+         exactly the same VRAM bytes as its Rust twin.\n\n",
+    );
+}
+
+fn accuracy(doc: &mut String, measurements: &Measurements) {
+    let run_frames = measurements
+        .guard()
+        .first()
+        .map_or(0, |run| run.frames.len());
+    let compared = measurements
+        .guard()
+        .first()
+        .and_then(|run| measurements.accuracy_of(run))
+        .map_or(0, |line| line.counter("frames") as usize);
+    let step = run_frames.checked_div(compared).unwrap_or(0);
+    let total: u64 = measurements
+        .accuracy
+        .iter()
+        .map(|line| line.counter("frames"))
+        .sum();
+    let _ = write!(
+        doc,
+        "## Accuracy against the f64 oracle\n\n\
+         On the host, `bench-accuracy` (crates/oracle) replays every run of the bench scene: every \
+         {step}th frame of the path ({compared} of {run_frames}; {total} frames in all) is drawn \
+         by the fixed-point engine, through the rasterizer twins, and by the f64 ray-casting \
+         oracle (`crates/oracle`), from the same pose with the same viewport and lighting rule, \
+         and the two are compared pixel by pixel. The host's engine frames are the ROM's: \
+         `cargo test --test emulator_render` proves them identical. The oracle is exact, so a \
+         knob only changes the engine's side. The columns:\n\n\
+         - **surface %**: pixels showing another surface (a wall, a strip, a floor, a ceiling, \
+         the sky) than the oracle's, over all compared pixels;\n\
+         - **texel %**: pixels on the right surface with another palette index (rounding at texel \
+         edges, and the mip rule: the engine never uses a mip level smaller than its smallest \
+         column kernel, the oracle follows the plain `floor(log2(z'/d_y))` rule);\n\
+         - **wall edge (px)**: the largest vertical error of a wall's edges: in each column, for \
+         every wall or strip both frames show there, the difference between the rows of their \
+         top pixels and between the rows of their bottom pixels; the maximum over every column \
+         of every compared frame;\n\
+         - **missed sectors**: sectors the oracle's frame shows and the engine's does not, added \
+         up over the compared frames (the thesis' 24.8 projection lost portals this way).\n\n\
+         `cargo test --test render_oracle` bounds the same measures on sampled poses of every \
+         map, and `cargo test --test render_host` checks that every pixel of every frame is \
+         written exactly once.\n\n"
+    );
+}
+
+fn sizes(doc: &mut String, measurements: &Measurements) {
+    let sizes = &measurements.sizes;
+    let boot = |key: &str| {
+        measurements
+            .boot
+            .iter()
+            .find(|(name, _)| name == key)
+            .map(|(_, value)| *value)
+    };
+    let rom_code: u64 = sizes
+        .sections
+        .iter()
+        .filter(|section| section.in_file)
+        .map(|section| u64::from(section.size))
+        .sum();
+    let _ = write!(
+        doc,
+        "## Sizes\n\n\
+         From the linked ELF's section headers and the `.gba` file:\n\n\
+         | memory | used | of | left |\n|---|---|---|---|\n\
+         | ROM (`target/portalcast.gba`) | {} | {} | {} |\n",
+        group_digits(sizes.rom_file),
+        group_digits(u64::from(ROM.usable)),
+        group_digits(u64::from(ROM.usable).saturating_sub(sizes.rom_file)),
+    );
+    for region in [IWRAM, EWRAM] {
+        let used = u64::from(sizes.used(region));
+        let _ = writeln!(
+            doc,
+            "| {} | {} | {} | {} |",
+            region.name,
+            group_digits(used),
+            group_digits(u64::from(region.usable)),
+            group_digits(u64::from(region.usable).saturating_sub(used)),
+        );
+    }
+    let _ = write!(
+        doc,
+        "\nIWRAM's usable size leaves out the {} bytes at its top that the BIOS keeps; what IWRAM \
+         has left is the stack's (the linker script asserts a minimum){}. The ROM's allocated \
+         sections ({} bytes of them in the file):\n\n\
+         | section | runs in | address | bytes |\n|---|---|---|---|\n",
+        32 * 1024 - IWRAM.usable,
+        match boot("stack_room") {
+            Some(room) => format!(
+                "; the ROM reports {} bytes of stack room at boot",
+                group_digits(room)
+            ),
+            None => String::new(),
+        },
+        group_digits(rom_code),
+    );
+    for section in &sizes.sections {
+        let region = [IWRAM, EWRAM, ROM]
+            .into_iter()
+            .find(|region| section.runs_in(*region))
+            .map_or("—", |region| region.name);
+        let _ = writeln!(
+            doc,
+            "| `{}` | {region} | 0x{:08x} | {} |",
+            section.name,
+            section.address,
+            group_digits(u64::from(section.size))
+        );
+    }
+    doc.push_str(
+        "\n`cargo rom` prints the asset compiler's size report (ROM bytes per asset kind, and the \
+         RAM each would need if copied) after the build.\n\n",
+    );
+}
+
+fn guard(doc: &mut String, measurements: &Measurements) {
+    let _ = write!(
+        doc,
+        "## Regression guard\n\n\
+         `tests/bench_guard.rs` (part of `cargo xtest` and `cargo test`) runs the guard's part of \
+         the bench scene (R and Select held at power-on: the bench map at the default settings, \
+         every resolution) and fails if a mean or a max rises more than {TOLERANCE_PERCENT} % \
+         above the committed baseline, [`{file}`]({link}); it says so, without failing, when one \
+         falls more than {TOLERANCE_PERCENT} % below. Updating the baseline is an explicit, \
+         reviewed step: `cargo bench-report --update-baseline` rewrites it (and this file), and \
+         the new baseline is committed with the change that moved the figures.\n\n",
+        file = baseline::BASELINE_FILE,
+        link = baseline::BASELINE_FILE.trim_start_matches("docs/"),
+    );
+    let Some(committed) = &measurements.baseline else {
+        doc.push_str("No baseline is committed yet.\n");
+        return;
+    };
+    doc.push_str(
+        "| run | baseline mean | mean now | baseline max | max now |\n|---|---|---|---|---|\n",
+    );
+    for entry in &committed.entries {
+        let now = measurements.guard().iter().find(|run| {
+            run.map == entry.field("map").unwrap_or_default()
+                && run.setting("res") == entry.field("res")
+        });
+        let (mean_now, max_now) = now.map_or(("—".to_string(), "—".to_string()), |run| {
+            let summary = run.summary();
+            (group_digits(summary.mean), group_digits(summary.max))
+        });
+        let _ = writeln!(
+            doc,
+            "| {} | {} | {mean_now} | {} | {max_now} |",
+            entry.key,
+            group_digits(entry.mean),
+            group_digits(entry.max)
+        );
+    }
+}

@@ -1,0 +1,174 @@
+//! ROM, IWRAM and EWRAM sizes from the linked ELF's section headers and the `.gba` file.
+
+use std::path::Path;
+
+use portalcast_xtask::{TaskError, TaskResult};
+
+/// A memory region of the GBA's address map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Region {
+    /// Its name in the report.
+    pub name: &'static str,
+    /// First address.
+    pub start: u32,
+    /// Bytes the program may use (IWRAM less the BIOS's top 256 bytes).
+    pub usable: u32,
+}
+
+/// Internal work RAM: 32 KiB, of which the BIOS keeps the top 256 bytes (linker.ld).
+pub const IWRAM: Region = Region {
+    name: "IWRAM",
+    start: 0x0300_0000,
+    usable: 32 * 1024 - 256,
+};
+/// External work RAM: 256 KiB.
+pub const EWRAM: Region = Region {
+    name: "EWRAM",
+    start: 0x0200_0000,
+    usable: 256 * 1024,
+};
+/// Cartridge ROM: up to 32 MiB mapped.
+pub const ROM: Region = Region {
+    name: "ROM",
+    start: 0x0800_0000,
+    usable: 32 * 1024 * 1024,
+};
+
+/// One allocated section of the ELF.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Section {
+    /// Its name (`.iwram`, `.text`, `.bss`, …).
+    pub name: String,
+    /// Run-time address.
+    pub address: u32,
+    /// Bytes.
+    pub size: u32,
+    /// Whether it takes room in the `.gba` file too (not `NOBITS` like `.bss`).
+    pub in_file: bool,
+}
+
+impl Section {
+    /// Whether the section runs in `region` (the GBA's regions are told apart by the address's
+    /// top byte).
+    pub fn runs_in(&self, region: Region) -> bool {
+        self.address >> 24 == region.start >> 24
+    }
+}
+
+/// The sizes the report shows.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Sizes {
+    /// Bytes of the `.gba` file.
+    pub rom_file: u64,
+    /// The allocated sections, in header order.
+    pub sections: Vec<Section>,
+}
+
+impl Sizes {
+    /// Bytes used in `region`, from the lowest section start to the highest section end (so
+    /// alignment gaps count, as they do at run time).
+    pub fn used(&self, region: Region) -> u32 {
+        let inside = self.sections.iter().filter(|s| s.runs_in(region));
+        let start = inside.clone().map(|s| s.address).min();
+        let end = inside.map(|s| s.address + s.size).max();
+        match (start, end) {
+            (Some(_), Some(end)) => end - region.start,
+            _ => 0,
+        }
+    }
+}
+
+/// The `.gba` size and the ELF's allocated sections.
+pub fn measure(elf: &Path, gba: &Path) -> TaskResult<Sizes> {
+    let bytes =
+        std::fs::read(elf).map_err(|error| TaskError(format!("{}: {error}", elf.display())))?;
+    let rom_file = std::fs::metadata(gba)
+        .map_err(|error| TaskError(format!("{}: {error}", gba.display())))?
+        .len();
+    let sections = allocated_sections(&bytes)
+        .map_err(|problem| TaskError(format!("{}: {problem}", elf.display())))?;
+    Ok(Sizes { rom_file, sections })
+}
+
+const SHF_ALLOC: u32 = 0x2;
+const SHT_NOBITS: u32 = 8;
+
+/// The allocated sections (`SHF_ALLOC`) of a 32-bit little-endian ELF, with a size above 0.
+pub fn allocated_sections(elf: &[u8]) -> Result<Vec<Section>, String> {
+    if elf.get(..6) != Some(&[0x7f, b'E', b'L', b'F', 1, 1][..]) {
+        return Err("not a 32-bit little-endian ELF".to_string());
+    }
+    let u16_at = |at: usize| -> Result<u16, String> {
+        elf.get(at..at + 2)
+            .map(|b| u16::from_le_bytes([b[0], b[1]]))
+            .ok_or_else(|| format!("truncated ELF at {at}"))
+    };
+    let u32_at = |at: usize| -> Result<u32, String> {
+        elf.get(at..at + 4)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .ok_or_else(|| format!("truncated ELF at {at}"))
+    };
+    let table = u32_at(0x20)? as usize;
+    let entry_size = usize::from(u16_at(0x2E)?);
+    let count = usize::from(u16_at(0x30)?);
+    let names_index = usize::from(u16_at(0x32)?);
+    let header = |index: usize| table + index * entry_size;
+    let names_offset = u32_at(header(names_index) + 0x10)? as usize;
+    let name_at = |offset: usize| -> String {
+        let start = names_offset + offset;
+        let end = elf[start.min(elf.len())..]
+            .iter()
+            .position(|&b| b == 0)
+            .map_or(elf.len(), |len| start + len);
+        String::from_utf8_lossy(&elf[start.min(elf.len())..end]).into_owned()
+    };
+    let mut sections = Vec::new();
+    for index in 0..count {
+        let at = header(index);
+        let kind = u32_at(at + 0x04)?;
+        let flags = u32_at(at + 0x08)?;
+        let size = u32_at(at + 0x14)?;
+        if flags & SHF_ALLOC == 0 || size == 0 {
+            continue;
+        }
+        sections.push(Section {
+            name: name_at(u32_at(at)? as usize),
+            address: u32_at(at + 0x0C)?,
+            size,
+            in_file: kind != SHT_NOBITS,
+        });
+    }
+    Ok(sections)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn regions_sum_from_their_start_to_the_last_section_end() {
+        let section = |name: &str, address: u32, size: u32| Section {
+            name: name.to_string(),
+            address,
+            size,
+            in_file: true,
+        };
+        let sizes = Sizes {
+            rom_file: 0,
+            sections: vec![
+                section(".text", 0x0800_0000, 100),
+                section(".iwram", 0x0300_0000, 64),
+                section(".bss", 0x0300_0040, 16),
+                section(".ewram_bss", 0x0200_0000, 8),
+            ],
+        };
+        assert_eq!(sizes.used(IWRAM), 80);
+        assert_eq!(sizes.used(EWRAM), 8);
+        assert_eq!(sizes.used(ROM), 100);
+    }
+
+    #[test]
+    fn a_non_elf_is_refused() {
+        assert!(allocated_sections(b"not an elf").is_err());
+    }
+}

@@ -1,0 +1,218 @@
+//! What the benchmark measures, shared by the ROM's bench scene and the host's accuracy report:
+//! which maps and settings, in which order, how many frames, and the words each frame's line is
+//! made of.
+//!
+//! A bench line reads `bench map=NAME <settings> frame=N cycles=C <stage>_cycles=… …`: the
+//! settings are every `key=value` between `map=` and `frame=` ([`SettingsLabel`]), the stages
+//! every field named `*_cycles` after `cycles=` ([`StageCycles`]). The report takes both
+//! generically, so a new knob or a new stage needs one line here and nothing in the report.
+//! mGBA's debug log cuts a line at 256 bytes, so keys and values stay short.
+
+use core::fmt;
+
+use portalcast_format::MapTables;
+
+use crate::assets;
+use crate::frame::Resolution;
+use crate::render::demo::lighting_label;
+use crate::render::light::Lighting;
+use crate::render::view::{Perspective, Settings, TexturePlacement};
+use crate::render::walk::FrameStats;
+
+/// Frames measured per setting along the [`crate::flight`] path.
+pub const FRAMES_PER_SETTING: u32 = 64;
+/// The host compares every this many frames of the path with the oracle (frame 0 first).
+pub const ACCURACY_FRAME_STEP: u32 = 8;
+/// The map the knobs are measured on and the regression guard watches.
+pub const BENCH_MAP: &str = "bench";
+/// Printed after the regression guard's part of the bench scene.
+pub const GUARD_DONE: &str = "bench guard done";
+/// Printed at the end of the bench scene.
+pub const BENCH_DONE: &str = "bench done";
+
+/// The bench map from the compiled assets (the first map if there is no `bench`).
+pub fn bench_map() -> &'static MapTables<'static> {
+    assets::MAPS
+        .iter()
+        .find(|map| map.name == BENCH_MAP)
+        .unwrap_or(&assets::MAPS[0])
+}
+
+/// The default settings at `resolution`: what the ROM starts with and what each knob is varied
+/// from.
+pub const fn default_settings(resolution: Resolution) -> Settings {
+    Settings {
+        resolution,
+        ..Settings::DEFAULT
+    }
+}
+
+/// The settings measured at `resolution`: the defaults first, then each knob's other values,
+/// one knob at a time. A new knob is one `.chain(…)` line.
+pub fn knob_variants(resolution: Resolution) -> impl Iterator<Item = Settings> {
+    let base = default_settings(resolution);
+    core::iter::once(base)
+        .chain(
+            [Lighting::Off, Lighting::Sector]
+                .into_iter()
+                .map(move |lighting| Settings { lighting, ..base }),
+        )
+        .chain(
+            [Perspective::Every8, Perspective::Every16]
+                .into_iter()
+                .map(move |perspective| Settings {
+                    perspective,
+                    ..base
+                }),
+        )
+        .chain(core::iter::once(Settings {
+            textures: TexturePlacement::Rom,
+            ..base
+        }))
+}
+
+/// The regression guard's runs, first in the bench scene: the bench map at the default
+/// settings, at every resolution.
+pub fn guard_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Settings)> {
+    Resolution::ALL
+        .into_iter()
+        .map(|resolution| (bench_map(), default_settings(resolution)))
+}
+
+/// The rest of the bench scene, after the guard's runs: every other knob value on the bench map
+/// at every resolution, then every other shipped map at the default settings.
+pub fn report_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Settings)> {
+    let knobs = Resolution::ALL
+        .into_iter()
+        .flat_map(|resolution| knob_variants(resolution).skip(1))
+        .map(|settings| (bench_map(), settings));
+    let other_maps = assets::MAPS
+        .iter()
+        .filter(|map| map.name != bench_map().name)
+        .flat_map(|map| {
+            Resolution::ALL
+                .into_iter()
+                .map(move |resolution| (map, default_settings(resolution)))
+        });
+    knobs.chain(other_maps)
+}
+
+/// Every run of the bench scene, in order: [`guard_runs`], then [`report_runs`].
+pub fn all_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Settings)> {
+    guard_runs().chain(report_runs())
+}
+
+/// The settings as the `key=value` words of a bench line, e.g. `res=120x80 lighting=depth`.
+/// A new knob is one `write!` line.
+pub struct SettingsLabel<'s>(pub &'s Settings);
+
+impl fmt::Display for SettingsLabel<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let settings = self.0;
+        write!(f, "res={}", settings.resolution.label())?;
+        write!(f, " lighting={}", lighting_label(settings.lighting))?;
+        write!(f, " persp={}", settings.perspective.label())?;
+        write!(f, " tex={}", settings.textures.label())?;
+        Ok(())
+    }
+}
+
+/// Longest line mGBA's debug log keeps whole: the ROM's logger flushes every 256 bytes.
+pub const MAX_LINE_BYTES: usize = 255;
+
+/// One frame's bench line: `bench map=NAME <settings> frame=N cycles=C <stages>`.
+pub struct BenchLine<'l> {
+    /// The map's name.
+    pub map: &'l str,
+    /// The settings the frame was drawn at.
+    pub settings: &'l Settings,
+    /// Position along the fly-through, from 0.
+    pub frame: u32,
+    /// Cycles of the whole render.
+    pub cycles: u32,
+    /// The renderer's counters for the frame (its stage timings).
+    pub stats: &'l FrameStats,
+}
+
+impl fmt::Display for BenchLine<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "bench map={} {} frame={} cycles={}{}",
+            self.map,
+            SettingsLabel(self.settings),
+            self.frame,
+            self.cycles,
+            StageCycles(self.stats)
+        )
+    }
+}
+
+/// A frame's stage timings as the `name_cycles=N` words of a bench line, each with a leading
+/// space. A new stage is one `write!` line.
+pub struct StageCycles<'s>(pub &'s FrameStats);
+
+impl fmt::Display for StageCycles<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let stats = self.0;
+        write!(f, " wall_cycles={}", stats.wall_ticks)?;
+        write!(f, " plane_cycles={}", stats.plane_ticks)?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::BTreeSet;
+
+    #[test]
+    fn every_run_has_a_distinct_label_and_the_guard_comes_first() {
+        let labels: Vec<String> = all_runs()
+            .map(|(map, settings)| format!("map={} {}", map.name, SettingsLabel(&settings)))
+            .collect();
+        let distinct: BTreeSet<&String> = labels.iter().collect();
+        assert_eq!(distinct.len(), labels.len(), "{labels:?}");
+        assert_eq!(labels[0], "map=bench res=120x80 lighting=depth");
+        assert_eq!(guard_runs().count(), Resolution::ALL.len());
+    }
+
+    #[test]
+    fn the_longest_bench_line_fits_in_one_mgba_log_line() {
+        let stats = FrameStats {
+            sector_visits: u32::MAX,
+            wall_columns: u32::MAX,
+            column_pixels: u32::MAX,
+            span_pixels: u32::MAX,
+            depth_cutoffs: u32::MAX,
+            wall_ticks: u32::MAX,
+            plane_ticks: u32::MAX,
+        };
+        for (map, settings) in all_runs() {
+            let line = BenchLine {
+                map: map.name,
+                settings: &settings,
+                frame: FRAMES_PER_SETTING,
+                cycles: u32::MAX,
+                stats: &stats,
+            }
+            .to_string();
+            assert!(
+                line.len() <= MAX_LINE_BYTES,
+                "{} bytes: {line} (shorten the knob or stage words)",
+                line.len()
+            );
+        }
+    }
+
+    #[test]
+    fn labels_are_single_key_value_words() {
+        for (_, settings) in all_runs() {
+            let label = format!("{}", SettingsLabel(&settings));
+            for word in label.split(' ') {
+                let (key, value) = word.split_once('=').expect("key=value");
+                assert!(!key.is_empty() && !value.is_empty() && !value.contains('='));
+            }
+        }
+    }
+}
