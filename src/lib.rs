@@ -11,6 +11,7 @@ pub mod assets;
 pub mod frame;
 pub mod kernel_check;
 pub mod math;
+pub mod math_bench;
 pub mod raster;
 pub mod render;
 pub mod testpic;
