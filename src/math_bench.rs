@@ -526,3 +526,50 @@ pub mod rom_loops {
 pub(crate) mod iwram_loops {
     bench_loops!(0x4957_5241_u32);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_loop_sums_its_operation_over_pairs_and_rounds() {
+        for op in Op::ALL {
+            let inputs = op.inputs();
+            let once = inputs
+                .iter()
+                .fold(0i32, |sum, &[a, b]| sum.wrapping_add(op.twin(a, b)));
+            assert_eq!(op.run_in_rom(&inputs, 1), once, "{op:?}");
+            assert_eq!(op.run_in_rom(&inputs, 3), once.wrapping_mul(3), "{op:?}");
+        }
+    }
+
+    #[test]
+    fn operands_stay_in_each_operation_s_domain() {
+        for op in Op::ALL {
+            let inputs = op.inputs();
+            // Spread: no operand repeats, so a loop cannot profit from one fixed value.
+            for (index, pair) in inputs.iter().enumerate() {
+                assert!(!inputs[..index].contains(pair), "{op:?}: {pair:?} repeats");
+            }
+            for [a, b] in inputs {
+                match op {
+                    Op::Recip | Op::RecipExact => assert!(a > 256, "{op:?}: depth {a}"),
+                    Op::DivSmall => assert!((1..=511).contains(&b), "{op:?}: n {b}"),
+                    Op::DivTable | Op::DivBios | Op::DivSoft => {
+                        assert!(b != 0 && a != i32::MIN, "{op:?}: {a} / {b}")
+                    }
+                    Op::ProjectX | Op::Column => assert!(b >= 256, "{op:?}: depth {b}"),
+                    Op::ProjectY => assert!(b > 0 && b <= 1 << 30, "{op:?}: 1/z' {b}"),
+                    _ => {}
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn names_round_trip() {
+        for op in Op::ALL {
+            assert_eq!(Op::from_name(op.name()), Some(op));
+        }
+    }
+}

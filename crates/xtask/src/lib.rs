@@ -4,6 +4,8 @@
 //! This crate must build before any setup has run, so it depends on nothing that needs a system
 //! library (the mGBA harness is started as a separate process once setup has installed libmgba).
 
+pub mod bench_math;
+
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -1,8 +1,10 @@
-//! `cargo rom`, `cargo play` and `cargo xtest` (aliases in .cargo/config.toml).
+//! `cargo rom`, `cargo play`, `cargo xtest`, `cargo bench-rom` and `cargo bench-math` (aliases in
+//! .cargo/config.toml).
 use portalcast_xtask::{build_rom, ensure_setup, workspace_root, TaskError, TaskResult};
 use std::process::{Command, ExitCode};
 
-const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom";
+const USAGE: &str =
+    "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-math";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -11,6 +13,7 @@ fn main() -> ExitCode {
         Some("play") => play(),
         Some("test") => test(),
         Some("bench") => bench(),
+        Some("bench-math") => portalcast_xtask::bench_math::run(),
         _ => Err(TaskError(USAGE.to_string())),
     };
     match result {
