@@ -13,6 +13,7 @@ pub mod flight;
 pub mod frame;
 pub mod kernel_check;
 pub mod math;
+pub mod math_bench;
 pub mod raster;
 pub mod render;
 pub mod selfcheck;

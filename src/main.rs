@@ -41,10 +41,11 @@ mod rom {
         hw::set_waitstates();
         meter::start();
         log::info(format_args!(
-            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={}",
+            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} division_digest=0x{:08x}",
             hw::WAITCNT_SETTING,
             memory::iwram_used(),
-            memory::stack_room()
+            memory::stack_room(),
+            portalcast::selfcheck::division_digest()
         ));
 
         let mut display = Display::start(Resolution::R120x80);
@@ -56,6 +57,10 @@ mod rom {
         if held_at_boot & (KEY_L | KEY_R) == KEY_R {
             display.set_palette(&assets::PALETTE);
             bench_scene(&mut display, held_at_boot & KEY_SELECT != 0);
+        }
+        if held_at_boot & (KEY_L | KEY_R) == KEY_L {
+            display.set_palette(&testpic::PALETTE);
+            math_scene(&mut display);
         }
         if held_at_boot & KEY_B != 0 {
             display.set_palette(&testpic::PALETTE);
@@ -322,6 +327,108 @@ mod rom {
             "kernel-cycles-x100 col_dbl_unlit={col_unlit} col_dbl_lit={col_lit} col_native_lit={col_native_lit} \
              flat_dbl_unlit={flat_dbl_unlit} flat_dbl_lit={flat_dbl_lit} flat_pair_unlit={flat_pair_unlit} flat_pair_lit={flat_pair_lit}"
         ));
+    }
+
+    /// Rounds of the two timed runs of every benchmark loop. A figure is the difference of the
+    /// two runs divided by the operations it adds (8 rounds of 16 pairs), so the call, the
+    /// set-up and the timer reads cancel.
+    const MATH_SHORT_ROUNDS: u32 = 1;
+    const MATH_LONG_ROUNDS: u32 = 9;
+
+    /// L held at boot: the math micro-benchmark (`portalcast::math_bench`). For every
+    /// operation: check that its variants (the Thumb loop in ROM, the same loop in IWRAM, the
+    /// ARM routine) give the same results pair by pair, then time each, interrupts masked, and
+    /// print cycles per operation in hundredths. `cargo bench-math` turns the lines into the
+    /// math section of docs/BENCH.md; tests/emulator_math.rs checks them.
+    fn math_scene(display: &mut Display) -> ! {
+        use core::hint::black_box;
+        use portalcast::hw::math_bench::BenchCode;
+        use portalcast::math_bench::{mix, Op, Pair, INPUTS};
+
+        let code = BenchCode::load();
+        let code_mode = if cfg!(target_feature = "thumb-mode") {
+            "thumb"
+        } else {
+            "arm"
+        };
+        log::info(format_args!(
+            "math begin code={code_mode} overlay_bytes={} pairs={INPUTS} rounds={MATH_SHORT_ROUNDS}-{MATH_LONG_ROUNDS}",
+            code.bytes()
+        ));
+        for op in Op::ALL {
+            let mut inputs = op.inputs();
+            // Opaque, so the pairs stay in this stack copy (IWRAM) rather than being read from
+            // their constant in ROM, which would add the cart's wait states to every load.
+            black_box(&mut inputs);
+            assert_eq!(
+                inputs.as_ptr() as usize >> 24,
+                0x03,
+                "operands not in IWRAM"
+            );
+
+            type Run<'a> = &'a dyn Fn(&[Pair], u32) -> i32;
+            let in_rom: Run = &|pairs, rounds| op.run_in_rom(pairs, rounds);
+            let in_iwram: Run = &|pairs, rounds| code.run_in_iwram(op, pairs, rounds);
+            let arm: Run = &|pairs, rounds| code.run_arm(op, pairs, rounds).unwrap_or(0);
+
+            let check = |run: Run| mix(inputs.chunks(1).map(|pair| run(pair, 1)));
+            let hex = |value: u32| HexOrDash(Some(value));
+            log::info(format_args!(
+                "math-check op={} rom={} iwram={} arm={}",
+                op.name(),
+                hex(check(in_rom)),
+                hex(check(in_iwram)),
+                HexOrDash(op.has_arm().then(|| check(arm))),
+            ));
+
+            let cost = |run: Run| {
+                hw::without_interrupts(|| {
+                    let started = meter::now();
+                    black_box(run(&inputs, MATH_SHORT_ROUNDS));
+                    let short = meter::cycles_since(started);
+                    let started = meter::now();
+                    black_box(run(&inputs, MATH_LONG_ROUNDS));
+                    let long = meter::cycles_since(started);
+                    let operations = (MATH_LONG_ROUNDS - MATH_SHORT_ROUNDS) * INPUTS as u32;
+                    (long - short) * 100 / operations
+                })
+            };
+            log::info(format_args!(
+                "math-cycles-x100 op={} rom={} iwram={} arm={}",
+                op.name(),
+                cost(in_rom),
+                cost(in_iwram),
+                DecimalOrDash(op.has_arm().then(|| cost(arm))),
+            ));
+        }
+        log::info(format_args!("math done"));
+        loop {
+            display.wait_vblank();
+        }
+    }
+
+    /// `0x%08x`, or `-` for a variant that does not exist.
+    struct HexOrDash(Option<u32>);
+
+    impl core::fmt::Display for HexOrDash {
+        fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+            match self.0 {
+                Some(value) => write!(f, "0x{value:08x}"),
+                None => f.write_str("-"),
+            }
+        }
+    }
+
+    /// A number, or `-` for a variant that does not exist.
+    struct DecimalOrDash(Option<u32>);
+
+    impl core::fmt::Display for DecimalOrDash {
+        fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+            match self.0 {
+                Some(value) => write!(f, "{value}"),
+                None => f.write_str("-"),
+            }
+        }
     }
 
     #[panic_handler]

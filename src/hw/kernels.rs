@@ -109,6 +109,10 @@ core::arch::global_asm!(include_str!("../../asm/column.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
 restore_code_mode!();
+// The math benchmark's ARM routines: assembled here with the kernels, placed in the benchmark's
+// IWRAM overlay by their section, and called through `hw::math_bench`.
+core::arch::global_asm!(include_str!("../../asm/mathbench.s"), options(raw));
+restore_code_mode!();
 
 // Interworking-safe division helpers that the ROM links in place of compiler-builtins' own
 // (`--wrap`, see the file's header); nothing here calls them by name.

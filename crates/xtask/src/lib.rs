@@ -6,6 +6,7 @@
 
 pub mod baseline;
 pub mod bench_log;
+pub mod bench_math;
 
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -1,12 +1,11 @@
-//! `cargo rom`, `cargo play`, `cargo xtest`, `cargo bench-rom` and `cargo bench-report` (aliases
-//! in .cargo/config.toml).
+//! `cargo rom`, `cargo play`, `cargo xtest`, `cargo bench-rom`, `cargo bench-report` and
+//! `cargo bench-math` (aliases in .cargo/config.toml).
 use portalcast_xtask::{build_rom, ensure_setup, workspace_root, TaskError, TaskResult};
 use std::process::{Command, ExitCode};
 
 mod report;
 
-const USAGE: &str =
-    "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline]";
+const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -16,6 +15,7 @@ fn main() -> ExitCode {
         Some("test") => test(),
         Some("bench") => report::bench_rom(),
         Some("report") => report::bench_report(&args[1..]),
+        Some("bench-math") => portalcast_xtask::bench_math::run(),
         _ => Err(TaskError(USAGE.to_string())),
     };
     match result {

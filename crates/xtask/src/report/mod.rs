@@ -44,9 +44,9 @@ const KERNEL_LINE: &str = "kernel-cycles-x100";
 /// The ROM's boot line.
 const BOOT_LINE: &str = "portalcast boot";
 /// Marks around the math micro-benchmark section in docs/BENCH.md.
-pub const MATH_BEGIN: &str = "<!-- math:begin -->";
+pub const MATH_BEGIN: &str = portalcast_xtask::bench_math::BEGIN_MARKER;
 /// See [`MATH_BEGIN`].
-pub const MATH_END: &str = "<!-- math:end -->";
+pub const MATH_END: &str = portalcast_xtask::bench_math::END_MARKER;
 
 /// Everything the report shows.
 pub struct Measurements {
@@ -159,7 +159,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         sizes,
         thumb_engine_runs,
         baseline,
-        math_section: math_section(&gba, &current_doc)?,
+        math_section: math_section(&gba)?,
     };
     let doc = markdown::write(&measurements);
     let chart = chart::draw(&chart_panels(&measurements))?;
@@ -282,14 +282,10 @@ fn read_baseline() -> TaskResult<Option<Baseline>> {
     }
 }
 
-/// The math micro-benchmark section, markers included. A slot until `bench_math` is merged in:
-/// it keeps the committed section as it is (or an empty one).
-fn math_section(_rom: &Path, current_doc: &str) -> TaskResult<String> {
-    let kept = current_doc.find(MATH_BEGIN).and_then(|begin| {
-        let end = current_doc[begin..].find(MATH_END)? + begin + MATH_END.len();
-        Some(current_doc[begin..end].to_string())
-    });
-    Ok(kept.unwrap_or_else(|| format!("{MATH_BEGIN}\n{MATH_END}")))
+/// The math micro-benchmark section (`cargo bench-math` writes the same), markers included.
+fn math_section(rom: &Path) -> TaskResult<String> {
+    let section = portalcast_xtask::bench_math::math_section(rom)?;
+    Ok(format!("{MATH_BEGIN}\n{section}{MATH_END}"))
 }
 
 /// The chart's panels: per resolution, every run at it.
