@@ -9,8 +9,11 @@
 
 pub mod assets;
 pub mod frame;
+pub mod game;
 pub mod kernel_check;
 pub mod math;
+pub mod menu;
+pub mod player;
 pub mod raster;
 pub mod render;
 pub mod testpic;
