@@ -2,6 +2,7 @@
 //! and, in `player`, of the player tests.
 #![allow(dead_code)]
 
+pub mod demos;
 pub mod player;
 
 use portalcast::frame::{shown_index, Resolution, PAGE_HALFWORDS, PAGE_HEIGHT, PAGE_WIDTH};
