@@ -149,7 +149,11 @@ fn climbing_the_stairs_ends_on_the_top_landing() {
     let last = run.last();
     assert_eq!(last.sector, landing_top, "{}", last.text);
     assert!(last.ground);
-    assert_eq!(last.z, (128 + STAND_EYE) * 256, "eye 32 above the top floor");
+    assert_eq!(
+        last.z,
+        (128 + STAND_EYE) * 256,
+        "eye 32 above the top floor"
+    );
     // The host's ticks went up every step in order.
     let steps: Vec<u16> = (1..=8)
         .map(|k| sector_index("bench.map", &format!("step_{k}")))
@@ -184,7 +188,12 @@ fn a_step_too_tall_blocks_the_player_and_a_jump_climbs_it() {
     assert!(!blocked.is_empty());
     for line in blocked {
         assert_eq!(line.sector, hall_s, "{}", line.text);
-        assert_eq!(line.y, 752 * 256, "one radius before the ledge: {}", line.text);
+        assert_eq!(
+            line.y,
+            752 * 256,
+            "one radius before the ledge: {}",
+            line.text
+        );
         assert_eq!(line.z, STAND_EYE * 256, "{}", line.text);
     }
     let last = run.last();
@@ -251,12 +260,21 @@ fn fly_mode_rises_to_the_ceiling_descends_and_falls_when_switched_off() {
     };
     let high = at_frame(130);
     assert!(high.fly, "{}", high.text);
-    assert_eq!(high.z, (192 - 16) * 256, "16 under the hall's ceiling: {}", high.text);
+    assert_eq!(
+        high.z,
+        (192 - 16) * 256,
+        "16 under the hall's ceiling: {}",
+        high.text
+    );
     let low = at_frame(240);
     assert!(low.fly);
     assert_eq!(low.z, STAND_EYE * 256, "{}", low.text);
     let lifted = at_frame(278);
-    assert!(lifted.fly && lifted.z > (STAND_EYE + 32) * 256, "{}", lifted.text);
+    assert!(
+        lifted.fly && lifted.z > (STAND_EYE + 32) * 256,
+        "{}",
+        lifted.text
+    );
     let last = run.last();
     assert!(!last.fly && last.ground, "{}", last.text);
     assert_eq!(last.z, STAND_EYE * 256);
