@@ -153,6 +153,7 @@ const PANEL_HEIGHT: usize = 2 * PADDING + PANEL_LINES * LINE_HEIGHT - 1;
 const PANEL_LEFT: usize = (120 - PANEL_WIDTH) / 2;
 const PANEL_TOP: usize = (80 - PANEL_HEIGHT) / 2;
 const _: () = assert!(PANEL_WIDTH <= 64, "a panel row is a u64 bit mask");
+const _: () = assert!(PANEL_LEFT + PANEL_WIDTH <= 120 && PANEL_TOP + PANEL_HEIGHT <= 80);
 
 /// 3×5 glyphs: five rows of three bits, the top row in bits 12–14, the left column the high
 /// bit of each row.
@@ -330,11 +331,6 @@ fn fill(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_panel_fits_the_screen() {
-        assert!(PANEL_LEFT + PANEL_WIDTH <= 120 && PANEL_TOP + PANEL_HEIGHT <= 80);
-    }
 
     #[test]
     fn every_character_the_menu_writes_has_its_own_glyph() {
