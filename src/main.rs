@@ -68,7 +68,9 @@ mod rom {
     /// 60 ticks per second whatever the frame rate; then one frame shows the result.
     ///
     /// Two lines per frame go to mGBA's log (one would pass the 256 bytes of its debug string
-    /// register): `player …` with the pose after the frame's ticks, then `render …`.
+    /// register): `player …` with the pose after the frame's ticks, then `render …`. Before
+    /// them, an `input vblank=… keys=…` line for every change of the buttons: a recording of
+    /// the game that a harness key script replays.
     fn play_scene(display: &mut Display) -> ! {
         let render_assets = demo::render_assets();
         let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
@@ -82,11 +84,20 @@ mod rom {
         ));
         let mut frame: u32 = 0;
         loop {
-            let lost = sampler.drain(|held| game.tick(Buttons(held)));
+            let game_started = meter::now();
+            let lost = sampler.drain(|vblank, held| {
+                // The recording: every change of the buttons, which replays the game exactly
+                // (`KeyScript::from_rom_log` in the harness).
+                if held != game.held().0 {
+                    log::info(format_args!("input vblank={vblank} keys=0x{held:03x}"));
+                }
+                game.tick(Buttons(held));
+            });
+            let game_cycles = meter::cycles_since(game_started);
             let camera = game.camera();
             let player = &game.player;
             log::info(format_args!(
-                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={}",
+                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} game_cycles={game_cycles}",
                 sampler.next_index(),
                 game.ticks(),
                 game.held().0,

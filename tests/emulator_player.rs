@@ -1,6 +1,7 @@
 //! The player in the ROM under the real mGBA core, driven by scripted key demos: the jump's
 //! eye height, the sector after climbing the stairs, a step too tall, crouching under a low
-//! ceiling, fly mode, and determinism.
+//! ceiling, fly mode, and determinism: the same demo, or the ROM's own recording of it, gives
+//! the same log and the same screens.
 //!
 //! Every demo also checks that each pose the ROM logs is the pose the host's game reaches after
 //! the same ticks of the same script (`common::demos::replay`): the ROM and the host run the
@@ -44,7 +45,14 @@ impl RomRun {
 /// Plays `script` for `frames` emulator frames from power-on, and checks every logged pose
 /// against the host's replay.
 fn play(script: &str, frames: u32) -> RomRun {
-    let script = KeyScript::parse(script).unwrap_or_else(|error| panic!("{error}"));
+    play_script(
+        &KeyScript::parse(script).unwrap_or_else(|error| panic!("{error}")),
+        frames,
+    )
+}
+
+/// [`play`] with a parsed script.
+fn play_script(script: &KeyScript, frames: u32) -> RomRun {
     let mut emulator = boot();
     let mut screens = Vec::new();
     for frame in 0..frames {
@@ -73,7 +81,7 @@ fn play(script: &str, frames: u32) -> RomRun {
         .collect();
     assert!(lines.len() >= 10, "only {} frames drawn", lines.len());
     let last_tick = lines.last().unwrap().tick;
-    let host = replay(&script, start, last_tick);
+    let host = replay(script, start, last_tick);
     for line in &lines {
         assert_eq!(line.lost, 0, "the ROM lost input samples: {}", line.text);
         let expected = PlayerLine::of(&host[line.tick as usize]);
@@ -285,7 +293,7 @@ fn fly_mode_rises_to_the_ceiling_descends_and_falls_when_switched_off() {
 }
 
 #[test]
-fn the_same_demo_twice_gives_the_same_poses_and_frames() {
+fn the_same_demo_twice_and_its_recording_give_the_same_poses_and_frames() {
     // Walking, turning, strafing, a jump, looking up and re-centring, the menu (resolution to
     // 120x160 and back), crouching, fly mode.
     let script = "
@@ -311,6 +319,22 @@ fn the_same_demo_twice_gives_the_same_poses_and_frames() {
     let second = play(script, 320);
     assert_eq!(first.log, second.log, "the logs differ");
     assert_eq!(first.screens, second.screens, "the screens differ");
+    // The ROM's recording of its buttons (`input` lines) replays the same game.
+    let recorded = KeyScript::from_rom_log(first.log.iter().map(String::as_str));
+    let original = KeyScript::parse(script).unwrap();
+    for frame in first.start + 1..320 {
+        assert_eq!(
+            recorded.keys_at(frame),
+            original.keys_at(frame),
+            "frame {frame}"
+        );
+    }
+    let third = play_script(&recorded, 320);
+    assert_eq!(first.log, third.log, "the recording's log differs");
+    assert_eq!(
+        first.screens, third.screens,
+        "the recording's screens differ"
+    );
     // The demo did what it says: moved, looked up, opened the menu, flew.
     assert!(first.lines.iter().any(|line| line.look > 0));
     assert!(first.lines.iter().any(|line| line.menu >= 0));

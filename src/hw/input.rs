@@ -51,15 +51,16 @@ impl Sampler {
         self.read
     }
 
-    /// Calls `each` with the buttons of every VBlank since the last drain, oldest first; if
-    /// more than [`RING_SAMPLES`] came, only the newest. Returns how many were lost that way.
-    pub fn drain(&mut self, mut each: impl FnMut(u16)) -> u32 {
+    /// Calls `each` with the index (VBlanks since [`start`]) and the buttons of every VBlank
+    /// since the last drain, oldest first; if more than [`RING_SAMPLES`] came, only the newest.
+    /// Returns how many were lost that way.
+    pub fn drain(&mut self, mut each: impl FnMut(u32, u16)) -> u32 {
         let written = samples_written();
         let waiting = written.wrapping_sub(self.read);
         let lost = waiting.saturating_sub(RING_SAMPLES);
         let mut index = self.read.wrapping_add(lost);
         while index != written {
-            each(RING[(index % RING_SAMPLES) as usize].read());
+            each(index, RING[(index % RING_SAMPLES) as usize].read());
             index = index.wrapping_add(1);
         }
         self.read = written;

@@ -445,6 +445,12 @@ fn push_from_segment(
     b: (i64, i64),
     contact: Contact,
 ) -> Option<(i64, i64)> {
+    // Most segments near a step are farther than the radius from every part of it: a box
+    // test rejects them before any product.
+    let beyond = |p: i64, a: i64, b: i64| p < a.min(b) - RADIUS_BITS || p > a.max(b) + RADIUS_BITS;
+    if beyond(p.0, a.0, b.0) || beyond(p.1, a.1, b.1) {
+        return None;
+    }
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let (px, py) = (p.0 - a.0, p.1 - a.1);
     let along = px * dx + py * dy;
