@@ -173,7 +173,10 @@ mod tests {
             .collect();
         let distinct: BTreeSet<&String> = labels.iter().collect();
         assert_eq!(distinct.len(), labels.len(), "{labels:?}");
-        assert_eq!(labels[0], "map=bench res=120x80 lighting=depth");
+        assert_eq!(
+            labels[0],
+            "map=bench res=120x80 lighting=depth persp=exact tex=ewram"
+        );
         assert_eq!(guard_runs().count(), Resolution::ALL.len());
     }
 

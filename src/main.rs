@@ -15,24 +15,24 @@ mod rom {
     use portalcast::bench::{self, BenchLine};
     use portalcast::flight::Flight;
     use portalcast::frame::Resolution;
+    use portalcast::game::Game;
     use portalcast::hw::kernels::{VramCanvas, VramPage};
-    use portalcast::hw::{self, log, memory, meter, video::Display};
+    use portalcast::hw::{self, input, log, memory, meter, video::Display};
+    use portalcast::menu::{self, MenuColours};
+    use portalcast::player::input::Buttons;
     use portalcast::render::demo;
-    use portalcast::render::light::Lighting;
     use portalcast::render::view::{Settings, View};
     use portalcast::render::walk::Renderer;
     use portalcast::render::RenderAssets;
     use portalcast::{assets, kernel_check, testpic};
     use portalcast_format::MapTables;
 
-    const KEY_A: u16 = 1 << 0;
-    const KEY_B: u16 = 1 << 1;
-    const KEY_SELECT: u16 = 1 << 2;
-    const KEY_START: u16 = 1 << 3;
-    const KEY_RIGHT: u16 = 1 << 4;
-    const KEY_LEFT: u16 = 1 << 5;
-    const KEY_R: u16 = 1 << 8;
-    const KEY_L: u16 = 1 << 9;
+    const KEY_B: u16 = Buttons::B.0;
+    const KEY_SELECT: u16 = Buttons::SELECT.0;
+    const KEY_RIGHT: u16 = Buttons::RIGHT.0;
+    const KEY_LEFT: u16 = Buttons::LEFT.0;
+    const KEY_R: u16 = Buttons::R.0;
+    const KEY_L: u16 = Buttons::L.0;
 
     /// Entered from gba's runtime after it copied IWRAM/EWRAM and zeroed .bss.
     #[allow(unsafe_code)]
@@ -40,6 +40,10 @@ mod rom {
     extern "C" fn main() -> ! {
         hw::set_waitstates();
         meter::start();
+        let mut display = Display::start(Resolution::R120x80);
+        input::start();
+        // After the sampler starts, so its VBlank count is the emulator's frame count whatever
+        // the boot checks cost (the player's emulator tests rely on it).
         log::info(format_args!(
             "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} division_digest=0x{:08x}",
             hw::WAITCNT_SETTING,
@@ -48,7 +52,6 @@ mod rom {
             portalcast::selfcheck::division_digest()
         ));
 
-        let mut display = Display::start(Resolution::R120x80);
         let held_at_boot = hw::keys_held();
         if held_at_boot & (KEY_L | KEY_R) == KEY_L | KEY_R {
             display.set_palette(&testpic::PALETTE);
@@ -67,54 +70,78 @@ mod rom {
             test_picture_scene(&mut display, held_at_boot);
         }
         display.set_palette(&assets::PALETTE);
-        render_scene(&mut display, held_at_boot)
+        play_scene(&mut display)
     }
 
-    /// The engine: the demo camera path through the bench map. Select cycles the resolution,
-    /// A the lighting, Start the map.
-    fn render_scene(display: &mut Display, held_at_boot: u16) -> ! {
-        let mut map = demo::demo_map();
-        let render_assets = demo::assets_for(Settings::DEFAULT.textures, textures_in_ewram);
+    /// The game: the player on the bench map (the menu switches maps and settings). The
+    /// buttons are sampled at every VBlank and the game runs one tick per sample, so it runs at
+    /// 60 ticks per second whatever the frame rate; then one frame shows the result.
+    ///
+    /// Two lines per frame go to mGBA's log (one would pass the 256 bytes of its debug string
+    /// register): `player …` with the pose after the frame's ticks, then `render …`. Before
+    /// them, an `input vblank=… keys=…` line for every change of the buttons: a recording of
+    /// the game that a harness key script replays.
+    fn play_scene(display: &mut Display) -> ! {
         let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
-        let mut settings = Settings::DEFAULT;
-        let mut held_before = held_at_boot;
+        let colours = MenuColours::from_palette(&assets::PALETTE);
+        let mut game = Game::new(assets::MAPS);
+        let mut sampler = input::Sampler::new();
+        log::info(format_args!(
+            "play start vblank={} map={}",
+            sampler.next_index(),
+            game.map().name
+        ));
         let mut frame: u32 = 0;
         loop {
-            let held = hw::keys_held();
-            let pressed = held & !held_before;
-            held_before = held;
-            if pressed & KEY_SELECT != 0 {
-                settings.resolution = settings.resolution.next();
-            }
-            if pressed & KEY_START != 0 {
-                map = demo::next_map(&map);
-                frame = 0;
-            }
-            if pressed & KEY_A != 0 {
-                settings.lighting = match settings.lighting {
-                    Lighting::SectorDepth => Lighting::Off,
-                    Lighting::Off => Lighting::Sector,
-                    Lighting::Sector => Lighting::SectorDepth,
-                };
-            }
-            let camera = demo::camera_at(&map, frame);
+            let game_started = meter::now();
+            let lost = sampler.drain(|vblank, held| {
+                // The recording: every change of the buttons, which replays the game exactly
+                // (`KeyScript::from_rom_log` in the harness).
+                if held != game.held().0 {
+                    log::info(format_args!("input vblank={vblank} keys=0x{held:03x}"));
+                }
+                game.tick(Buttons(held));
+            });
+            let game_cycles = meter::cycles_since(game_started);
+            let camera = game.camera();
+            let player = &game.player;
+            log::info(format_args!(
+                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} game_cycles={game_cycles}",
+                sampler.next_index(),
+                game.ticks(),
+                game.held().0,
+                camera.position.x.to_bits(),
+                camera.position.y.to_bits(),
+                camera.eye_z.to_bits(),
+                camera.angle.to_bits(),
+                camera.sector,
+                camera.look_lines,
+                u8::from(player.on_ground),
+                u8::from(player.crouched()),
+                u8::from(player.fly),
+                u8::from(game.controls.always_run),
+                if game.menu.open { game.menu.cursor as i32 } else { -1 },
+            ));
+            let settings = game.settings;
             let view = View::new(&camera, &settings);
             let page = VramPage::back_of(display.shown_page());
             let address = page.address();
+            let mut canvas = VramCanvas::new(page, settings.resolution);
             let started = meter::now();
-            let stats = renderer.render(
-                &map,
-                &render_assets,
-                &view,
-                &mut VramCanvas::new(page, settings.resolution),
-            );
+            let render_assets = demo::assets_for(settings.textures, textures_in_ewram);
+            let stats = renderer.render(game.map(), &render_assets, &view, &mut canvas);
             let cycles = meter::cycles_since(started);
+            if let Some(text) = game.menu_text() {
+                menu::draw(&mut canvas, &text, colours);
+            }
             display.flip_at_vblank(settings.resolution);
             log::info(format_args!(
-                "render map={} frame={frame} res={} lighting={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
-                map.name,
+                "render map={} frame={frame} res={} lighting={} persp={} tex={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
+                game.map().name,
                 settings.resolution.label(),
                 demo::lighting_label(settings.lighting),
+                settings.perspective.label(),
+                settings.textures.label(),
                 stats.wall_ticks,
                 stats.plane_ticks,
                 stats.sector_visits,
@@ -122,7 +149,7 @@ mod rom {
                 stats.span_pixels,
                 stats.column_pixels,
             ));
-            frame += 1;
+            frame = frame.wrapping_add(1);
         }
     }
 

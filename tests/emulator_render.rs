@@ -1,135 +1,285 @@
 //! The renderer in the ROM, under the real mGBA core, against the same renderer on the host
-//! through the rasterizer twins: every shown frame's VRAM page must be identical, at every
-//! resolution and lighting setting. Prints the ROM's cycles per frame.
+//! through the rasterizer twins: every compared frame's VRAM page must be identical, on every
+//! shipped map, at every resolution and lighting setting, with the Start menu drawn over the
+//! view too. The host renders the pose the ROM logged (its `player` line) with the settings of
+//! its `render` line. Key presses drive the ROM: the menu switches the settings, the d-pad
+//! moves the player so the poses vary. Prints the ROM's cycles per frame.
 
 mod common;
 
+use common::demos::PlayerLine;
 use common::*;
 use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
+use portalcast::math::{Angle, Fx24_8, WorldPoint};
+use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
-use portalcast::render::view::{Settings, View};
+use portalcast::render::view::{Camera, Perspective, Settings, TexturePlacement, View};
 use portalcast::render::walk::Renderer;
-use portalcast_harness::Keys;
+use portalcast::render::RenderAssets;
+use portalcast_harness::{Emulator, Keys};
+use std::collections::BTreeSet;
+
+/// One frame the ROM drew, compared.
+struct Compared {
+    map: String,
+    resolution: Resolution,
+    lighting: portalcast::render::light::Lighting,
+    perspective: Perspective,
+    textures: TexturePlacement,
+    menu: bool,
+    cycles: u64,
+}
+
+/// Runs the ROM frame by frame and compares each frame it draws with the host's render.
+struct Checker {
+    emulator: Emulator,
+    assets: RenderAssets<'static>,
+    renderer: Renderer,
+    colours: MenuColours,
+    player: Option<PlayerLine>,
+    compared: Vec<Compared>,
+    screenshots: BTreeSet<String>,
+}
+
+impl Checker {
+    /// Runs one emulator frame with `keys` held; compares the frame the ROM drew in it, if any.
+    fn step(&mut self, keys: Keys) -> Option<&Compared> {
+        self.emulator.set_keys(keys);
+        self.emulator
+            .run_frame()
+            .unwrap_or_else(|error| panic!("{error}"));
+        let mut drawn = false;
+        for line in self.emulator.drain_log() {
+            if !line.is_debug_print() {
+                continue;
+            }
+            // In log order: a frame's `render` line pairs with the `player` line before it
+            // (the next frame's `player` line may follow in the same emulator frame).
+            if line.text.starts_with("player ") {
+                self.player = Some(PlayerLine::parse(&line.text));
+            } else if line.text.starts_with("render ") {
+                self.compare(&line.text);
+                drawn = true;
+            }
+        }
+        if drawn {
+            self.compared.last()
+        } else {
+            None
+        }
+    }
+
+    fn compare(&mut self, text: &str) {
+        let player = self
+            .player
+            .clone()
+            .expect("a player line precedes every frame");
+        assert_eq!(player.frame, number(text, "frame") as u32, "{text}");
+        let map_name = field(text, "map").unwrap().to_owned();
+        let map = demo::map_named(&map_name).expect("the ROM names a compiled map");
+        let resolution = Resolution::from_label(field(text, "res").unwrap()).unwrap();
+        let lighting = demo::lighting_from_label(field(text, "lighting").unwrap()).unwrap();
+        let camera = Camera {
+            position: WorldPoint::new(Fx24_8::from_bits(player.x), Fx24_8::from_bits(player.y)),
+            eye_z: Fx24_8::from_bits(player.z),
+            angle: Angle::from_bits(player.angle),
+            sector: player.sector,
+            look_lines: player.look,
+        };
+        let perspective = Perspective::from_label(field(text, "persp").unwrap()).unwrap();
+        let textures = TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap();
+        let settings = Settings {
+            resolution,
+            lighting,
+            perspective,
+            textures,
+        };
+        let mut page = HostPage::new();
+        let mut canvas = HostCanvas {
+            page: &mut page,
+            resolution,
+        };
+        self.renderer.render(
+            &map,
+            &self.assets,
+            &View::new(&camera, &settings),
+            &mut canvas,
+        );
+        let menu_open = player.menu >= 0;
+        if menu_open {
+            let shown = Shown {
+                resolution,
+                lighting,
+                map: map.name,
+                fly: player.fly,
+                run: player.run,
+                perspective,
+                textures,
+            };
+            menu::draw(
+                &mut canvas,
+                &menu::text(player.menu as usize, &shown),
+                self.colours,
+            );
+        }
+        let vram = read_page(&self.emulator, number(text, "page") as u32);
+        let rows = resolution.height() * PAGE_ROW_HALFWORDS;
+        let differing = vram.halfwords[..rows]
+            .iter()
+            .zip(&page.halfwords[..rows])
+            .filter(|(a, b)| a != b)
+            .count();
+        if differing != 0 {
+            let png = screenshot_dir().join(format!("render-mismatch-{}.png", resolution.label()));
+            self.emulator
+                .save_frame_png(&png)
+                .unwrap_or_else(|error| panic!("{error}"));
+            panic!(
+                "{text}\n{}: {differing} halfwords differ from the host render (ROM frame in {})",
+                player.text,
+                png.display()
+            );
+        }
+        // The second frame of each setting (the first may still show the previous page).
+        let name = if menu_open {
+            format!("menu-{map_name}-{}", resolution.label())
+        } else {
+            format!(
+                "render-{map_name}-{}-{}",
+                resolution.label(),
+                demo::lighting_label(lighting)
+            )
+        };
+        let seen_before = self
+            .compared
+            .iter()
+            .any(|c| c.map == map_name && c.resolution == resolution && c.lighting == lighting);
+        if seen_before && self.screenshots.insert(name.clone()) {
+            self.emulator
+                .save_frame_png(&screenshot_dir().join(format!("{name}.png")))
+                .unwrap_or_else(|error| panic!("{error}"));
+        }
+        self.compared.push(Compared {
+            map: map_name,
+            resolution,
+            lighting,
+            perspective,
+            textures,
+            menu: menu_open,
+            cycles: number(text, "cycles"),
+        });
+    }
+
+    /// Presses `key` (held for 3 frames, then 3 frames of nothing: the game reads every VBlank,
+    /// so one would do).
+    fn press(&mut self, key: Keys) {
+        for _ in 0..3 {
+            self.step(key);
+        }
+        for _ in 0..3 {
+            self.step(Keys::NONE);
+        }
+    }
+
+    /// Holds `keys` until `count` more frames with the menu `menu_open` are compared.
+    fn hold_until_compared(&mut self, keys: Keys, count: usize, menu_open: bool) {
+        let mut matched = 0;
+        // Frames take many VBlanks while the renderer is slower than its target.
+        for _ in 0..1500 {
+            if self.step(keys).is_some_and(|c| c.menu == menu_open) {
+                matched += 1;
+                if matched == count {
+                    return;
+                }
+            }
+        }
+        panic!("the ROM stopped drawing frames while {keys} was held");
+    }
+}
 
 #[test]
 fn rom_frames_are_identical_to_the_host_renderer() {
-    let mut emulator = boot();
-    let assets = demo::render_assets();
-    let mut renderer = Renderer::new();
-    let mut compared = Vec::new();
-    let mut maps_seen = std::collections::BTreeSet::new();
-    // Each press comes after a few compared frames: Select for resolution, A for lighting.
-    let presses = [
-        Keys::NONE,
-        Keys::SELECT,
-        Keys::SELECT,
-        Keys::A,
-        Keys::SELECT,
-        Keys::A,
-        Keys::START,
-        Keys::START,
-        Keys::SELECT,
-        Keys::START,
+    let mut checker = Checker {
+        emulator: boot(),
+        assets: demo::render_assets(),
+        renderer: Renderer::new(),
+        colours: MenuColours::from_palette(&portalcast::assets::PALETTE),
+        player: None,
+        compared: Vec::new(),
+        screenshots: BTreeSet::new(),
+    };
+    let (start, up, down, left, right) =
+        (Keys::START, Keys::UP, Keys::DOWN, Keys::LEFT, Keys::RIGHT);
+    // Each phase: menu presses (the cursor stays where it was left), then keys held until two
+    // frames are compared, with the menu open or closed. The cursor starts on the resolution.
+    let phases: [(&[Keys], Keys, bool); 10] = [
+        (&[], right, false),                            // bench 120x80 depth, turning
+        (&[start, right], Keys::NONE, true),            // menu open, 120x160
+        (&[start], up | right, false),                  // bench 120x160 depth, walking
+        (&[start, right, start], right, false),         // 240x160
+        (&[start, down, right, start], left, false),    // lighting off
+        (&[start, up, right, start], right, false),     // 120x80
+        (&[start, down, right, start], up, false),      // lighting sector
+        (&[start, down, right, start], right, false),   // map grid
+        (&[start, right, start], up | left, false),     // map tiny
+        (&[start, up, up, right, start], right, false), // 120x160 on tiny
     ];
-    for press in presses {
-        // The ROM reads the keys once per rendered frame: hold a press for longer than one.
-        emulator.set_keys(press);
-        emulator
-            .run_frames(if press == Keys::NONE { 1 } else { 90 })
-            .unwrap_or_else(|error| panic!("{error}"));
-        emulator.set_keys(Keys::NONE);
-        emulator.drain_log();
-        let mut checked_here = 0;
-        // Frames take many VBlanks while the renderer is slower than its target: allow for it.
-        for _ in 0..1500 {
-            emulator
-                .run_frame()
-                .unwrap_or_else(|error| panic!("{error}"));
-            let Some(line) = emulator
-                .drain_log()
-                .into_iter()
-                .rev()
-                .find(|line| line.is_debug_print() && line.text.starts_with("render "))
-            else {
-                continue;
-            };
-            let text = line.text;
-            let frame = number(&text, "frame") as u32;
-            let map_name = field(&text, "map").unwrap().to_owned();
-            let map = demo::map_named(&map_name).expect("the ROM names a compiled map");
-            let resolution = Resolution::from_label(field(&text, "res").unwrap()).unwrap();
-            let lighting = demo::lighting_from_label(field(&text, "lighting").unwrap()).unwrap();
-            let vram = read_page(&emulator, number(&text, "page") as u32);
-            let mut page = HostPage::new();
-            let view = View::new(
-                &demo::camera_at(&map, frame),
-                &Settings {
-                    resolution,
-                    lighting,
-                    ..Settings::DEFAULT
-                },
-            );
-            renderer.render(
-                &map,
-                &assets,
-                &view,
-                &mut HostCanvas {
-                    page: &mut page,
-                    resolution,
-                },
-            );
-            let rows = resolution.height() * PAGE_ROW_HALFWORDS;
-            let differing = vram.halfwords[..rows]
-                .iter()
-                .zip(&page.halfwords[..rows])
-                .filter(|(a, b)| a != b)
-                .count();
-            if differing != 0 {
-                let png =
-                    screenshot_dir().join(format!("render-mismatch-{}.png", resolution.label()));
-                emulator
-                    .save_frame_png(&png)
-                    .unwrap_or_else(|error| panic!("{error}"));
-                panic!(
-                    "{text}: {differing} halfwords differ from the host render (ROM frame in {})",
-                    png.display()
-                );
-            }
-            compared.push((resolution, lighting, number(&text, "cycles")));
-            maps_seen.insert(map_name.clone());
-            checked_here += 1;
-            if checked_here == 2 {
-                let png = screenshot_dir().join(format!(
-                    "render-{map_name}-{}-{}.png",
-                    resolution.label(),
-                    demo::lighting_label(lighting)
-                ));
-                emulator
-                    .save_frame_png(&png)
-                    .unwrap_or_else(|error| panic!("{error}"));
-                break;
-            }
+    for (presses, hold, menu_open) in phases {
+        for &key in presses {
+            checker.press(key);
         }
-        assert_eq!(
-            checked_here, 2,
-            "the ROM stopped printing render lines after {press}"
+        checker.hold_until_compared(hold, 2, menu_open);
+    }
+    // Back to the bench map through the menu.
+    for key in [start, down, down, right, start] {
+        checker.press(key);
+    }
+    checker.hold_until_compared(right, 2, false);
+    // The quality knobs at the end of the menu: perspective every 8, every 16, then the
+    // textures from the cartridge.
+    let knob_phases: [&[Keys]; 3] = [
+        &[start, down, down, down, right, start],
+        &[start, right, start],
+        &[start, down, right, start],
+    ];
+    for presses in knob_phases {
+        for &key in presses {
+            checker.press(key);
+        }
+        checker.hold_until_compared(right, 2, false);
+    }
+
+    let compared = &checker.compared;
+    let maps: BTreeSet<&str> = compared.iter().map(|c| c.map.as_str()).collect();
+    let compiled: BTreeSet<&str> = portalcast::assets::MAPS.iter().map(|m| m.name).collect();
+    assert_eq!(maps, compiled, "the menu must reach every shipped map");
+    for lighting in ["depth", "off", "sector"] {
+        assert!(
+            compared
+                .iter()
+                .any(|c| demo::lighting_label(c.lighting) == lighting),
+            "lighting {lighting} never compared"
         );
     }
-    let compiled: Vec<&str> = portalcast::assets::MAPS
-        .iter()
-        .map(|map| map.name)
-        .collect();
-    assert_eq!(
-        maps_seen.iter().map(String::as_str).collect::<Vec<_>>(),
-        compiled,
-        "Start must reach every shipped map"
-    );
+    assert!(compared.iter().any(|c| c.menu), "no menu frame compared");
+    for perspective in Perspective::ALL {
+        assert!(
+            compared.iter().any(|c| c.perspective == perspective),
+            "perspective {perspective:?} never compared"
+        );
+    }
+    for textures in [TexturePlacement::Ewram, TexturePlacement::Rom] {
+        assert!(
+            compared.iter().any(|c| c.textures == textures),
+            "textures {textures:?} never compared"
+        );
+    }
     for resolution in Resolution::ALL {
         let cycles: Vec<u64> = compared
             .iter()
-            .filter(|(r, ..)| *r == resolution)
-            .map(|(.., c)| *c)
+            .filter(|c| c.resolution == resolution && !c.menu)
+            .map(|c| c.cycles)
             .collect();
         assert!(!cycles.is_empty(), "{resolution:?} never compared");
         println!("{}: cycles per frame {:?}", resolution.label(), cycles);

@@ -3,6 +3,7 @@
 //! calls. Everything above this module is portable and runs on the host too.
 #![allow(unsafe_code)]
 
+pub mod input;
 pub mod kernels;
 pub mod log;
 pub mod math_bench;

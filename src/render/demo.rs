@@ -1,5 +1,6 @@
-//! The demo the ROM plays and the emulator tests replay on the host: a map (the bench map
-//! first; Start switches), seen from its player start, turning a full circle every 256 frames.
+//! The compiled maps and render assets as the ROM uses them, and the benchmark's camera path:
+//! a map seen from its player start, turning a full circle every 256 frames (the ROM's bench
+//! scene, R at power-on, renders it; the game itself starts on the same map, `DEMO_MAP`).
 
 use portalcast_format::{MapTables, Sky, Texture};
 

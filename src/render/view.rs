@@ -49,6 +49,13 @@ pub enum TexturePlacement {
 }
 
 impl TexturePlacement {
+    /// Parses [`TexturePlacement::label`].
+    pub fn from_label(label: &str) -> Option<TexturePlacement> {
+        [TexturePlacement::Rom, TexturePlacement::Ewram]
+            .into_iter()
+            .find(|placement| placement.label() == label)
+    }
+
     /// The label the ROM prints and the benchmarks read.
     pub const fn label(self) -> &'static str {
         match self {
@@ -114,6 +121,13 @@ impl Perspective {
             Perspective::Every8 => "every8",
             Perspective::Every16 => "every16",
         }
+    }
+
+    /// Parses [`Perspective::label`].
+    pub fn from_label(label: &str) -> Option<Perspective> {
+        Perspective::ALL
+            .into_iter()
+            .find(|perspective| perspective.label() == label)
     }
 
     /// The setting after this one (the menu cycles through them).

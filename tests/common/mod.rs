@@ -1,5 +1,9 @@
-//! Shared pieces of the emulator tests: the ROM under test, log-line fields, pages and frames.
+//! Shared pieces of the emulator tests: the ROM under test, log-line fields, pages and frames;
+//! and, in `player`, of the player tests.
 #![allow(dead_code)]
+
+pub mod demos;
+pub mod player;
 
 use portalcast::frame::{shown_index, Resolution, PAGE_HALFWORDS, PAGE_HEIGHT, PAGE_WIDTH};
 use portalcast::raster::HostPage;

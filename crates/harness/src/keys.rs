@@ -272,6 +272,48 @@ impl KeyScript {
         self
     }
 
+    /// The script that holds, from each `(frame, keys)` change on, those keys until the next
+    /// change (the last until the end of the run). Changes must come in frame order.
+    ///
+    /// This replays a recording: the portalcast ROM logs `input vblank=K keys=0x…` whenever the
+    /// buttons it samples at VBlank `K` differ from the previous sample, and the sample of
+    /// VBlank `K` holds the keys of frame `K + 1`, so [`KeyScript::from_rom_log`] passes the
+    /// changes at frames `K + 1`.
+    pub fn from_changes(changes: impl IntoIterator<Item = (u32, Keys)>) -> KeyScript {
+        let mut script = KeyScript::new();
+        let mut current: Option<(u32, Keys)> = None;
+        for (frame, keys) in changes {
+            if let Some((first, held)) = current.take() {
+                if frame > first && !held.is_empty() {
+                    script = script.hold(first..=frame - 1, held);
+                }
+            }
+            current = Some((frame, keys));
+        }
+        if let Some((first, held)) = current {
+            if !held.is_empty() {
+                script = script.hold_from(first, held);
+            }
+        }
+        script
+    }
+
+    /// The key script that replays the buttons a portalcast ROM recorded in its log: its
+    /// `input vblank=K keys=0x…` lines (other lines are skipped), see
+    /// [`KeyScript::from_changes`].
+    pub fn from_rom_log<'a>(lines: impl IntoIterator<Item = &'a str>) -> KeyScript {
+        let field = |line: &'a str, key: &str| {
+            line.split_whitespace()
+                .find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
+        };
+        KeyScript::from_changes(lines.into_iter().filter_map(|line| {
+            let rest = line.strip_prefix("input ")?;
+            let vblank: u32 = field(rest, "vblank")?.parse().ok()?;
+            let keys = u16::from_str_radix(field(rest, "keys")?.strip_prefix("0x")?, 16).ok()?;
+            Some((vblank + 1, Keys::from_bits_truncate(keys)))
+        }))
+    }
+
     /// The keys held on `frame` (0 = the first frame of the run).
     pub fn keys_at(&self, frame: u32) -> Keys {
         self.holds

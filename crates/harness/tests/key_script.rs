@@ -110,3 +110,28 @@ fn keys_parse_and_display() {
     assert_eq!(keys, Keys::B);
     assert!(keys.contains(Keys::B) && !keys.contains(Keys::A));
 }
+
+#[test]
+fn a_rom_recording_becomes_the_script_that_replays_it() {
+    // Button changes at VBlanks 9 (UP), 20 (UP+L), 30 (nothing), 40 (A, to the end): the
+    // sample of VBlank K holds the keys of frame K + 1.
+    let log = [
+        "player frame=0 x=1",
+        "input vblank=9 keys=0x040",
+        "input vblank=20 keys=0x240",
+        "render map=bench frame=0",
+        "input vblank=30 keys=0x000",
+        "input vblank=40 keys=0x001",
+    ];
+    let script = KeyScript::from_rom_log(log);
+    assert_eq!(script, "10-20: UP\n21-30: UP+L\n41-: A\n".parse().unwrap());
+    for frame in 0..60 {
+        let expected = match frame {
+            10..=20 => Keys::UP,
+            21..=30 => Keys::UP | Keys::L,
+            41.. => Keys::A,
+            _ => Keys::NONE,
+        };
+        assert_eq!(script.keys_at(frame), expected, "frame {frame}");
+    }
+}

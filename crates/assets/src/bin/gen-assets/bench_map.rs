@@ -156,6 +156,14 @@ fn areas() -> Vec<Area> {
         vec![(512, 512), (768, 512), (768, 640), (640, 768), (512, 768)],
     );
 
+    // South of the hall, for the player: a crawlway whose ceiling is 40 above its floor (the
+    // eye needs 16 of headroom, so only a crouched player, eye 16, gets through) into a small
+    // den, and a ledge alcove whose floor is 24 up: too tall to step onto (at most 16), low
+    // enough to jump onto.
+    add("crawl", CORRIDOR.with(0, 40, 90), rect(272, 768, 336, 960));
+    add("den", SHRINE.with(0, 128, 70), rect(224, 960, 384, 1120));
+    add("ledge", HALL.with(24, 192, 190), rect(432, 768, 496, 832));
+
     // A low passage north into the courtyard.
     add(
         "passage",
@@ -345,7 +353,8 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
          # passage onto a courtyard under the sky (sunken pool), and east into a long corridor\n\
          # of light and dark bands. The corridor ends at a staircase of eight 16-unit steps up to\n\
          # an upper corridor and a dim gallery whose three windows overlook the courtyard. North\n\
-         # of the courtyard, an antechamber leads into a dark octagonal shrine.\n"
+         # of the courtyard, an antechamber leads into a dark octagonal shrine. South of the\n\
+         # hall, a crawlway (40 high: crouch) leads to a den, next to a ledge 24 up (jump).\n"
     );
     for point in &order {
         let _ = writeln!(text, "vertex {} {} {}", names[point], point.0, point.1);

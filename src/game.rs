@@ -1,0 +1,177 @@
+//! The game: the player on one of the shipped maps, the quality settings and the Start menu,
+//! advanced one tick per VBlank from the buttons held on it.
+//!
+//! Everything here is a function of the sequence of buttons, one set per tick: the ROM runs
+//! [`Game::tick`] for each VBlank's sample and draws what [`Game::camera`] sees, and the host
+//! runs the same code on the same sequence (a harness key script) to predict what the ROM
+//! shows.
+
+use portalcast_format::MapTables;
+
+use crate::menu::{self, Entry, Menu, MenuText, Shown, ENTRIES};
+use crate::player::input::{Buttons, Controls};
+use crate::player::Player;
+use crate::render::demo::DEMO_MAP;
+use crate::render::light::Lighting;
+use crate::render::view::TexturePlacement;
+use crate::render::view::{Camera, Settings};
+
+/// The state of a game.
+#[derive(Clone, Copy, Debug)]
+pub struct Game<'m> {
+    maps: &'m [MapTables<'m>],
+    map_index: usize,
+    /// The player.
+    pub player: Player,
+    /// Buttons to intent, with the run setting.
+    pub controls: Controls,
+    /// The Start menu.
+    pub menu: Menu,
+    /// Quality settings.
+    pub settings: Settings,
+    held: Buttons,
+    ticks: u32,
+}
+
+impl<'m> Game<'m> {
+    /// A game on the demo map (or the first of `maps`), at 120×80 with lighting, the player at
+    /// the map's start.
+    pub fn new(maps: &'m [MapTables<'m>]) -> Game<'m> {
+        let map_index = maps
+            .iter()
+            .position(|map| map.name == DEMO_MAP)
+            .unwrap_or(0);
+        Game {
+            maps,
+            map_index,
+            player: Player::spawn(&maps[map_index]),
+            controls: Controls::new(),
+            menu: Menu::default(),
+            settings: Settings::DEFAULT,
+            held: Buttons::NONE,
+            ticks: 0,
+        }
+    }
+
+    /// The map being played.
+    pub fn map(&self) -> &MapTables<'m> {
+        &self.maps[self.map_index]
+    }
+
+    /// Ticks run so far.
+    pub fn ticks(&self) -> u32 {
+        self.ticks
+    }
+
+    /// The buttons of the last tick.
+    pub fn held(&self) -> Buttons {
+        self.held
+    }
+
+    /// What the view shows.
+    pub fn camera(&self) -> Camera {
+        self.player.camera()
+    }
+
+    /// The values the menu shows.
+    pub fn shown(&self) -> Shown<'m> {
+        Shown {
+            resolution: self.settings.resolution,
+            lighting: self.settings.lighting,
+            map: self.maps[self.map_index].name,
+            fly: self.player.fly,
+            run: self.controls.always_run,
+            perspective: self.settings.perspective,
+            textures: self.settings.textures,
+        }
+    }
+
+    /// The menu's text, if it is open.
+    pub fn menu_text(&self) -> Option<MenuText> {
+        self.menu
+            .open
+            .then(|| menu::text(self.menu.cursor, &self.shown()))
+    }
+
+    /// One tick with `held` held: the menu if it is open (the game is paused), else the player.
+    pub fn tick(&mut self, held: Buttons) {
+        let pressed = held.pressed_since(self.held);
+        self.held = held;
+        self.ticks = self.ticks.wrapping_add(1);
+        if self.menu.open {
+            self.controls.observe(held);
+            self.menu_keys(pressed);
+        } else if pressed.contains(Buttons::START) {
+            self.menu.open = true;
+            self.controls.observe(held);
+        } else {
+            let intent = self.controls.read(held);
+            let map = self.maps[self.map_index];
+            self.player.tick(&intent, &map);
+        }
+    }
+
+    fn menu_keys(&mut self, pressed: Buttons) {
+        let count = ENTRIES.len();
+        if pressed.any(Buttons(Buttons::START.0 | Buttons::B.0)) {
+            self.menu.open = false;
+        } else if pressed.contains(Buttons::UP) {
+            self.menu.cursor = (self.menu.cursor + count - 1) % count;
+        } else if pressed.contains(Buttons::DOWN) {
+            self.menu.cursor = (self.menu.cursor + 1) % count;
+        } else if pressed.any(Buttons(Buttons::RIGHT.0 | Buttons::A.0)) {
+            self.change(ENTRIES[self.menu.cursor], true);
+        } else if pressed.contains(Buttons::LEFT) {
+            self.change(ENTRIES[self.menu.cursor], false);
+        }
+    }
+
+    /// Moves `entry`'s value to the next (or previous) one.
+    fn change(&mut self, entry: Entry, forward: bool) {
+        match entry {
+            Entry::Resolution => {
+                let steps = if forward { 1 } else { 2 };
+                for _ in 0..steps {
+                    self.settings.resolution = self.settings.resolution.next();
+                }
+            }
+            Entry::Lighting => {
+                const CYCLE: [Lighting; 3] =
+                    [Lighting::SectorDepth, Lighting::Off, Lighting::Sector];
+                let at = CYCLE
+                    .iter()
+                    .position(|&l| l == self.settings.lighting)
+                    .unwrap_or(0);
+                let next = if forward {
+                    at + 1
+                } else {
+                    at + CYCLE.len() - 1
+                };
+                self.settings.lighting = CYCLE[next % CYCLE.len()];
+            }
+            Entry::Map => {
+                let count = self.maps.len();
+                self.map_index = if forward {
+                    (self.map_index + 1) % count
+                } else {
+                    (self.map_index + count - 1) % count
+                };
+                self.player = Player::spawn(&self.maps[self.map_index]);
+            }
+            Entry::Fly => self.player.toggle_fly(),
+            Entry::Run => self.controls.always_run = !self.controls.always_run,
+            Entry::Perspective => {
+                let steps = if forward { 1 } else { 2 };
+                for _ in 0..steps {
+                    self.settings.perspective = self.settings.perspective.next();
+                }
+            }
+            Entry::Textures => {
+                self.settings.textures = match self.settings.textures {
+                    TexturePlacement::Ewram => TexturePlacement::Rom,
+                    TexturePlacement::Rom => TexturePlacement::Ewram,
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,361 @@
+//! The Start menu: a list of settings drawn over the view with a 3×5 pixel font.
+//!
+//! Each entry is a label and a value that Left/Right (or A) change; Up/Down pick the entry,
+//! Start or B close the menu. The game pauses while it is open. To add a setting, add an
+//! [`Entry`] variant to [`ENTRIES`] and say in `game.rs` how it shows and changes.
+//!
+//! The menu is drawn into the back page through the same [`Canvas`] the renderer uses, as
+//! horizontal runs of one colour, after the 3D view: so the host draws exactly what the ROM
+//! draws, and the emulator test compares menu frames pixel for pixel too. Its size on the
+//! screen is the same at every resolution: a font pixel is 2×2 screen pixels.
+
+use crate::frame::Resolution;
+use crate::raster::flat::{FlatTexture, PackedUv};
+use crate::raster::Canvas;
+use crate::render::demo::lighting_label;
+use crate::render::light::Lighting;
+use crate::render::view::{Perspective, TexturePlacement};
+
+/// One line of the menu.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Entry {
+    /// Render resolution.
+    Resolution,
+    /// Lighting rule.
+    Lighting,
+    /// Which shipped map is played (changing it starts the map afresh).
+    Map,
+    /// Fly mode.
+    Fly,
+    /// Run rather than walk.
+    Run,
+    /// Wall perspective (exact, or exact every 8 or 16 columns).
+    Perspective,
+    /// Where texels are read from (EWRAM or the cartridge).
+    Textures,
+}
+
+/// The menu's entries, top to bottom.
+pub const ENTRIES: [Entry; 7] = [
+    Entry::Resolution,
+    Entry::Lighting,
+    Entry::Map,
+    Entry::Fly,
+    Entry::Run,
+    Entry::Perspective,
+    Entry::Textures,
+];
+
+impl Entry {
+    /// The label shown left of the value.
+    pub const fn label(self) -> &'static str {
+        match self {
+            Entry::Resolution => "RES",
+            Entry::Lighting => "LIGHT",
+            Entry::Map => "MAP",
+            Entry::Fly => "FLY",
+            Entry::Run => "RUN",
+            Entry::Perspective => "PERSP",
+            Entry::Textures => "TEX",
+        }
+    }
+}
+
+/// The values the menu shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shown<'a> {
+    /// Render resolution.
+    pub resolution: Resolution,
+    /// Lighting rule.
+    pub lighting: Lighting,
+    /// The map's name.
+    pub map: &'a str,
+    /// Fly mode.
+    pub fly: bool,
+    /// Running.
+    pub run: bool,
+    /// Wall perspective.
+    pub perspective: Perspective,
+    /// Texture placement.
+    pub textures: TexturePlacement,
+}
+
+impl Entry {
+    /// The value shown for this entry.
+    pub fn value<'a>(self, shown: &Shown<'a>) -> &'a str {
+        let on_off = |on: bool| if on { "on" } else { "off" };
+        match self {
+            Entry::Resolution => shown.resolution.label(),
+            Entry::Lighting => lighting_label(shown.lighting),
+            Entry::Map => shown.map,
+            Entry::Fly => on_off(shown.fly),
+            Entry::Run => on_off(shown.run),
+            Entry::Perspective => shown.perspective.label(),
+            Entry::Textures => shown.textures.label(),
+        }
+    }
+}
+
+/// The menu's lines for `shown`, with the cursor on entry `cursor`.
+pub fn text(cursor: usize, shown: &Shown) -> MenuText {
+    let mut lines = [Line::blank(); PANEL_LINES];
+    lines[0].put(0, "MENU START:BACK");
+    for (index, entry) in ENTRIES.iter().enumerate() {
+        lines[index + 1] = Line::entry(index == cursor, entry.label(), entry.value(shown));
+    }
+    lines
+}
+
+/// Whether the menu is open, and the entry under the cursor.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Menu {
+    /// Shown, and the game paused.
+    pub open: bool,
+    /// Index into [`ENTRIES`].
+    pub cursor: usize,
+}
+
+/// The palette indices the menu is drawn with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MenuColours {
+    /// The panel.
+    pub background: u8,
+    /// Text.
+    pub text: u8,
+}
+
+impl MenuColours {
+    /// The darkest and the brightest colour of `palette` (BGR555; index 0, transparent, is
+    /// left out).
+    pub fn from_palette(palette: &[u16; 256]) -> MenuColours {
+        let luma = |colour: u16| {
+            let (r, g, b) = (colour & 31, (colour >> 5) & 31, (colour >> 10) & 31);
+            u32::from(r) * 2 + u32::from(g) * 4 + u32::from(b)
+        };
+        let mut colours = MenuColours {
+            background: 1,
+            text: 1,
+        };
+        for index in 1..=255u8 {
+            let here = luma(palette[usize::from(index)]);
+            if here < luma(palette[usize::from(colours.background)]) {
+                colours.background = index;
+            }
+            if here > luma(palette[usize::from(colours.text)]) {
+                colours.text = index;
+            }
+        }
+        colours
+    }
+}
+
+/// Width of a glyph in font pixels.
+const GLYPH_WIDTH: usize = 3;
+/// Height of a glyph in font pixels.
+const GLYPH_HEIGHT: usize = 5;
+/// Horizontal advance per character (one column of space).
+const ADVANCE: usize = GLYPH_WIDTH + 1;
+/// Vertical advance per line.
+const LINE_HEIGHT: usize = GLYPH_HEIGHT + 1;
+/// Characters per menu line: the cursor, the label (6 wide) and the value.
+pub const LINE_CHARS: usize = 15;
+/// Room around the text, in font pixels.
+const PADDING: usize = 2;
+/// The panel in font pixels (one font pixel is 2×2 screen pixels: the screen is 120×80 of them).
+const PANEL_WIDTH: usize = 2 * PADDING + LINE_CHARS * ADVANCE - 1;
+const PANEL_LINES: usize = 1 + ENTRIES.len();
+const PANEL_HEIGHT: usize = 2 * PADDING + PANEL_LINES * LINE_HEIGHT - 1;
+const PANEL_LEFT: usize = (120 - PANEL_WIDTH) / 2;
+const PANEL_TOP: usize = (80 - PANEL_HEIGHT) / 2;
+const _: () = assert!(PANEL_WIDTH <= 64, "a panel row is a u64 bit mask");
+const _: () = assert!(PANEL_LEFT + PANEL_WIDTH <= 120 && PANEL_TOP + PANEL_HEIGHT <= 80);
+
+/// 3×5 glyphs: five rows of three bits, the top row in bits 12–14, the left column the high
+/// bit of each row.
+const fn glyph(c: u8) -> u16 {
+    const fn rows(r: [u16; 5]) -> u16 {
+        (r[0] << 12) | (r[1] << 9) | (r[2] << 6) | (r[3] << 3) | r[4]
+    }
+    match c {
+        b'0' => rows([0b111, 0b101, 0b101, 0b101, 0b111]),
+        b'1' => rows([0b010, 0b110, 0b010, 0b010, 0b111]),
+        b'2' => rows([0b111, 0b001, 0b111, 0b100, 0b111]),
+        b'3' => rows([0b111, 0b001, 0b111, 0b001, 0b111]),
+        b'4' => rows([0b101, 0b101, 0b111, 0b001, 0b001]),
+        b'5' => rows([0b111, 0b100, 0b111, 0b001, 0b111]),
+        b'6' => rows([0b111, 0b100, 0b111, 0b101, 0b111]),
+        b'7' => rows([0b111, 0b001, 0b001, 0b010, 0b010]),
+        b'8' => rows([0b111, 0b101, 0b111, 0b101, 0b111]),
+        b'9' => rows([0b111, 0b101, 0b111, 0b001, 0b111]),
+        b'A' => rows([0b010, 0b101, 0b111, 0b101, 0b101]),
+        b'B' => rows([0b110, 0b101, 0b110, 0b101, 0b110]),
+        b'C' => rows([0b011, 0b100, 0b100, 0b100, 0b011]),
+        b'D' => rows([0b110, 0b101, 0b101, 0b101, 0b110]),
+        b'E' => rows([0b111, 0b100, 0b110, 0b100, 0b111]),
+        b'F' => rows([0b111, 0b100, 0b110, 0b100, 0b100]),
+        b'G' => rows([0b011, 0b100, 0b101, 0b101, 0b011]),
+        b'H' => rows([0b101, 0b101, 0b111, 0b101, 0b101]),
+        b'I' => rows([0b111, 0b010, 0b010, 0b010, 0b111]),
+        b'J' => rows([0b001, 0b001, 0b001, 0b101, 0b010]),
+        b'K' => rows([0b101, 0b101, 0b110, 0b101, 0b101]),
+        b'L' => rows([0b100, 0b100, 0b100, 0b100, 0b111]),
+        b'M' => rows([0b101, 0b111, 0b111, 0b101, 0b101]),
+        b'N' => rows([0b110, 0b101, 0b101, 0b101, 0b101]),
+        b'O' => rows([0b010, 0b101, 0b101, 0b101, 0b010]),
+        b'P' => rows([0b110, 0b101, 0b110, 0b100, 0b100]),
+        b'Q' => rows([0b010, 0b101, 0b101, 0b110, 0b011]),
+        b'R' => rows([0b110, 0b101, 0b110, 0b101, 0b101]),
+        b'S' => rows([0b011, 0b100, 0b010, 0b001, 0b110]),
+        b'T' => rows([0b111, 0b010, 0b010, 0b010, 0b010]),
+        b'U' => rows([0b101, 0b101, 0b101, 0b101, 0b111]),
+        b'V' => rows([0b101, 0b101, 0b101, 0b101, 0b010]),
+        b'W' => rows([0b101, 0b101, 0b111, 0b111, 0b101]),
+        b'X' => rows([0b101, 0b101, 0b010, 0b101, 0b101]),
+        b'Y' => rows([0b101, 0b101, 0b010, 0b010, 0b010]),
+        b'Z' => rows([0b111, 0b001, 0b010, 0b100, 0b111]),
+        b'>' => rows([0b100, 0b010, 0b001, 0b010, 0b100]),
+        b':' => rows([0b000, 0b010, 0b000, 0b010, 0b000]),
+        b'-' => rows([0b000, 0b000, 0b111, 0b000, 0b000]),
+        b'.' => rows([0b000, 0b000, 0b000, 0b000, 0b010]),
+        b'_' => rows([0b000, 0b000, 0b000, 0b000, 0b111]),
+        b'?' => rows([0b111, 0b001, 0b010, 0b000, 0b010]),
+        b' ' => 0,
+        // Anything else: a full block, visibly not a letter.
+        _ => rows([0b111; 5]),
+    }
+}
+
+/// One line of text: up to [`LINE_CHARS`] characters, lower case shown as upper case.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Line {
+    chars: [u8; LINE_CHARS],
+}
+
+impl Line {
+    /// A line of spaces.
+    pub const fn blank() -> Line {
+        Line {
+            chars: [b' '; LINE_CHARS],
+        }
+    }
+
+    /// Writes `text` from character `column` on (cut at the end of the line).
+    pub fn put(&mut self, column: usize, text: &str) {
+        for (slot, byte) in self.chars.iter_mut().skip(column).zip(text.bytes()) {
+            *slot = byte.to_ascii_uppercase();
+        }
+    }
+
+    /// The entry line: the cursor mark, the label, the value at column 8.
+    pub fn entry(selected: bool, label: &str, value: &str) -> Line {
+        let mut line = Line::blank();
+        if selected {
+            line.put(0, ">");
+        }
+        line.put(2, label);
+        line.put(8, value);
+        line
+    }
+
+    /// Whether font pixel (`x`, `row`) of the line is lit.
+    fn lit(&self, x: usize, row: usize) -> bool {
+        let (column, within) = (x / ADVANCE, x % ADVANCE);
+        if within >= GLYPH_WIDTH || column >= LINE_CHARS || row >= GLYPH_HEIGHT {
+            return false;
+        }
+        let bits = glyph(self.chars[column]);
+        let shift = (GLYPH_HEIGHT - 1 - row) * GLYPH_WIDTH + (GLYPH_WIDTH - 1 - within);
+        bits >> shift & 1 != 0
+    }
+}
+
+/// The menu's text: a title line and one line per entry.
+pub type MenuText = [Line; PANEL_LINES];
+
+/// Draws the menu panel with `text` over whatever `canvas` holds, every pixel of the panel
+/// exactly once.
+pub fn draw(canvas: &mut impl Canvas, text: &MenuText, colours: MenuColours) {
+    let resolution = canvas.resolution();
+    let solid = |index: u8| [index; 64];
+    let background = solid(colours.background);
+    let foreground = solid(colours.text);
+    for panel_row in 0..PANEL_HEIGHT {
+        let mask = row_mask(text, panel_row);
+        // Runs of equal colour along the row, in font pixels.
+        let mut start = 0;
+        while start < PANEL_WIDTH {
+            let lit = mask >> start & 1 != 0;
+            let mut end = start + 1;
+            while end < PANEL_WIDTH && (mask >> end & 1 != 0) == lit {
+                end += 1;
+            }
+            let texels = if lit { &foreground } else { &background };
+            fill(
+                canvas,
+                resolution,
+                (PANEL_LEFT + start, PANEL_LEFT + end),
+                PANEL_TOP + panel_row,
+                texels,
+            );
+            start = end;
+        }
+    }
+}
+
+/// The lit font pixels of one panel row, bit `x` for column `x`.
+fn row_mask(text: &MenuText, panel_row: usize) -> u64 {
+    let Some(y) = panel_row.checked_sub(PADDING) else {
+        return 0;
+    };
+    let (line, row) = (y / LINE_HEIGHT, y % LINE_HEIGHT);
+    let Some(line) = text.get(line) else {
+        return 0;
+    };
+    let mut mask = 0u64;
+    for x in 0..PANEL_WIDTH.saturating_sub(PADDING) {
+        if line.lit(x, row) {
+            mask |= 1 << (x + PADDING);
+        }
+    }
+    mask
+}
+
+/// Fills font-pixel columns `[from, to)` of font-pixel row `row` with one colour, at the
+/// canvas's resolution (a font pixel is `width/120 × height/80` logical pixels).
+fn fill(
+    canvas: &mut impl Canvas,
+    resolution: Resolution,
+    (from, to): (usize, usize),
+    row: usize,
+    texels: &[u8; 64],
+) {
+    let sx = resolution.width() / 120;
+    let sy = resolution.height() / 80;
+    let flat = FlatTexture {
+        texels,
+        log2_side: 3,
+        pos: PackedUv(0),
+        step: PackedUv(0),
+        colormap: None,
+    };
+    for logical_row in row * sy..(row + 1) * sy {
+        canvas.flat(logical_row, from * sx, (to - from) * sx, &flat);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_character_the_menu_writes_has_its_own_glyph() {
+        let fallback = glyph(b'\x01');
+        for c in b"0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ>:-._?" {
+            assert_ne!(glyph(*c), fallback, "{}", *c as char);
+        }
+        let mut seen = std::collections::BTreeSet::new();
+        for c in b"0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ" {
+            assert!(seen.insert(glyph(*c)), "{} looks like another", *c as char);
+        }
+    }
+}

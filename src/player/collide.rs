@@ -1,0 +1,590 @@
+//! Horizontal movement: the body is a disc of radius [`RADIUS`] sliding among walls, and its
+//! centre is tracked from sector to sector through the portals it crosses.
+//!
+//! # What blocks
+//!
+//! A solid wall, and a portal into a sector the [`Body`] may not enter: one whose floor is more
+//! than [`STEP_UP_MAX`] above the feet, or whose ceiling leaves less than [`HEADROOM`] above the
+//! eye the body would have there. Portals into sectors the body may enter are open: the disc
+//! passes over them, and the walls of the sectors behind them block it too (the jambs of a
+//! doorway, the far side of a corridor). These sectors are found by a walk through open portals
+//! near the move (no search over all sectors), at most [`MAX_NEARBY_SECTORS`] of them.
+//!
+//! # One move
+//!
+//! [`slide`] splits a move into steps of at most half the radius, so no step can carry the disc
+//! across a wall (swept motion without tunnelling). Each step goes to its target and pushes the
+//! disc out of every blocking segment it overlaps, a few passes over the segments so that the
+//! pushes of two walls meeting in a concave corner settle. A push along a wall's normal removes
+//! the part of the motion that went into the wall and keeps the part along it: that is the
+//! slide. Edges are pushed before vertices in each pass, so a wall split in two collinear
+//! pieces is as smooth as one. A wall is pushed only from its front (the side its sector is
+//! on): from behind, a wall of a neighbouring sector is not between the disc and that sector.
+//!
+//! The result must then pass two checks, or the step tries moving along x only, then y only
+//! (as Doom does), and otherwise the disc stays where it was:
+//! - the disc overlaps no blocking segment by more than [`OVERLAP_TOLERANCE`] (or no more than
+//!   before the step, so a disc that starts overlapping, after landing beside a ledge, can
+//!   still move away): in a gap narrower than the disc the pushes cannot settle, and the step
+//!   is refused;
+//! - [`track`] follows the centre's straight path exactly (64-bit cross products, no
+//!   tolerance) from its sector through the portals it crosses: every crossed wall must be an
+//!   open portal, and the end point must lie strictly inside the sector reached. A path that
+//!   runs exactly through a vertex, or ends exactly on a wall's line, is nudged by 1/256 unit
+//!   (the first of the eight neighbouring positions that tracks cleanly).
+//!
+//! So, whatever the pushes did, the centre never crosses a blocking wall and is always strictly
+//! inside its sector: the exact checks are the guarantee, the pushes only make the motion
+//! pleasant. The pushes use square roots and divisions rounded away from the wall (never short
+//! of the radius by more than a rounding step).
+
+use portalcast_format::{MapTables, Sector, Wall};
+
+use crate::math::{cross, segment_contact, Fx24_8, SegmentContact, WorldPoint};
+
+/// Radius of the body's disc, in world units: Doom's player radius, half the thesis' 64-unit
+/// square. Corridors of the shipped maps are at least 64 wide.
+pub const RADIUS: i32 = 16;
+/// The highest floor step the body climbs without jumping, above its feet.
+pub const STEP_UP_MAX: i32 = 16;
+/// Room the eye keeps below any ceiling (and, through the crouched eye height, above the floor).
+pub const HEADROOM: i32 = 16;
+/// The longest step [`slide`] takes per axis, in 24.8 bits: half the radius, so a step never
+/// jumps over more than half the disc.
+pub const MAX_STEP_BITS: i32 = RADIUS * 256 / 2;
+/// How far, in 24.8 bits (1/32 unit), the disc may still overlap a blocking segment after the
+/// pushes settle.
+pub const OVERLAP_TOLERANCE: i64 = 8;
+/// Most sectors the disc is checked against in one step (its own and those behind open
+/// portals near it). Walls of sectors beyond are not pushed against; the exact tracking still
+/// holds.
+pub const MAX_NEARBY_SECTORS: usize = 16;
+/// Most blocking segments near one step.
+pub const MAX_SEGMENTS: usize = 48;
+/// Passes of pushes per step: two settle a right-angled corner; more only help sharp wedges.
+const PUSH_PASSES: usize = 4;
+/// Most portals one step's path may cross.
+const MAX_HOPS: usize = 8;
+
+const RADIUS_BITS: i64 = RADIUS as i64 * 256;
+
+/// The vertical extent of the body, which decides the sectors it may enter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Body {
+    /// Height of the feet (the floor, when standing).
+    pub feet: Fx24_8,
+    /// Height of the eye above the feet.
+    pub eye_height: Fx24_8,
+}
+
+impl Body {
+    /// Whether the body may move into `sector`: its floor at most [`STEP_UP_MAX`] above the
+    /// feet, and its ceiling at least [`HEADROOM`] above the eye once the feet stand at least
+    /// on its floor.
+    pub fn admits(&self, sector: &Sector) -> bool {
+        let floor = sector.floor_z * 256;
+        let ceil = sector.ceil_z * 256;
+        let feet = self.feet.to_bits();
+        floor <= feet + STEP_UP_MAX * 256
+            && ceil >= feet.max(floor) + self.eye_height.to_bits() + HEADROOM * 256
+    }
+}
+
+/// A move in 24.8 bits per axis.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Delta {
+    /// Along x.
+    pub x: i32,
+    /// Along y.
+    pub y: i32,
+}
+
+/// Where a straight path of the centre ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Track {
+    /// Strictly inside this sector, having crossed only open portals.
+    Inside(u16),
+    /// The path crosses a solid wall or a portal the body may not enter.
+    Blocked,
+    /// The path runs through a vertex, along a wall, or ends on a wall's line.
+    Degenerate,
+}
+
+/// Moves the disc centred at `from` (strictly inside `sector`) by `delta`, sliding along what
+/// blocks it. Returns the new centre and its sector.
+pub fn slide(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    delta: Delta,
+    body: &Body,
+) -> (WorldPoint, u16) {
+    let steps = delta
+        .x
+        .unsigned_abs()
+        .max(delta.y.unsigned_abs())
+        .div_ceil(MAX_STEP_BITS as u32)
+        .max(1) as i32;
+    let (mut position, mut sector) = (from, sector);
+    for index in 0..steps {
+        // The exact split: the steps add up to `delta`.
+        let part = |total: i32| total * (index + 1) / steps - total * index / steps;
+        let step = Delta {
+            x: part(delta.x),
+            y: part(delta.y),
+        };
+        (position, sector) = slide_step(map, sector, position, step, body);
+    }
+    (position, sector)
+}
+
+/// One step of at most [`MAX_STEP_BITS`] per axis.
+fn slide_step(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    step: Delta,
+    body: &Body,
+) -> (WorldPoint, u16) {
+    let reach = 2 * RADIUS_BITS as i32 + 256;
+    let bounds = Bounds::around(from, step, reach);
+    let obstacles = Obstacles::near(map, sector, &bounds, body);
+    let allowed = obstacles.overlap(point_bits(from)).max(OVERLAP_TOLERANCE);
+    let mut tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
+    let try_count = if step.x != 0 && step.y != 0 { 3 } else { 1 };
+    for attempt in &mut tries[..try_count] {
+        let target = (
+            i64::from(from.x.to_bits() + attempt.x),
+            i64::from(from.y.to_bits() + attempt.y),
+        );
+        let settled = obstacles.push_out(target);
+        if obstacles.overlap(settled) > allowed {
+            continue;
+        }
+        let Some(to) = point_from_bits(settled) else {
+            continue;
+        };
+        if let Some((to, sector)) = track_nudged(map, sector, from, to, body) {
+            return (to, sector);
+        }
+    }
+    (from, sector)
+}
+
+/// [`track`], and on a degenerate path the same for the eight positions 1/256 unit around
+/// `to` (toward the motion first). The position reached and its sector, if any tracks.
+fn track_nudged(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    to: WorldPoint,
+    body: &Body,
+) -> Option<(WorldPoint, u16)> {
+    match track(map, sector, from, to, body) {
+        Track::Inside(sector) => return Some((to, sector)),
+        Track::Blocked | Track::Degenerate => {}
+    }
+    let sx = if to.x >= from.x { 1 } else { -1 };
+    let sy = if to.y >= from.y { 1 } else { -1 };
+    let nudges = [
+        (sx, sy),
+        (sx, 0),
+        (0, sy),
+        (sx, -sy),
+        (-sx, sy),
+        (-sx, 0),
+        (0, -sy),
+        (-sx, -sy),
+    ];
+    nudges.into_iter().find_map(|(nx, ny)| {
+        let nudged = WorldPoint::new(
+            Fx24_8::from_bits(to.x.to_bits() + nx),
+            Fx24_8::from_bits(to.y.to_bits() + ny),
+        );
+        match track(map, sector, from, nudged, body) {
+            Track::Inside(sector) => Some((nudged, sector)),
+            Track::Blocked | Track::Degenerate => None,
+        }
+    })
+}
+
+/// Follows the centre's straight path from `from`, strictly inside `sector`, to `to`, through
+/// the portals it crosses. Exact.
+///
+/// A convex sector's boundary meets the path at most where it enters and where it leaves, so
+/// in each sector the wall it leaves through is the one wall (other than the one it came in
+/// by) that the path properly crosses; anything else (touching a vertex, running along a wall,
+/// ending on one) is [`Track::Degenerate`].
+pub fn track(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint, body: &Body) -> Track {
+    let start = sector;
+    let mut current = sector;
+    let mut came_through: Option<usize> = None;
+    for _ in 0..=MAX_HOPS {
+        let here = &map.sectors[usize::from(current)];
+        if strictly_inside(map, here, to) {
+            return Track::Inside(current);
+        }
+        let mut exit = None;
+        let first = usize::from(here.first_wall);
+        for index in first..first + usize::from(here.wall_count) {
+            if Some(index) == came_through {
+                continue;
+            }
+            let (a, b) = wall_points(map, &map.walls[index]);
+            match segment_contact(from, to, a, b) {
+                SegmentContact::Disjoint => {}
+                SegmentContact::Crossing if exit.is_none() => exit = Some(index),
+                SegmentContact::Crossing
+                | SegmentContact::Touching
+                | SegmentContact::Overlapping => return Track::Degenerate,
+            }
+        }
+        let Some(exit) = exit else {
+            return Track::Degenerate;
+        };
+        let wall = &map.walls[exit];
+        let Some(next) = wall.neighbour() else {
+            return Track::Blocked;
+        };
+        if next != start && !body.admits(&map.sectors[usize::from(next)]) {
+            return Track::Blocked;
+        }
+        let Some(twin) = twin_wall(map, wall, current, next) else {
+            return Track::Degenerate;
+        };
+        came_through = Some(twin);
+        current = next;
+    }
+    Track::Degenerate
+}
+
+/// Whether `p` is strictly inside `sector` (right of every wall). Exact.
+pub fn strictly_inside(map: &MapTables, sector: &Sector, p: WorldPoint) -> bool {
+    map.sector_walls(sector).iter().all(|wall| {
+        let (a, b) = wall_points(map, wall);
+        cross(a, b, p) > 0
+    })
+}
+
+/// The two ends of a wall, in world coordinates.
+pub fn wall_points(map: &MapTables, wall: &Wall) -> (WorldPoint, WorldPoint) {
+    let a = map.vertices[usize::from(wall.start)];
+    let b = map.vertices[usize::from(wall.end)];
+    (
+        WorldPoint::from_int(a.x, a.y),
+        WorldPoint::from_int(b.x, b.y),
+    )
+}
+
+/// Index of the wall of `next` that is `wall` (of `sector`) seen from the other side.
+fn twin_wall(map: &MapTables, wall: &Wall, sector: u16, next: u16) -> Option<usize> {
+    let there = &map.sectors[usize::from(next)];
+    let first = usize::from(there.first_wall);
+    (first..first + usize::from(there.wall_count)).find(|&index| {
+        let other = &map.walls[index];
+        other.portal == sector && other.start == wall.end && other.end == wall.start
+    })
+}
+
+fn point_bits(p: WorldPoint) -> (i64, i64) {
+    (i64::from(p.x.to_bits()), i64::from(p.y.to_bits()))
+}
+
+/// The point at these 24.8 bits, if they are inside the declared world (a push cannot leave it
+/// on a valid map, but the tracking below relies on the bounds of its products).
+fn point_from_bits((x, y): (i64, i64)) -> Option<WorldPoint> {
+    let limit = i64::from(portalcast_format::limits::WORLD_COORD_MAX) * 256;
+    if x.abs() > limit || y.abs() > limit {
+        return None;
+    }
+    Some(WorldPoint::new(
+        Fx24_8::from_bits(x as i32),
+        Fx24_8::from_bits(y as i32),
+    ))
+}
+
+/// An axis-aligned box in 24.8 bits.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    min: (i32, i32),
+    max: (i32, i32),
+}
+
+impl Bounds {
+    /// The box around a step from `from` by `step`, grown by `margin` bits.
+    fn around(from: WorldPoint, step: Delta, margin: i32) -> Bounds {
+        let (x, y) = (from.x.to_bits(), from.y.to_bits());
+        let (tx, ty) = (x + step.x, y + step.y);
+        Bounds {
+            min: (x.min(tx) - margin, y.min(ty) - margin),
+            max: (x.max(tx) + margin, y.max(ty) + margin),
+        }
+    }
+
+    /// Whether the bounding box of segment `a b` meets this box.
+    fn meets(&self, a: WorldPoint, b: WorldPoint) -> bool {
+        let (ax, ay, bx, by) = (a.x.to_bits(), a.y.to_bits(), b.x.to_bits(), b.y.to_bits());
+        ax.max(bx) >= self.min.0
+            && ax.min(bx) <= self.max.0
+            && ay.max(by) >= self.min.1
+            && ay.min(by) <= self.max.1
+    }
+}
+
+/// A segment's ends in 24.8 bits.
+type Segment = ((i32, i32), (i32, i32));
+
+/// The blocking segments near one step (768 bytes of stack).
+struct Obstacles {
+    segments: [Segment; MAX_SEGMENTS],
+    count: usize,
+}
+
+impl Obstacles {
+    /// Walks from `sector` through the open portals that meet `bounds` and keeps every
+    /// blocking segment of the sectors reached that meets `bounds`.
+    fn near(map: &MapTables, sector: u16, bounds: &Bounds, body: &Body) -> Obstacles {
+        let mut obstacles = Obstacles {
+            segments: [((0, 0), (0, 0)); MAX_SEGMENTS],
+            count: 0,
+        };
+        let mut sectors = [sector; MAX_NEARBY_SECTORS];
+        let mut found = 1;
+        let mut next_to_scan = 0;
+        while next_to_scan < found {
+            let here = &map.sectors[usize::from(sectors[next_to_scan])];
+            next_to_scan += 1;
+            for wall in map.sector_walls(here) {
+                let (a, b) = wall_points(map, wall);
+                if !bounds.meets(a, b) {
+                    continue;
+                }
+                match wall.neighbour() {
+                    Some(next)
+                        if next == sector || body.admits(&map.sectors[usize::from(next)]) =>
+                    {
+                        if !sectors[..found].contains(&next) && found < MAX_NEARBY_SECTORS {
+                            sectors[found] = next;
+                            found += 1;
+                        }
+                    }
+                    _ => {
+                        if obstacles.count < MAX_SEGMENTS {
+                            obstacles.segments[obstacles.count] = (
+                                (a.x.to_bits(), a.y.to_bits()),
+                                (b.x.to_bits(), b.y.to_bits()),
+                            );
+                            obstacles.count += 1;
+                        }
+                    }
+                }
+            }
+        }
+        obstacles
+    }
+
+    /// The segments, widened for the pushes' 64-bit products.
+    fn segments(&self) -> impl Iterator<Item = ((i64, i64), (i64, i64))> + '_ {
+        self.segments[..self.count]
+            .iter()
+            .map(|&((ax, ay), (bx, by))| {
+                (
+                    (i64::from(ax), i64::from(ay)),
+                    (i64::from(bx), i64::from(by)),
+                )
+            })
+    }
+
+    /// `p` pushed out of the segments: a few passes, edges before vertices in each.
+    fn push_out(&self, mut p: (i64, i64)) -> (i64, i64) {
+        for _ in 0..PUSH_PASSES {
+            let mut moved = false;
+            for contact in [Contact::Edge, Contact::Vertex] {
+                for (a, b) in self.segments() {
+                    if let Some(push) = push_from_segment(p, a, b, contact) {
+                        p = (p.0 + push.0, p.1 + push.1);
+                        moved = true;
+                    }
+                }
+            }
+            if !moved {
+                break;
+            }
+        }
+        p
+    }
+
+    /// The largest push (per axis, in bits) any segment would still give `p`.
+    fn overlap(&self, p: (i64, i64)) -> i64 {
+        self.segments()
+            .flat_map(|(a, b)| {
+                [Contact::Edge, Contact::Vertex]
+                    .into_iter()
+                    .filter_map(move |contact| push_from_segment(p, a, b, contact))
+            })
+            .map(|(x, y)| x.abs().max(y.abs()))
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+/// Which part of a segment a push comes from.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Contact {
+    /// The inside of the segment, along its normal.
+    Edge,
+    /// An end point, radially.
+    Vertex,
+}
+
+/// The push (24.8 bits) that moves `p` to [`RADIUS`] from segment `a b`, if the disc overlaps
+/// the part of the segment `contact` names; rounded away from the segment.
+fn push_from_segment(
+    p: (i64, i64),
+    a: (i64, i64),
+    b: (i64, i64),
+    contact: Contact,
+) -> Option<(i64, i64)> {
+    // Most segments near a step are farther than the radius from every part of it: a box
+    // test rejects them before any product.
+    let beyond = |p: i64, a: i64, b: i64| p < a.min(b) - RADIUS_BITS || p > a.max(b) + RADIUS_BITS;
+    if beyond(p.0, a.0, b.0) || beyond(p.1, a.1, b.1) {
+        return None;
+    }
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (px, py) = (p.0 - a.0, p.1 - a.1);
+    let along = px * dx + py * dy;
+    let length_squared = dx * dx + dy * dy;
+    if along <= 0 || along >= length_squared {
+        if contact != Contact::Vertex {
+            return None;
+        }
+        let end = if along <= 0 { a } else { b };
+        return push_from_point(p, end);
+    }
+    if contact != Contact::Edge {
+        return None;
+    }
+    // Twice the signed area: the distance to the line times the length; positive in front.
+    let area = dx * py - dy * px;
+    if area <= 0 {
+        return None;
+    }
+    let length = isqrt_ceil(length_squared as u64) as i64;
+    let reach = RADIUS_BITS * length;
+    if area >= reach {
+        return None;
+    }
+    // Along the normal (-dy, dx)/length by (reach - area)/length: the area grows by exactly
+    // reach - area, to the radius (times the rounded-up length).
+    let depth = reach - area;
+    Some((
+        div_away_from_zero(-dy * depth, length_squared),
+        div_away_from_zero(dx * depth, length_squared),
+    ))
+}
+
+/// The push that moves `p` to [`RADIUS`] from `end`, radially, if it is closer.
+fn push_from_point(p: (i64, i64), end: (i64, i64)) -> Option<(i64, i64)> {
+    let (ex, ey) = (p.0 - end.0, p.1 - end.1);
+    let distance_squared = ex * ex + ey * ey;
+    // At the point itself there is no direction; the centre is never at a map vertex anyway
+    // (vertices lie on sector boundaries, the centre strictly inside).
+    if distance_squared == 0 || distance_squared >= RADIUS_BITS * RADIUS_BITS {
+        return None;
+    }
+    let distance = isqrt_floor(distance_squared as u64) as i64;
+    let gap = RADIUS_BITS - distance;
+    Some((
+        div_away_from_zero(ex * gap, distance),
+        div_away_from_zero(ey * gap, distance),
+    ))
+}
+
+/// `n / d` rounded away from zero; `d > 0`.
+fn div_away_from_zero(n: i64, d: i64) -> i64 {
+    if n >= 0 {
+        (n + d - 1) / d
+    } else {
+        -((-n + d - 1) / d)
+    }
+}
+
+/// `floor(sqrt(n))`, bit by bit (no division, no float).
+pub fn isqrt_floor(n: u64) -> u64 {
+    let mut remainder = n;
+    let mut root = 0u64;
+    let mut bit = 1u64 << 62;
+    while bit > remainder {
+        bit >>= 2;
+    }
+    while bit != 0 {
+        if remainder >= root + bit {
+            remainder -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    root
+}
+
+/// `ceil(sqrt(n))`.
+pub fn isqrt_ceil(n: u64) -> u64 {
+    let root = isqrt_floor(n);
+    if root * root == n {
+        root
+    } else {
+        root + 1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn square_roots_round_as_named() {
+        for n in [
+            0u64,
+            1,
+            2,
+            3,
+            4,
+            15,
+            16,
+            17,
+            1 << 40,
+            (1 << 46) - 1,
+            u64::MAX >> 2,
+        ] {
+            let floor = isqrt_floor(n);
+            assert!(floor * floor <= n && (floor + 1) * (floor + 1) > n, "{n}");
+            let ceil = isqrt_ceil(n);
+            assert!(
+                ceil * ceil >= n && (ceil == 0 || (ceil - 1) * (ceil - 1) < n),
+                "{n}"
+            );
+        }
+    }
+
+    #[test]
+    fn an_edge_push_lands_exactly_on_the_radius_of_a_straight_wall() {
+        // Wall along +x at y = 0, front (inside) toward +y; the disc 10 units in front.
+        let a = (0, 0);
+        let b = (256 * 256, 0);
+        let p = (100 * 256, 10 * 256);
+        let push = push_from_segment(p, a, b, Contact::Edge).expect("overlaps");
+        assert_eq!(push, (0, 6 * 256));
+        // From behind, the wall does not push.
+        assert_eq!(push_from_segment((p.0, -p.1), a, b, Contact::Edge), None);
+    }
+
+    #[test]
+    fn a_vertex_push_is_radial() {
+        let push = push_from_point((3 * 256, 4 * 256), (0, 0)).expect("overlaps");
+        // Distance 5 to 16: the point moves from (3, 4) to (9.6, 12.8), rounded outward.
+        assert_eq!(push, (1690, 2253));
+    }
+}

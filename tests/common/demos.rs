@@ -1,0 +1,136 @@
+//! Scripted demos: harness key scripts (one line per held range of emulator frames) that the
+//! emulator tests play through the ROM, and the host replay of the same script through the
+//! same game code.
+//!
+//! The ROM samples the buttons at every VBlank; the sample taken at VBlank `k` (counted from
+//! power-on, 0-based) holds the keys of emulator frame `k + 1` (the interrupt runs at the start
+//! of the frame after the one whose end raised it). The game starts at VBlank `s` (the ROM
+//! logs `play start vblank=s`), so its tick `j` (1-based) ran on frame `s + j`.
+
+use super::{field, number};
+use portalcast::game::Game;
+use portalcast::player::input::Buttons;
+use portalcast_harness::KeyScript;
+
+/// Emulator frame of the game's tick `tick` (1-based), for a game that started at `start`.
+pub fn frame_of_tick(start: u32, tick: u32) -> u32 {
+    start + tick
+}
+
+/// The game after every tick of `script`: element `j` is the state after `j` ticks.
+pub fn replay(script: &KeyScript, start: u32, ticks: u32) -> Vec<Game<'static>> {
+    let mut game = Game::new(portalcast::assets::MAPS);
+    let mut states = vec![game];
+    for tick in 1..=ticks {
+        game.tick(Buttons(script.keys_at(frame_of_tick(start, tick)).bits()));
+        states.push(game);
+    }
+    states
+}
+
+/// A signed `key=value` field of a ROM line.
+pub fn signed(line: &str, key: &str) -> i64 {
+    let text = field(line, key).unwrap_or_else(|| panic!("no {key}= in {line:?}"));
+    text.parse()
+        .unwrap_or_else(|_| panic!("{key}={text} is not a number in {line:?}"))
+}
+
+/// The ROM's `player …` line: the pose and state after the frame's ticks.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PlayerLine {
+    /// Frame number (as in the `render` line that follows).
+    pub frame: u32,
+    /// Ticks run so far.
+    pub tick: u32,
+    /// Samples lost to a full ring (the game skipped those ticks).
+    pub lost: u32,
+    /// Eye x, y, z in 24.8 bits.
+    pub x: i32,
+    /// See `x`.
+    pub y: i32,
+    /// See `x`.
+    pub z: i32,
+    /// View angle, binary.
+    pub angle: u16,
+    /// The tracked sector.
+    pub sector: u16,
+    /// Horizon shift.
+    pub look: i32,
+    /// On the ground, crouched, flying, running.
+    pub ground: bool,
+    /// See `ground`.
+    pub crouch: bool,
+    /// See `ground`.
+    pub fly: bool,
+    /// See `ground`.
+    pub run: bool,
+    /// Menu cursor, or −1 when closed.
+    pub menu: i32,
+    /// The line itself.
+    pub text: String,
+}
+
+impl PlayerLine {
+    /// Parses a `player …` line.
+    pub fn parse(text: &str) -> PlayerLine {
+        let flag = |key: &str| number(text, key) != 0;
+        PlayerLine {
+            frame: number(text, "frame") as u32,
+            tick: number(text, "tick") as u32,
+            lost: number(text, "lost") as u32,
+            x: signed(text, "x") as i32,
+            y: signed(text, "y") as i32,
+            z: signed(text, "z") as i32,
+            angle: number(text, "angle") as u16,
+            sector: number(text, "sector") as u16,
+            look: signed(text, "look") as i32,
+            ground: flag("ground"),
+            crouch: flag("crouch"),
+            fly: flag("fly"),
+            run: flag("run"),
+            menu: signed(text, "menu") as i32,
+            text: text.to_owned(),
+        }
+    }
+
+    /// The same fields from a host game.
+    pub fn of(game: &Game) -> PlayerLine {
+        let camera = game.camera();
+        PlayerLine {
+            frame: 0,
+            tick: game.ticks(),
+            lost: 0,
+            x: camera.position.x.to_bits(),
+            y: camera.position.y.to_bits(),
+            z: camera.eye_z.to_bits(),
+            angle: camera.angle.to_bits(),
+            sector: camera.sector,
+            look: camera.look_lines,
+            ground: game.player.on_ground,
+            crouch: game.player.crouched(),
+            fly: game.player.fly,
+            run: game.controls.always_run,
+            menu: if game.menu.open {
+                game.menu.cursor as i32
+            } else {
+                -1
+            },
+            text: String::new(),
+        }
+    }
+
+    /// Whether the pose and state (not the frame number or the text) are the same.
+    pub fn same_state(&self, other: &PlayerLine) -> bool {
+        PlayerLine {
+            frame: 0,
+            lost: 0,
+            text: String::new(),
+            ..self.clone()
+        } == PlayerLine {
+            frame: 0,
+            lost: 0,
+            text: String::new(),
+            ..other.clone()
+        }
+    }
+}

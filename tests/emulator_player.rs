@@ -1,0 +1,343 @@
+//! The player in the ROM under the real mGBA core, driven by scripted key demos: the jump's
+//! eye height, the sector after climbing the stairs, a step too tall, crouching under a low
+//! ceiling, fly mode, and determinism: the same demo, or the ROM's own recording of it, gives
+//! the same log and the same screens.
+//!
+//! Every demo also checks that each pose the ROM logs is the pose the host's game reaches after
+//! the same ticks of the same script (`common::demos::replay`): the ROM and the host run the
+//! same integer code, so a demo is a key sequence and gives the same positions everywhere.
+
+mod common;
+
+use common::demos::{replay, PlayerLine};
+use common::player::sector_index;
+use common::*;
+use portalcast::game::Game;
+use portalcast::player::vertical::{CROUCH_EYE, JUMP_RISE, STAND_EYE};
+use portalcast_harness::KeyScript;
+
+/// What one run of a demo in the ROM left behind.
+struct RomRun {
+    /// The VBlank the game started at (`play start vblank=`).
+    start: u32,
+    /// Every `player` line, in order.
+    lines: Vec<PlayerLine>,
+    /// Every debug line of the run.
+    log: Vec<String>,
+    /// A hash of the screen after every emulator frame.
+    screens: Vec<u64>,
+    /// The game on the host after every tick of the same script.
+    host: Vec<Game<'static>>,
+}
+
+impl RomRun {
+    /// The last logged line.
+    fn last(&self) -> &PlayerLine {
+        self.lines.last().expect("the ROM logged its player")
+    }
+
+    /// Host states at every tick from the first to the last the ROM logged.
+    fn host_ticks(&self) -> &[Game<'static>] {
+        &self.host[..=self.last().tick as usize]
+    }
+}
+
+/// Plays `script` for `frames` emulator frames from power-on, and checks every logged pose
+/// against the host's replay.
+fn play(script: &str, frames: u32) -> RomRun {
+    play_script(
+        &KeyScript::parse(script).unwrap_or_else(|error| panic!("{error}")),
+        frames,
+    )
+}
+
+/// [`play`] with a parsed script.
+fn play_script(script: &KeyScript, frames: u32) -> RomRun {
+    let mut emulator = boot();
+    let mut screens = Vec::new();
+    for frame in 0..frames {
+        emulator.set_keys(script.keys_at(frame));
+        emulator
+            .run_frame()
+            .unwrap_or_else(|error| panic!("{error}"));
+        let mut hasher = std::collections::hash_map::DefaultHasher::new();
+        std::hash::Hash::hash(&emulator.frame_rgb().into_raw(), &mut hasher);
+        screens.push(std::hash::Hasher::finish(&hasher));
+    }
+    let log: Vec<String> = emulator
+        .debug_lines()
+        .into_iter()
+        .map(str::to_owned)
+        .collect();
+    let start_line = log
+        .iter()
+        .find(|line| line.starts_with("play start"))
+        .expect("the ROM starts the game");
+    let start = number(start_line, "vblank") as u32;
+    let lines: Vec<PlayerLine> = log
+        .iter()
+        .filter(|line| line.starts_with("player "))
+        .map(|line| PlayerLine::parse(line))
+        .collect();
+    assert!(lines.len() >= 10, "only {} frames drawn", lines.len());
+    let last_tick = lines.last().unwrap().tick;
+    let host = replay(script, start, last_tick);
+    for line in &lines {
+        assert_eq!(line.lost, 0, "the ROM lost input samples: {}", line.text);
+        let expected = PlayerLine::of(&host[line.tick as usize]);
+        assert!(
+            line.same_state(&expected),
+            "the ROM and the host differ after tick {}:\n  rom:  {}\n  host: {expected:?}",
+            line.tick,
+            line.text
+        );
+    }
+    RomRun {
+        start,
+        lines,
+        log,
+        screens,
+        host,
+    }
+}
+
+/// The floor under the logged pose.
+fn floor_bits(line: &PlayerLine) -> i32 {
+    portalcast::render::demo::demo_map().sectors[usize::from(line.sector)].floor_z * 256
+}
+
+#[test]
+fn a_jump_lifts_the_eye_to_48_above_the_floor_and_lands() {
+    // A tap of A after a second of standing.
+    let run = play("60-61: A\n", 150);
+    // On the host, tick by tick: the apex is exactly 48 above the floor.
+    let above_floor: Vec<i32> = run
+        .host_ticks()
+        .iter()
+        .map(|game| {
+            let line = PlayerLine::of(game);
+            line.z - floor_bits(&line)
+        })
+        .collect();
+    let apex = (STAND_EYE + JUMP_RISE) * 256;
+    assert_eq!(*above_floor.iter().max().unwrap(), apex);
+    assert_eq!(above_floor.iter().filter(|&&h| h == apex).count(), 1);
+    // In the ROM's frames: airborne at some frame, never above 48, back on the floor at 32.
+    let airborne: Vec<&PlayerLine> = run.lines.iter().filter(|line| !line.ground).collect();
+    assert!(!airborne.is_empty(), "no frame caught the jump");
+    for line in &run.lines {
+        let above = line.z - floor_bits(line);
+        assert!(
+            (STAND_EYE * 256..=(STAND_EYE + JUMP_RISE) * 256).contains(&above),
+            "{}",
+            line.text
+        );
+    }
+    assert!(airborne.iter().any(|line| line.z > (STAND_EYE + 8) * 256));
+    let last = run.last();
+    assert!(last.ground);
+    assert_eq!(last.z - floor_bits(last), STAND_EYE * 256);
+}
+
+#[test]
+fn climbing_the_stairs_ends_on_the_top_landing() {
+    // Run on (Select + B), north onto the dais, a right-angle turn east, along the corridor
+    // to the lower landing's east wall, a turn north, up the eight steps to the top landing.
+    let script = "
+10-13: SELECT
+11-12: B
+20-72: UP
+100-135: RIGHT
+150-420: UP
+440-475: LEFT
+490-600: UP
+";
+    let run = play(script, 640);
+    let landing_top = sector_index("bench.map", "landing_top");
+    let last = run.last();
+    assert_eq!(last.sector, landing_top, "{}", last.text);
+    assert!(last.ground);
+    assert_eq!(
+        last.z,
+        (128 + STAND_EYE) * 256,
+        "eye 32 above the top floor"
+    );
+    // The host's ticks went up every step in order.
+    let steps: Vec<u16> = (1..=8)
+        .map(|k| sector_index("bench.map", &format!("step_{k}")))
+        .collect();
+    let mut visited: Vec<u16> = Vec::new();
+    for game in run.host_ticks() {
+        let sector = game.player.sector;
+        if steps.contains(&sector) && visited.last() != Some(&sector) {
+            visited.push(sector);
+        }
+    }
+    assert_eq!(visited, steps);
+}
+
+#[test]
+fn a_step_too_tall_blocks_the_player_and_a_jump_climbs_it() {
+    // Strafe right in front of the 24-high ledge, walk back into it, then jump back onto it.
+    let script = "
+20-45: R
+70-150: DOWN
+160-200: DOWN
+165-167: A
+";
+    let run = play(script, 260);
+    let hall_s = sector_index("bench.map", "hall_s");
+    let ledge = sector_index("bench.map", "ledge");
+    let blocked: Vec<&PlayerLine> = run
+        .lines
+        .iter()
+        .filter(|line| (100..=150).contains(&(line.tick + run.start)))
+        .collect();
+    assert!(!blocked.is_empty());
+    for line in blocked {
+        assert_eq!(line.sector, hall_s, "{}", line.text);
+        assert_eq!(
+            line.y,
+            752 * 256,
+            "one radius before the ledge: {}",
+            line.text
+        );
+        assert_eq!(line.z, STAND_EYE * 256, "{}", line.text);
+    }
+    let last = run.last();
+    assert_eq!(last.sector, ledge, "{}", last.text);
+    assert_eq!(last.z, (24 + STAND_EYE) * 256);
+}
+
+#[test]
+fn crouching_passes_under_a_low_ceiling() {
+    // Strafe left in front of the crawlway (40 high), walk back into it standing (blocked),
+    // crouch and go in, let go of B inside (the eye stays 16 under the ceiling), crouch on into
+    // the den.
+    let script = "
+20-45: L
+70-130: DOWN
+140-200: DOWN+B
+210-240: NONE
+250-340: DOWN+B
+";
+    let run = play(script, 380);
+    let hall_s = sector_index("bench.map", "hall_s");
+    let crawl = sector_index("bench.map", "crawl");
+    let den = sector_index("bench.map", "den");
+    let at_frame = |frame: u32| {
+        run.lines
+            .iter()
+            .rev()
+            .find(|line| line.tick + run.start <= frame)
+            .unwrap_or_else(|| panic!("no frame before {frame}"))
+    };
+    let standing = at_frame(130);
+    assert_eq!(standing.sector, hall_s, "{}", standing.text);
+    assert_eq!(standing.y, 752 * 256, "{}", standing.text);
+    assert!(!standing.crouch);
+    let crouched = at_frame(200);
+    assert_eq!(crouched.sector, crawl, "{}", crouched.text);
+    assert_eq!(crouched.z, CROUCH_EYE * 256, "{}", crouched.text);
+    assert!(crouched.crouch);
+    let let_go = at_frame(240);
+    assert_eq!(let_go.sector, crawl, "{}", let_go.text);
+    assert_eq!(let_go.z, (40 - 16) * 256, "{}", let_go.text);
+    assert!(let_go.crouch, "the ceiling keeps the player down");
+    let last = run.last();
+    assert_eq!(last.sector, den, "{}", last.text);
+}
+
+#[test]
+fn fly_mode_rises_to_the_ceiling_descends_and_falls_when_switched_off() {
+    // Tap Select (fly on), hold A (rise), hold B (descend), rise a little, tap Select (off).
+    let script = "
+20-22: SELECT
+30-130: A
+140-240: B
+250-270: A
+280-282: SELECT
+";
+    let run = play(script, 340);
+    let at_frame = |frame: u32| {
+        run.lines
+            .iter()
+            .rev()
+            .find(|line| line.tick + run.start <= frame)
+            .unwrap()
+    };
+    let high = at_frame(130);
+    assert!(high.fly, "{}", high.text);
+    assert_eq!(
+        high.z,
+        (192 - 16) * 256,
+        "16 under the hall's ceiling: {}",
+        high.text
+    );
+    let low = at_frame(240);
+    assert!(low.fly);
+    assert_eq!(low.z, STAND_EYE * 256, "{}", low.text);
+    let lifted = at_frame(278);
+    assert!(
+        lifted.fly && lifted.z > (STAND_EYE + 32) * 256,
+        "{}",
+        lifted.text
+    );
+    let last = run.last();
+    assert!(!last.fly && last.ground, "{}", last.text);
+    assert_eq!(last.z, STAND_EYE * 256);
+    assert!(
+        run.lines.iter().any(|line| !line.fly && !line.ground),
+        "a frame shows the fall"
+    );
+}
+
+#[test]
+fn the_same_demo_twice_and_its_recording_give_the_same_poses_and_frames() {
+    // Walking, turning, strafing, a jump, looking up and re-centring, the menu (resolution to
+    // 120x160 and back), crouching, fly mode.
+    let script = "
+20-80: UP
+40-70: RIGHT
+90-120: L
+100-102: A
+130-150: SELECT
+132-148: UP
+152-154: SELECT
+153: A
+160-161: START
+170-171: RIGHT
+180-181: START
+190-230: UP+B
+240-241: START
+245-246: LEFT
+250-251: START
+260-262: SELECT
+270-300: A
+";
+    let first = play(script, 320);
+    let second = play(script, 320);
+    assert_eq!(first.log, second.log, "the logs differ");
+    assert_eq!(first.screens, second.screens, "the screens differ");
+    // The ROM's recording of its buttons (`input` lines) replays the same game.
+    let recorded = KeyScript::from_rom_log(first.log.iter().map(String::as_str));
+    let original = KeyScript::parse(script).unwrap();
+    for frame in first.start + 1..320 {
+        assert_eq!(
+            recorded.keys_at(frame),
+            original.keys_at(frame),
+            "frame {frame}"
+        );
+    }
+    let third = play_script(&recorded, 320);
+    assert_eq!(first.log, third.log, "the recording's log differs");
+    assert_eq!(
+        first.screens, third.screens,
+        "the recording's screens differ"
+    );
+    // The demo did what it says: moved, looked up, opened the menu, flew.
+    assert!(first.lines.iter().any(|line| line.look > 0));
+    assert!(first.lines.iter().any(|line| line.menu >= 0));
+    assert!(first.log.iter().any(|line| line.contains("res=120x160")));
+    assert!(first.last().fly);
+}

@@ -1,0 +1,497 @@
+//! The player on the host at the extremes: corners, vertices, portal edges, wedges, steps,
+//! ceilings, the jump, crouching, flying and falling. Every tick of every case is checked with
+//! exact geometry (`common::player::check_tick`): the centre strictly inside its sector, its
+//! path crossing no solid wall and no portal the body may not enter, the eye's room to floor
+//! and ceiling, and the disc's clearance from solid walls.
+
+mod common;
+
+use common::player::*;
+use portalcast::math::{Angle, Fx24_8, WorldPoint};
+use portalcast::player::collide::RADIUS;
+use portalcast::player::input::Intent;
+use portalcast::player::vertical::{CROUCH_EYE, JUMP_RISE, JUMP_TICKS, STAND_EYE};
+use portalcast::player::Player;
+use portalcast::render::demo;
+use portalcast_format::MapTables;
+
+// Binary angles: 0 along +x (east), growing toward +y (south on the top-down view).
+const EAST: u16 = 0;
+const SOUTH_EAST: u16 = 8192;
+const NORTH_WEST: u16 = 5 * 8192;
+const NORTH: u16 = 6 * 8192;
+const NORTH_EAST: u16 = 7 * 8192;
+
+fn at(map: &MapTables, sector: u16, x: f64, y: f64, angle: u16) -> Player {
+    let p = WorldPoint::new(
+        Fx24_8::from_bits((x * 256.0) as i32),
+        Fx24_8::from_bits((y * 256.0) as i32),
+    );
+    Player::standing_at(map, sector, p, Angle::from_bits(angle))
+}
+
+fn run_intent(forward: i8, strafe: i8) -> Intent {
+    Intent {
+        run: true,
+        ..walk(forward, strafe, 0)
+    }
+}
+
+fn position(player: &Player) -> (f64, f64) {
+    (
+        units(player.position.x.to_bits()),
+        units(player.position.y.to_bits()),
+    )
+}
+
+fn bench() -> MapTables<'static> {
+    demo::map_named("bench").expect("the bench map is shipped")
+}
+
+const BOX: &str = "
+vertex a 0 0
+vertex b 256 0
+vertex c 256 256
+vertex d 0 256
+sector room floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall a b tex=brick
+  wall b c tex=brick
+  wall c d tex=brick
+  wall d a tex=brick
+player 128.5 128.5
+";
+
+#[test]
+fn running_into_a_corner_stops_one_radius_from_both_walls() {
+    let compiled = compile_map("box.map", BOX);
+    let map = compiled.tables();
+    // North-west at full speed, for long enough to press into the corner (0, 0).
+    let mut player = at(&map, 0, 128.5, 128.5, NORTH_WEST);
+    run(&mut player, &map, run_intent(1, 0), 200);
+    let r = RADIUS * 256;
+    assert_eq!(
+        (player.position.x.to_bits(), player.position.y.to_bits()),
+        (r, r),
+        "the disc rests against both walls"
+    );
+    assert_eq!(player.velocity, (0, 0));
+}
+
+/// A 14° wedge: a triangle whose sharp corner the disc cannot reach.
+const WEDGE: &str = "
+vertex a 0 0
+vertex b 512 0
+vertex c 512 128
+sector wedge floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall a b tex=brick
+  wall b c tex=brick
+  wall c a tex=brick
+player 400.5 40.5
+";
+
+#[test]
+fn full_speed_into_a_sharp_concave_corner_never_leaves_the_wedge() {
+    let compiled = compile_map("wedge.map", WEDGE);
+    let map = compiled.tables();
+    // Along the wedge's bisector toward its tip (angle 180° + 7°).
+    let toward_tip = 32768 + 1274;
+    let mut player = at(&map, 0, 400.5, 50.0, toward_tip);
+    run(&mut player, &map, run_intent(1, 0), 300);
+    let (x, y) = position(&player);
+    let clearance = [
+        distance_to_segment((x, y), (0.0, 0.0), (512.0, 0.0)),
+        distance_to_segment((x, y), (0.0, 0.0), (512.0, 128.0)),
+    ];
+    for d in clearance {
+        assert!(
+            d >= f64::from(RADIUS) - 1.0 / 16.0,
+            "{clearance:?} at {x}, {y}"
+        );
+    }
+    // Where the disc touches both walls: 16 / sin(7°) = 131 units from the tip.
+    assert!((120.0..140.0).contains(&x), "stopped at {x}, {y}");
+    // Sliding along one wall into the corner from off the bisector ends in the same place.
+    let mut sliding = at(&map, 0, 300.5, 20.5, 32768 + 3000);
+    run(&mut sliding, &map, run_intent(1, 0), 300);
+    assert!(
+        (position(&sliding).0 - x).abs() < 8.0,
+        "{:?}",
+        position(&sliding)
+    );
+}
+
+/// A square room around a square pillar, in four convex sectors.
+const PILLAR: &str = "
+vertex a 0 0
+vertex b 384 0
+vertex c 384 384
+vertex d 0 384
+vertex e 128 128
+vertex f 256 128
+vertex g 256 256
+vertex h 128 256
+vertex i 0 128
+vertex j 384 128
+vertex k 384 256
+vertex l 0 256
+sector north floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall a b tex=brick
+  wall b j tex=brick
+  wall j f portal=east
+  wall f e tex=stone
+  wall e i portal=west
+  wall i a tex=brick
+sector east floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall f j portal=north
+  wall j k tex=brick
+  wall k g portal=south
+  wall g f tex=stone
+sector south floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall l h portal=west
+  wall h g tex=stone
+  wall g k portal=east
+  wall k c tex=brick
+  wall c d tex=brick
+  wall d l tex=brick
+sector west floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall i e portal=north
+  wall e h tex=stone
+  wall h l portal=south
+  wall l i tex=brick
+player 64.5 64.5
+";
+
+#[test]
+fn head_on_into_a_vertex_stops_one_radius_from_it() {
+    let compiled = compile_map("pillar.map", PILLAR);
+    let map = compiled.tables();
+    // Exactly along the diagonal through the pillar's corner (128, 128).
+    let mut player = at(&map, 0, 64.5, 64.5, SOUTH_EAST);
+    run(&mut player, &map, run_intent(1, 0), 200);
+    let (x, y) = position(&player);
+    let to_corner = ((128.0 - x).powi(2) + (128.0 - y).powi(2)).sqrt();
+    assert!(
+        (f64::from(RADIUS) - 1.0 / 16.0..f64::from(RADIUS) + 0.5).contains(&to_corner),
+        "{to_corner} from the corner at {x}, {y}"
+    );
+}
+
+#[test]
+fn off_centre_onto_a_vertex_slides_around_the_pillar() {
+    let compiled = compile_map("pillar.map", PILLAR);
+    let map = compiled.tables();
+    let east = sector_index_in(PILLAR, "east");
+    let south = sector_index_in(PILLAR, "south");
+    // Four units north of the diagonal through the corner: the disc glances off the vertex,
+    // slides east along the pillar's north face and round its far corner.
+    let mut player = at(&map, 0, 64.5, 60.5, SOUTH_EAST);
+    run(&mut player, &map, run_intent(1, 0), 400);
+    assert!(
+        player.sector == east || player.sector == south,
+        "ended in sector {} at {:?}",
+        player.sector,
+        position(&player)
+    );
+}
+
+/// Two rooms with a 64-wide doorway in the wall between them.
+const DOORWAY: &str = "
+vertex a 0 0
+vertex b 256 0
+vertex c 256 96
+vertex d 256 160
+vertex e 256 256
+vertex f 0 256
+vertex g 512 0
+vertex h 512 256
+sector left floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall a b tex=brick
+  wall b c tex=brick
+  wall c d portal=right
+  wall d e tex=brick
+  wall e f tex=brick
+  wall f a tex=brick
+sector right floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall b g tex=brick
+  wall g h tex=brick
+  wall h e tex=brick
+  wall e d tex=brick
+  wall d c portal=left
+  wall c b tex=brick
+player 128.5 128.5
+";
+
+#[test]
+fn sliding_along_a_wall_past_a_doorway_and_through_its_jamb() {
+    let compiled = compile_map("doorway.map", DOORWAY);
+    let map = compiled.tables();
+    let right = sector_index_in(DOORWAY, "right");
+    // North along the dividing wall, pressed against it (strafing right into it): the disc
+    // slides along the wall, past the doorway's south jamb, and the strafe carries it through.
+    let mut player = at(&map, 0, 200.5, 240.5, NORTH);
+    let mut track = Vec::new();
+    for _ in 0..120 {
+        run(&mut player, &map, run_intent(1, 1), 1);
+        track.push(position(&player));
+    }
+    let below_door: Vec<f64> = track
+        .iter()
+        .filter(|(_, y)| *y > 176.0)
+        .map(|(x, _)| *x)
+        .collect();
+    assert!(below_door.iter().all(|&x| x <= 240.0), "{track:?}");
+    assert!(below_door.contains(&240.0), "{track:?}");
+    assert_eq!(player.sector, right, "{track:?}");
+    // Diagonally at the doorway's north jamb (256, 96) from the north-west: the disc glances
+    // off the wall and the jamb's vertex into the doorway and through.
+    let mut jamb = at(&map, 0, 196.5, 36.5, SOUTH_EAST);
+    run(&mut jamb, &map, walk(1, 0, 0), 200);
+    assert_eq!(jamb.sector, right, "{:?}", position(&jamb));
+    // East along y = 112: the disc just touches the north jamb (exactly one radius) and
+    // passes undeflected. Half a unit further north it overlaps the jamb and is pushed south.
+    let mut tangent = at(&map, 0, 100.5, 112.0, EAST);
+    run(&mut tangent, &map, walk(1, 0, 0), 150);
+    assert_eq!(tangent.sector, right);
+    assert_eq!(position(&tangent).1, 112.0);
+    let mut grazing = at(&map, 0, 100.5, 111.5, EAST);
+    run(&mut grazing, &map, walk(1, 0, 0), 150);
+    assert_eq!(grazing.sector, right);
+    assert!(position(&grazing).1 > 111.5, "{:?}", position(&grazing));
+}
+
+#[test]
+fn a_path_exactly_through_a_four_sector_vertex_is_tracked() {
+    let map = bench();
+    let hall_w = sector_index("bench.map", "hall_w");
+    let hall_n = sector_index("bench.map", "hall_n");
+    // (200, 312) to the north-east passes exactly through (256, 256), where hall_nw, hall_n,
+    // the dais and hall_w meet.
+    let mut player = at(&map, hall_w, 200.0, 312.0, NORTH_EAST);
+    run(&mut player, &map, walk(1, 0, 0), 40);
+    let (x, y) = position(&player);
+    assert!(x > 256.0 && y < 256.0, "at {x}, {y}");
+    assert_eq!(player.sector, hall_n);
+}
+
+#[test]
+fn a_step_of_16_is_climbed_and_24_is_not() {
+    let map = bench();
+    let hall_s = sector_index("bench.map", "hall_s");
+    let dais = sector_index("bench.map", "dais");
+    // The dais is 16 up: walking north from the start climbs it.
+    let mut player = Player::spawn(&map);
+    run(&mut player, &map, walk(1, 0, 0), 90);
+    assert_eq!(player.sector, dais);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(16 + STAND_EYE));
+    // The ledge alcove is 24 up: walking back into it from under it stops at its edge.
+    let mut blocked = at(&map, hall_s, 464.5, 700.5, NORTH);
+    run(&mut blocked, &map, walk(-1, 0, 0), 120);
+    assert_eq!(blocked.sector, hall_s);
+    assert_eq!(blocked.position.y.to_bits(), (768 - RADIUS) * 256);
+    assert_eq!(blocked.eye_z(), Fx24_8::from_int(STAND_EYE));
+}
+
+#[test]
+fn a_jump_onto_the_24_ledge_lands_on_it_and_walking_off_falls_back() {
+    let map = bench();
+    let hall_s = sector_index("bench.map", "hall_s");
+    let ledge = sector_index("bench.map", "ledge");
+    let mut player = at(&map, hall_s, 464.5, 700.5, NORTH);
+    run(&mut player, &map, walk(-1, 0, 0), 120);
+    let jump_back = Intent {
+        jump: true,
+        ..walk(-1, 0, 0)
+    };
+    run(&mut player, &map, jump_back, 40);
+    assert_eq!(player.sector, ledge);
+    assert!(player.on_ground);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(24 + STAND_EYE));
+    // Forward off the ledge: a drop of 24 is a fall, not a step.
+    let mut airborne = false;
+    for _ in 0..60 {
+        run(&mut player, &map, walk(1, 0, 0), 1);
+        airborne |= !player.on_ground;
+    }
+    assert!(airborne, "stepping off a 24 ledge falls");
+    assert_eq!(player.sector, hall_s);
+    assert!(player.on_ground);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(STAND_EYE));
+}
+
+#[test]
+fn stepping_down_16_follows_the_floor_without_falling() {
+    let map = bench();
+    let dais = sector_index("bench.map", "dais");
+    let hall_n = sector_index("bench.map", "hall_n");
+    let mut player = at(&map, dais, 384.5, 300.5, NORTH);
+    for _ in 0..60 {
+        run(&mut player, &map, walk(1, 0, 0), 1);
+        assert!(player.on_ground, "a 16 step down is not a fall");
+    }
+    assert_eq!(player.sector, hall_n);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(STAND_EYE));
+}
+
+#[test]
+fn a_ceiling_too_low_blocks_standing_and_admits_crouching() {
+    let map = bench();
+    let hall_s = sector_index("bench.map", "hall_s");
+    let crawl = sector_index("bench.map", "crawl");
+    let den = sector_index("bench.map", "den");
+    let mut player = at(&map, hall_s, 304.5, 700.5, NORTH);
+    run(&mut player, &map, walk(-1, 0, 0), 120);
+    assert_eq!(
+        player.sector, hall_s,
+        "standing, the eye would be 8 under the ceiling"
+    );
+    assert_eq!(player.position.y.to_bits(), (768 - RADIUS) * 256);
+    let crouch_back = Intent {
+        crouch: true,
+        ..walk(-1, 0, 0)
+    };
+    run(&mut player, &map, crouch_back, 60);
+    assert_eq!(player.sector, crawl);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(CROUCH_EYE));
+    assert!(player.crouched());
+    // Letting go of crouch under the 40-high ceiling: the eye rises only to 16 below it.
+    run(&mut player, &map, Intent::default(), 30);
+    assert_eq!(player.sector, crawl);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(40 - 16));
+    // Crouched again, on through the crawl into the den, where the player stands up.
+    run(&mut player, &map, crouch_back, 150);
+    assert_eq!(player.sector, den);
+    run(&mut player, &map, Intent::default(), 30);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(STAND_EYE));
+}
+
+#[test]
+fn the_jump_is_a_parabola_whose_apex_is_exactly_48_above_the_floor() {
+    let map = bench();
+    let mut player = Player::spawn(&map);
+    let floor = player.feet_z;
+    let jump = Intent {
+        jump: true,
+        ..Intent::default()
+    };
+    let mut heights = Vec::new();
+    for _ in 0..2 * JUMP_TICKS + 8 {
+        run(&mut player, &map, jump, 1);
+        heights.push((player.eye_z() - floor).to_bits());
+    }
+    let apex = (STAND_EYE + JUMP_RISE) * 256;
+    assert_eq!(*heights.iter().max().unwrap(), apex);
+    assert_eq!(heights[JUMP_TICKS as usize - 1], apex, "apex on tick 16");
+    assert_eq!(
+        heights.iter().filter(|&&h| h == apex).count(),
+        1,
+        "one apex tick"
+    );
+    // Constant second difference: the heights are a parabola.
+    let rising: Vec<i32> = heights[..2 * JUMP_TICKS as usize].to_vec();
+    let mut with_take_off = vec![STAND_EYE * 256];
+    with_take_off.extend(&rising);
+    let second: Vec<i32> = with_take_off
+        .windows(3)
+        .map(|w| w[2] - 2 * w[1] + w[0])
+        .collect();
+    assert!(second.windows(2).all(|w| w[0] == w[1]), "{second:?}");
+    assert!(second[0] < 0);
+    // Back on the floor on tick 32, and holding A does not jump again.
+    assert_eq!(heights[2 * JUMP_TICKS as usize - 1], STAND_EYE * 256);
+    assert!(heights[2 * JUMP_TICKS as usize..]
+        .iter()
+        .all(|&h| h == STAND_EYE * 256));
+    assert!(player.on_ground);
+}
+
+#[test]
+fn crouching_puts_the_eye_16_above_the_floor() {
+    let map = bench();
+    let mut player = Player::spawn(&map);
+    let crouch = Intent {
+        crouch: true,
+        ..Intent::default()
+    };
+    run(&mut player, &map, crouch, 20);
+    assert_eq!(player.eye_z() - player.feet_z, Fx24_8::from_int(CROUCH_EYE));
+    run(&mut player, &map, Intent::default(), 20);
+    assert_eq!(player.eye_z() - player.feet_z, Fx24_8::from_int(STAND_EYE));
+}
+
+#[test]
+fn flying_keeps_the_eye_between_floor_and_ceiling_and_ends_in_a_fall() {
+    let map = bench();
+    let yard_s = sector_index("bench.map", "yard_s");
+    let mut player = at(&map, yard_s, 384.5, -200.5, NORTH);
+    run(
+        &mut player,
+        &map,
+        Intent {
+            toggle_fly: true,
+            ..Intent::default()
+        },
+        1,
+    );
+    assert!(player.fly);
+    let rise = Intent {
+        jump: true,
+        ..Intent::default()
+    };
+    run(&mut player, &map, rise, 200);
+    let ceil = map.sectors[usize::from(yard_s)].ceil_z;
+    assert_eq!(player.eye_z(), Fx24_8::from_int(ceil - 16));
+    let sink = Intent {
+        crouch: true,
+        ..Intent::default()
+    };
+    run(&mut player, &map, sink, 200);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(STAND_EYE));
+    run(&mut player, &map, rise, 20);
+    assert!(player.eye_z() > Fx24_8::from_int(STAND_EYE + 32));
+    run(
+        &mut player,
+        &map,
+        Intent {
+            toggle_fly: true,
+            ..Intent::default()
+        },
+        1,
+    );
+    assert!(!player.fly && !player.on_ground);
+    run(&mut player, &map, Intent::default(), 60);
+    assert!(player.on_ground);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(STAND_EYE));
+}
+
+#[test]
+fn looking_up_and_down_stays_within_the_limits_and_recentres() {
+    let map = bench();
+    let mut player = Player::spawn(&map);
+    let look = |direction: i8| Intent {
+        look: direction,
+        ..Intent::default()
+    };
+    run(&mut player, &map, look(1), 100);
+    assert_eq!(player.look_lines, portalcast::render::view::MAX_LOOK_LINES);
+    run(&mut player, &map, look(-1), 200);
+    assert_eq!(player.look_lines, -portalcast::render::view::MAX_LOOK_LINES);
+    run(
+        &mut player,
+        &map,
+        Intent {
+            recentre: true,
+            ..Intent::default()
+        },
+        1,
+    );
+    assert_eq!(player.look_lines, 0);
+}
+
+#[test]
+fn turning_for_36_ticks_is_exactly_a_right_angle() {
+    let map = bench();
+    let mut player = Player::spawn(&map);
+    let start = player.angle;
+    run(&mut player, &map, walk(0, 0, 1), 36);
+    assert_eq!(player.angle.to_bits(), start.to_bits().wrapping_add(16384));
+}
