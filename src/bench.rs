@@ -188,6 +188,7 @@ mod tests {
             column_pixels: u32::MAX,
             span_pixels: u32::MAX,
             depth_cutoffs: u32::MAX,
+            repeat_visits: u32::MAX,
             wall_ticks: u32::MAX,
             plane_ticks: u32::MAX,
         };

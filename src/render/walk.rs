@@ -37,6 +37,10 @@ pub struct FrameStats {
     pub span_pixels: u32,
     /// Portal chains cut at [`MAX_PORTAL_DEPTH`].
     pub depth_cutoffs: u32,
+    /// Visits of a sector already visited this frame (through another portal): what the
+    /// thesis' scene preprocessing would merge. Counted for sectors below
+    /// [`VISITS_TRACKED`].
+    pub repeat_visits: u32,
     /// Clock ticks in the wall stage (ownership, projection, wall and strip columns), when the
     /// renderer has a clock (the ROM's cycle meter); 0 otherwise.
     pub wall_ticks: u32,
@@ -54,7 +58,11 @@ pub struct Renderer {
     column_angles: [i16; MAX_COLUMNS],
     column_angles_width: i32,
     clock: fn() -> u32,
+    visited: [u32; VISITS_TRACKED / 32],
 }
+
+/// Sectors (by index) a frame tracks for [`FrameStats::repeat_visits`]: a bit each.
+pub const VISITS_TRACKED: usize = 2048;
 
 fn no_clock() -> u32 {
     0
@@ -94,11 +102,13 @@ impl Renderer {
                 column_pixels: 0,
                 span_pixels: 0,
                 depth_cutoffs: 0,
+                repeat_visits: 0,
                 wall_ticks: 0,
                 plane_ticks: 0,
             },
             column_angles: [0; MAX_COLUMNS],
             column_angles_width: 0,
+            visited: [0; VISITS_TRACKED / 32],
             clock: no_clock,
         }
     }
@@ -115,6 +125,7 @@ impl Renderer {
         let height = view.viewport.height as i16;
         debug_assert_eq!(width, canvas.resolution().width());
         self.stats = FrameStats::default();
+        self.visited = [0; VISITS_TRACKED / 32];
         if self.column_angles_width != view.viewport.width {
             for (column, angle) in self.column_angles[..width].iter_mut().enumerate() {
                 *angle = column_angle(
@@ -149,6 +160,11 @@ impl Renderer {
             return;
         }
         self.stats.sector_visits += 1;
+        if let Some(word) = self.visited.get_mut(usize::from(sector_index) / 32) {
+            let bit = 1u32 << (sector_index % 32);
+            self.stats.repeat_visits += u32::from(*word & bit != 0);
+            *word |= bit;
+        }
         let sector = &scene.map.sectors[usize::from(sector_index)];
         let walls = scene.map.sector_walls(sector);
         for column in first..end {
