@@ -225,7 +225,7 @@ pub fn write(measurements: &Measurements) -> String {
     kernels(&mut doc, measurements);
     accuracy(&mut doc, measurements);
     sizes(&mut doc, measurements);
-    doc.push_str("## Math micro-benchmarks\n\n");
+    // The section brings its own heading (`cargo bench-math` writes the same block).
     doc.push_str(&measurements.math_section);
     doc.push_str("\n\n");
     guard(&mut doc, measurements);
@@ -507,8 +507,9 @@ fn instruction_set(doc: &mut String, measurements: &Measurements) {
          helpers by hand as Thumb code that returns with `pop {pc}`, which does not switch back to \
          ARM state on the ARMv4T. The ROM links them `--wrap`ped to ARM versions in \
          `asm/runtime.s`, and the boot line's `division_digest` is checked against the host's. \
-         `#[instruction_set(arm::a32)]` on single functions was the other way, and measured \
-         slower: LLVM does not inline across instruction sets.\n\n",
+         `#[instruction_set(arm::a32)]` on single functions would be the other way; it is not \
+         used because LLVM does not inline across instruction sets, and the renderer is built \
+         of small helpers that must inline.\n\n",
     );
 }
 
