@@ -29,6 +29,8 @@ pub struct Game<'m> {
     pub menu: Menu,
     /// Quality settings.
     pub settings: Settings,
+    /// The heads-up display (frame rate and cycles) is shown.
+    pub hud: bool,
     held: Buttons,
     ticks: u32,
 }
@@ -48,6 +50,7 @@ impl<'m> Game<'m> {
             controls: Controls::new(),
             menu: Menu::default(),
             settings: Settings::DEFAULT,
+            hud: false,
             held: Buttons::NONE,
             ticks: 0,
         }
@@ -81,6 +84,7 @@ impl<'m> Game<'m> {
             map: self.maps[self.map_index].name,
             fly: self.player.fly,
             run: self.controls.always_run,
+            hud: self.hud,
             perspective: self.settings.perspective,
             textures: self.settings.textures,
         }
@@ -166,6 +170,7 @@ impl<'m> Game<'m> {
                     self.settings.perspective = self.settings.perspective.next();
                 }
             }
+            Entry::Hud => self.hud = !self.hud,
             Entry::Textures => {
                 self.settings.textures = match self.settings.textures {
                     TexturePlacement::Ewram => TexturePlacement::Rom,

@@ -106,7 +106,7 @@ mod rom {
             let camera = game.camera();
             let player = &game.player;
             log::info(format_args!(
-                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} game_cycles={game_cycles}",
+                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} hud={} game_cycles={game_cycles}",
                 sampler.next_index(),
                 game.ticks(),
                 game.held().0,
@@ -121,6 +121,7 @@ mod rom {
                 u8::from(player.fly),
                 u8::from(game.controls.always_run),
                 if game.menu.open { game.menu.cursor as i32 } else { -1 },
+                u8::from(game.hud),
             ));
             let settings = game.settings;
             let view = View::new(&camera, &settings);
@@ -131,6 +132,9 @@ mod rom {
             let render_assets = demo::assets_for(settings.textures, textures_in_ewram);
             let stats = renderer.render(game.map(), &render_assets, &view, &mut canvas);
             let cycles = meter::cycles_since(started);
+            if game.hud {
+                menu::draw_hud(&mut canvas, &menu::hud_line(cycles), colours);
+            }
             if let Some(text) = game.menu_text() {
                 menu::draw(&mut canvas, &text, colours);
             }

@@ -33,10 +33,12 @@ pub enum Entry {
     Perspective,
     /// Where texels are read from (EWRAM or the cartridge).
     Textures,
+    /// The heads-up display: frame rate and cycles of the last frame.
+    Hud,
 }
 
 /// The menu's entries, top to bottom.
-pub const ENTRIES: [Entry; 7] = [
+pub const ENTRIES: [Entry; 8] = [
     Entry::Resolution,
     Entry::Lighting,
     Entry::Map,
@@ -44,6 +46,7 @@ pub const ENTRIES: [Entry; 7] = [
     Entry::Run,
     Entry::Perspective,
     Entry::Textures,
+    Entry::Hud,
 ];
 
 impl Entry {
@@ -57,6 +60,7 @@ impl Entry {
             Entry::Run => "RUN",
             Entry::Perspective => "PERSP",
             Entry::Textures => "TEX",
+            Entry::Hud => "HUD",
         }
     }
 }
@@ -74,6 +78,8 @@ pub struct Shown<'a> {
     pub fly: bool,
     /// Running.
     pub run: bool,
+    /// The heads-up display (frame rate and cycles).
+    pub hud: bool,
     /// Wall perspective.
     pub perspective: Perspective,
     /// Texture placement.
@@ -92,6 +98,7 @@ impl Entry {
             Entry::Run => on_off(shown.run),
             Entry::Perspective => shown.perspective.label(),
             Entry::Textures => shown.textures.label(),
+            Entry::Hud => on_off(shown.hud),
         }
     }
 }
@@ -275,12 +282,23 @@ pub type MenuText = [Line; PANEL_LINES];
 /// Draws the menu panel with `text` over whatever `canvas` holds, every pixel of the panel
 /// exactly once.
 pub fn draw(canvas: &mut impl Canvas, text: &MenuText, colours: MenuColours) {
+    draw_panel(canvas, text, (PANEL_LEFT, PANEL_TOP), colours);
+}
+
+/// Draws a panel of `lines` with its top-left corner at font pixel `(left, top)`.
+fn draw_panel(
+    canvas: &mut impl Canvas,
+    lines: &[Line],
+    (left, top): (usize, usize),
+    colours: MenuColours,
+) {
     let resolution = canvas.resolution();
     let solid = |index: u8| [index; 64];
     let background = solid(colours.background);
     let foreground = solid(colours.text);
-    for panel_row in 0..PANEL_HEIGHT {
-        let mask = row_mask(text, panel_row);
+    let height = 2 * PADDING + lines.len() * LINE_HEIGHT - 1;
+    for panel_row in 0..height {
+        let mask = row_mask(lines, panel_row);
         // Runs of equal colour along the row, in font pixels.
         let mut start = 0;
         while start < PANEL_WIDTH {
@@ -293,8 +311,8 @@ pub fn draw(canvas: &mut impl Canvas, text: &MenuText, colours: MenuColours) {
             fill(
                 canvas,
                 resolution,
-                (PANEL_LEFT + start, PANEL_LEFT + end),
-                PANEL_TOP + panel_row,
+                (left + start, left + end),
+                top + panel_row,
                 texels,
             );
             start = end;
@@ -302,8 +320,56 @@ pub fn draw(canvas: &mut impl Canvas, text: &MenuText, colours: MenuColours) {
     }
 }
 
+/// The heads-up display's one line: the frame rate the last frame's cycles imply (tenths) and
+/// those cycles in thousands, e.g. `20.6FPS 815K`.
+pub fn hud_line(render_cycles: u32) -> Line {
+    let cycles = render_cycles.max(1);
+    // The CPU runs 2^24 cycles a second; a frame shown takes whole VBlank periods, but the HUD
+    // reports what the drawing alone would allow, as docs/BENCH.md does.
+    let tenths_of_fps = (10u64 << 24) / u64::from(cycles);
+    let mut text = [b' '; LINE_CHARS];
+    let mut at = 0;
+    let mut push = |bytes: &[u8]| {
+        for &byte in bytes {
+            if at < LINE_CHARS {
+                text[at] = byte;
+                at += 1;
+            }
+        }
+    };
+    let mut digits = [0u8; 10];
+    let mut number = |value: u64, push: &mut dyn FnMut(&[u8])| {
+        let mut count = 0;
+        let mut rest = value;
+        loop {
+            digits[count] = b'0' + (rest % 10) as u8;
+            count += 1;
+            rest /= 10;
+            if rest == 0 {
+                break;
+            }
+        }
+        digits[..count].reverse();
+        push(&digits[..count]);
+    };
+    number(tenths_of_fps / 10, &mut push);
+    push(b".");
+    number(tenths_of_fps % 10, &mut push);
+    push(b"FPS ");
+    number(u64::from(cycles).div_ceil(1000), &mut push);
+    push(b"K");
+    let mut line = Line::blank();
+    line.chars = text;
+    line
+}
+
+/// Draws the heads-up display (one [`hud_line`]) in the top-left corner.
+pub fn draw_hud(canvas: &mut impl Canvas, line: &Line, colours: MenuColours) {
+    draw_panel(canvas, core::slice::from_ref(line), (0, 0), colours);
+}
+
 /// The lit font pixels of one panel row, bit `x` for column `x`.
-fn row_mask(text: &MenuText, panel_row: usize) -> u64 {
+fn row_mask(text: &[Line], panel_row: usize) -> u64 {
     let Some(y) = panel_row.checked_sub(PADDING) else {
         return 0;
     };
@@ -346,6 +412,20 @@ fn fill(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_hud_line_shows_the_rate_and_the_cycles() {
+        let text = |cycles| {
+            let line = hud_line(cycles);
+            String::from_utf8(line.chars.to_vec()).unwrap()
+        };
+        // 2^24 / 280,896 = 59.7 frames a second.
+        assert_eq!(text(280_896).trim_end(), "59.7FPS 281K");
+        assert_eq!(text(815_536).trim_end(), "20.5FPS 816K");
+        // Never a division by zero, never past the line.
+        assert_eq!(text(0).len(), LINE_CHARS);
+        assert_eq!(text(u32::MAX).trim_end(), "0.0FPS 4294968K");
+    }
 
     #[test]
     fn every_character_the_menu_writes_has_its_own_glyph() {

@@ -27,6 +27,7 @@ struct Compared {
     lighting: portalcast::render::light::Lighting,
     perspective: Perspective,
     textures: TexturePlacement,
+    hud: bool,
     menu: bool,
     cycles: u64,
 }
@@ -106,6 +107,10 @@ impl Checker {
             &View::new(&camera, &settings),
             &mut canvas,
         );
+        if player.hud {
+            let cycles = number(text, "cycles") as u32;
+            menu::draw_hud(&mut canvas, &menu::hud_line(cycles), self.colours);
+        }
         let menu_open = player.menu >= 0;
         if menu_open {
             let shown = Shown {
@@ -114,6 +119,7 @@ impl Checker {
                 map: map.name,
                 fly: player.fly,
                 run: player.run,
+                hud: player.hud,
                 perspective,
                 textures,
             };
@@ -166,6 +172,7 @@ impl Checker {
             lighting,
             perspective,
             textures,
+            hud: player.hud,
             menu: menu_open,
             cycles: number(text, "cycles"),
         });
@@ -238,9 +245,11 @@ fn rom_frames_are_identical_to_the_host_renderer() {
     checker.hold_until_compared(right, 2, false);
     // The quality knobs at the end of the menu: perspective every 8, every 16, then the
     // textures from the cartridge.
-    let knob_phases: [&[Keys]; 3] = [
+    let knob_phases: [&[Keys]; 4] = [
         &[start, down, down, down, right, start],
         &[start, right, start],
+        &[start, down, right, start],
+        // The HUD on: its figures are this frame's cycles, which the host reads from the line.
         &[start, down, right, start],
     ];
     for presses in knob_phases {
@@ -269,6 +278,10 @@ fn rom_frames_are_identical_to_the_host_renderer() {
             "perspective {perspective:?} never compared"
         );
     }
+    assert!(
+        compared.iter().any(|c| c.hud),
+        "no frame with the HUD compared"
+    );
     for textures in [TexturePlacement::Ewram, TexturePlacement::Rom] {
         assert!(
             compared.iter().any(|c| c.textures == textures),

@@ -66,6 +66,8 @@ pub struct PlayerLine {
     pub run: bool,
     /// Menu cursor, or −1 when closed.
     pub menu: i32,
+    /// The heads-up display is shown.
+    pub hud: bool,
     /// The line itself.
     pub text: String,
 }
@@ -89,6 +91,7 @@ impl PlayerLine {
             fly: flag("fly"),
             run: flag("run"),
             menu: signed(text, "menu") as i32,
+            hud: flag("hud"),
             text: text.to_owned(),
         }
     }
@@ -115,6 +118,7 @@ impl PlayerLine {
             } else {
                 -1
             },
+            hud: game.hud,
             text: String::new(),
         }
     }
