@@ -42,13 +42,18 @@ mod rom {
         meter::start();
         let mut display = Display::start(Resolution::R120x80);
         input::start();
+        // While the stack is shallow, everything below this frame gets the paint that the
+        // stack's high-water mark is read from. After the sampler starts: the paint takes a
+        // while, and the sampler's VBlank count must start on the emulator's first frame.
+        memory::paint_stack();
         // After the sampler starts, so its VBlank count is the emulator's frame count whatever
         // the boot checks cost (the player's emulator tests rely on it).
         log::info(format_args!(
-            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} division_digest=0x{:08x}",
+            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} ewram_used={} division_digest=0x{:08x}",
             hw::WAITCNT_SETTING,
             memory::iwram_used(),
             memory::stack_room(),
+            memory::ewram_used(),
             portalcast::selfcheck::division_digest()
         ));
 
@@ -92,6 +97,7 @@ mod rom {
             game.map().name
         ));
         let mut frame: u32 = 0;
+        let mut stack_reported = 0;
         loop {
             let game_started = meter::now();
             let lost = sampler.drain(|vblank, held| {
@@ -154,7 +160,28 @@ mod rom {
                 stats.column_pixels,
             ));
             frame = frame.wrapping_add(1);
+            if frame.is_multiple_of(STACK_CHECK_FRAMES) {
+                let used = memory::stack_high_water();
+                if used > stack_reported {
+                    stack_reported = used;
+                    log_stack();
+                }
+            }
         }
+    }
+
+    /// How often the game reads the stack's high-water mark (a scan of up to 8 KB of IWRAM); it
+    /// prints a `stack …` line when the mark has grown.
+    const STACK_CHECK_FRAMES: u32 = 64;
+
+    /// `stack used=U room=R`: the deepest the stack has gone since boot (the paint it left
+    /// intact, [`memory::stack_high_water`]) against the room the linker left it.
+    fn log_stack() {
+        log::info(format_args!(
+            "stack used={} room={}",
+            memory::stack_high_water(),
+            memory::stack_room()
+        ));
     }
 
     /// R held at boot: the benchmark. Every run of [`bench::all_runs`] (with Select also held,
@@ -174,6 +201,7 @@ mod rom {
                 bench_run(display, renderer, &render_assets, map, &settings);
             }
         }
+        log_stack();
         log::info(format_args!("{}", bench::BENCH_DONE));
         loop {
             display.wait_vblank();

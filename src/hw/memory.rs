@@ -3,6 +3,16 @@
 extern "C" {
     static __iwram_start: u8;
     static __bss_end: u8;
+    static __ewram_bss_end: u8;
+}
+
+/// Start of EWRAM.
+pub const EWRAM_START: usize = 0x0200_0000;
+
+/// Bytes of EWRAM the ROM uses (its `.ewram_bss`: the renderer's memory and the texture copy);
+/// nothing is ever written above them.
+pub fn ewram_used() -> usize {
+    &raw const __ewram_bss_end as usize - EWRAM_START
 }
 
 /// Where the BIOS's user-mode stack starts; it grows down towards our data.
@@ -21,6 +31,53 @@ pub fn stack_room() -> usize {
     let start = &raw const __iwram_start as usize;
     debug_assert_eq!(start, IWRAM_START);
     STACK_TOP - (&raw const __bss_end as usize)
+}
+
+/// The word the boot code paints the stack's room with; the deepest word that no longer holds it
+/// marks how far the stack has ever reached. An odd, unlikely value: not a small integer, not an
+/// address in any GBA region, not a pattern of repeated bytes.
+pub const STACK_PAINT: u32 = 0x5AC3_3CA5;
+
+/// Bytes left unpainted below the caller's stack pointer: the painting function's own frame
+/// and anything the compiler keeps just below `sp` while it runs.
+const PAINT_MARGIN: usize = 256;
+
+/// Fills the stack's room, from the end of `.bss` to just below the current stack pointer, with
+/// [`STACK_PAINT`], so that [`stack_high_water`] can later tell how deep the stack has gone.
+/// Call it once, first thing in `main`, while the stack is shallow. Interrupts may stay on: the
+/// handler runs on the IRQ stack at the top of IWRAM, outside the painted room.
+#[inline(never)]
+pub fn paint_stack() {
+    let sp: usize;
+    // SAFETY: reads the stack pointer into a register; touches no memory.
+    unsafe {
+        core::arch::asm!("mov {0}, sp", out(reg) sp, options(nomem, nostack, preserves_flags))
+    };
+    let mut address = painted_start();
+    let stop = sp - PAINT_MARGIN;
+    while address < stop {
+        // SAFETY: the words between the end of .bss and the live stack frame belong to no
+        // object (the linker script reserves them for the stack), and are word aligned.
+        unsafe { (address as *mut u32).write_volatile(STACK_PAINT) };
+        address += 4;
+    }
+}
+
+/// The first painted address: the end of `.bss`, rounded up to a word.
+fn painted_start() -> usize {
+    (&raw const __bss_end as usize + 3) & !3
+}
+
+/// The deepest the user stack has reached since [`paint_stack`], in bytes below
+/// [`STACK_TOP`]: the distance from the top to the lowest word that lost its paint. Compare it
+/// with [`stack_room`]; when they meet, the stack has run into `.bss`.
+pub fn stack_high_water() -> usize {
+    let mut address = painted_start();
+    // SAFETY: word-aligned reads inside IWRAM, between the end of .bss and the stack top.
+    while address < STACK_TOP && unsafe { (address as *const u32).read_volatile() } == STACK_PAINT {
+        address += 4;
+    }
+    STACK_TOP - address
 }
 
 use crate::render::walk::Renderer;

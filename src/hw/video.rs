@@ -14,14 +14,18 @@ pub struct Display {
 }
 
 impl Display {
-    /// Turns on Mode 4 with BG2, page 0 shown, the VBlank interrupt armed, and `resolution`'s
-    /// affine step.
+    /// Turns on Mode 4 with page 0 current, the VBlank interrupt armed, and `resolution`'s
+    /// affine step, but BG2 hidden behind a black backdrop until the first flip: at power-on
+    /// VRAM and the palette hold whatever the chips woke up with, and the first frame takes
+    /// several display frames to draw.
     pub fn start(resolution: Resolution) -> Display {
         DISPSTAT.write(DisplayStatus::new().with_irq_vblank(true));
         IE.write(IrqBits::VBLANK);
         IME.write(true);
+        // The backdrop is BG palette entry 0; the scenes load their palettes later.
+        BG_PALETTE.index(0).write(Color(0));
         let display = Display { shown_page: 0 };
-        display.show(resolution);
+        display.show(resolution, false);
         display
     }
 
@@ -43,7 +47,7 @@ impl Display {
     pub fn flip_at_vblank(&mut self, resolution: Resolution) {
         VBlankIntrWait();
         self.shown_page ^= 1;
-        self.show(resolution);
+        self.show(resolution, true);
     }
 
     /// Sleeps until the next VBlank starts, changing nothing.
@@ -51,7 +55,7 @@ impl Display {
         VBlankIntrWait();
     }
 
-    fn show(&self, resolution: Resolution) {
+    fn show(&self, resolution: Resolution, with_bg2: bool) {
         BG2PA.write(i16fx8::from_bits(resolution.bg2_pa()));
         BG2PB.write(i16fx8::from_bits(0));
         BG2PC.write(i16fx8::from_bits(0));
@@ -61,7 +65,7 @@ impl Display {
         DISPCNT.write(
             DisplayControl::new()
                 .with_video_mode(VideoMode::_4)
-                .with_show_bg2(true)
+                .with_show_bg2(with_bg2)
                 .with_show_frame1(self.shown_page == 1),
         );
     }

@@ -285,6 +285,31 @@ void pc_emu_read_bytes(pc_emu* emu, uint32_t address, uint8_t* out, size_t len) 
 	PC_LEAVE();
 }
 
+/* rawWrite* with segment -1 patch memory as a debugger would: no timing, no I/O side effects.
+ * For setting up memory contents, e.g. the random RAM of a cold boot, before the ROM runs.
+ * Aligned words go through rawWrite32: libmgba 0.10's byte patch ignores palette RAM and OAM,
+ * its word patch covers every RAM region. */
+void pc_emu_write_bytes(pc_emu* emu, uint32_t address, const uint8_t* bytes, size_t len) {
+	PC_ENTER(NULL);
+	size_t i = 0;
+	while (i < len) {
+		uint32_t at = address + (uint32_t) i;
+		if ((at & 3) == 0 && len - i >= 4) {
+			uint32_t word = (uint32_t) bytes[i] | ((uint32_t) bytes[i + 1] << 8) |
+			                ((uint32_t) bytes[i + 2] << 16) | ((uint32_t) bytes[i + 3] << 24);
+			emu->core->rawWrite32(emu->core, at, -1, word);
+			i += 4;
+		} else if ((at & 1) == 0 && len - i >= 2) {
+			emu->core->rawWrite16(emu->core, at, -1, (uint16_t) (bytes[i] | (bytes[i + 1] << 8)));
+			i += 2;
+		} else {
+			emu->core->rawWrite8(emu->core, at, -1, bytes[i]);
+			i += 1;
+		}
+	}
+	PC_LEAVE();
+}
+
 uint64_t pc_emu_cycles(const pc_emu* emu) {
 	return mTimingGlobalTime(emu->core->timing);
 }

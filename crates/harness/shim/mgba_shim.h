@@ -40,6 +40,9 @@ uint32_t pc_emu_read8(pc_emu* emu, uint32_t address);
 uint32_t pc_emu_read16(pc_emu* emu, uint32_t address);
 uint32_t pc_emu_read32(pc_emu* emu, uint32_t address);
 void pc_emu_read_bytes(pc_emu* emu, uint32_t address, uint8_t* out, size_t len);
+/* Writes `len` bytes from `address` on, as a debugger patches memory (no timing, no I/O side
+ * effects; a VRAM byte is one byte). */
+void pc_emu_write_bytes(pc_emu* emu, uint32_t address, const uint8_t* bytes, size_t len);
 
 /* CPU cycles since reset (16.78 MHz clock) and mGBA's own frame counter. */
 uint64_t pc_emu_cycles(const pc_emu* emu);

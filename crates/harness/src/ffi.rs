@@ -48,6 +48,7 @@ extern "C" {
     fn pc_emu_read16(emu: *mut PcEmu, address: u32) -> u32;
     fn pc_emu_read32(emu: *mut PcEmu, address: u32) -> u32;
     fn pc_emu_read_bytes(emu: *mut PcEmu, address: u32, out: *mut u8, len: usize);
+    fn pc_emu_write_bytes(emu: *mut PcEmu, address: u32, bytes: *const u8, len: usize);
     fn pc_emu_cycles(emu: *const PcEmu) -> u64;
     fn pc_emu_frame_counter(emu: *mut PcEmu) -> u32;
     fn pc_emu_log_count(emu: *const PcEmu) -> usize;
@@ -157,6 +158,12 @@ impl RawEmulator {
     pub fn read_bytes(&self, address: u32, out: &mut [u8]) {
         // SAFETY: as read8; `out` is writable for out.len() bytes.
         unsafe { pc_emu_read_bytes(self.emu.as_ptr(), address, out.as_mut_ptr(), out.len()) }
+    }
+
+    /// Writes `bytes` from `address` on, as a debugger patches memory.
+    pub fn write_bytes(&mut self, address: u32, bytes: &[u8]) {
+        // SAFETY: as read8; `bytes` is readable for bytes.len() bytes.
+        unsafe { pc_emu_write_bytes(self.emu.as_ptr(), address, bytes.as_ptr(), bytes.len()) }
     }
 
     /// CPU cycles since reset.

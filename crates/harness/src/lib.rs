@@ -477,6 +477,15 @@ impl Emulator {
         bytes
     }
 
+    /// Writes `bytes` from `address` on, as a debugger patches memory: no timing, no I/O side
+    /// effects, and in VRAM exactly the bytes given (the CPU's byte stores would mirror); RAM,
+    /// palette, VRAM and OAM all take it, best in word-aligned runs. For
+    /// setting up memory before the ROM runs, e.g. the arbitrary RAM contents of a real cold
+    /// boot, which mGBA otherwise zeroes.
+    pub fn write_bytes(&mut self, address: u32, bytes: &[u8]) {
+        self.raw.write_bytes(address, bytes);
+    }
+
     /// Moves the shim's new lines into `self.log`; returns the index of the first new one.
     fn collect_log(&mut self) -> usize {
         let (lines, dropped) = self.raw.take_log();
