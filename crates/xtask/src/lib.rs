@@ -7,6 +7,7 @@
 pub mod baseline;
 pub mod bench_log;
 pub mod bench_math;
+pub mod extreme_maps;
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -106,10 +107,7 @@ pub fn elf_path() -> PathBuf {
 
 /// The linked ROM ELF with the engine compiled to `isa`.
 pub fn elf_path_for(isa: EngineIsa) -> PathBuf {
-    rom_target_dir()
-        .join(ROM_TARGET)
-        .join(isa.profile())
-        .join("portalcast")
+    elf_path_in(&rom_target_dir(), isa)
 }
 
 fn cargo() -> Command {
@@ -235,20 +233,104 @@ pub fn build_rom() -> TaskResult<PathBuf> {
 pub fn build_rom_for(isa: EngineIsa, gba: &Path) -> TaskResult<()> {
     ensure_rust_src()?;
     run(
-        cargo()
-            .args([
-                "build",
-                "--profile",
-                isa.profile(),
-                "--target",
-                ROM_TARGET,
-                "-Zbuild-std=core",
-            ])
-            .args(["-p", "portalcast", "--bin", "portalcast", "--target-dir"])
-            .arg(rom_target_dir()),
+        &mut rom_build_command(isa, &rom_target_dir()),
         "building the ROM",
     )?;
     elf_to_gba(&elf_path_for(isa), gba)
+}
+
+/// The environment variable that names the asset directory a ROM is built from (build.rs;
+/// `assets/` when unset).
+pub const ASSETS_ENV: &str = "PORTALCAST_ASSETS";
+
+/// Builds a ROM from the asset directory `assets_dir` (same layout as `assets/`, anywhere on
+/// disk) into `gba`, with the engine compiled as `PORTALCAST_ENGINE_ISA` says. It builds in
+/// `target_dir`, its own cargo target directory: build.rs reruns whenever the asset directory
+/// changes, so sharing [`rom_target_dir`] would rebuild the normal ROM after every user build.
+///
+/// A map or image that does not compile fails the build with the asset compiler's
+/// `file:line:col: what is wrong, what to do` lines in the error (cargo's output is also shown
+/// as it runs), and `gba` is left as it was: nothing is converted or written.
+pub fn build_rom_with_assets(assets_dir: &Path, target_dir: &Path, gba: &Path) -> TaskResult<()> {
+    ensure_rust_src()?;
+    let isa = engine_isa()?;
+    let assets_dir = std::path::absolute(assets_dir)
+        .map_err(|error| TaskError(format!("{}: {error}", assets_dir.display())))?;
+    let mut command = rom_build_command(isa, target_dir);
+    command.env(ASSETS_ENV, &assets_dir);
+    run_keeping_build_script_errors(
+        &mut command,
+        &format!("building the ROM from {}", assets_dir.display()),
+    )?;
+    elf_to_gba(&elf_path_in(target_dir, isa), gba)
+}
+
+/// The cargo command that builds the ROM ELF with the engine compiled to `isa` into
+/// `target_dir` (the ELF lands at [`elf_path_in`]).
+fn rom_build_command(isa: EngineIsa, target_dir: &Path) -> Command {
+    let mut command = cargo();
+    command
+        .args([
+            "build",
+            "--profile",
+            isa.profile(),
+            "--target",
+            ROM_TARGET,
+            "-Zbuild-std=core",
+        ])
+        .args(["-p", "portalcast", "--bin", "portalcast", "--target-dir"])
+        .arg(target_dir);
+    command
+}
+
+/// The linked ROM ELF of a build into `target_dir` with the engine compiled to `isa`.
+pub fn elf_path_in(target_dir: &Path, isa: EngineIsa) -> PathBuf {
+    target_dir
+        .join(ROM_TARGET)
+        .join(isa.profile())
+        .join("portalcast")
+}
+
+/// Runs `command` with its standard error passed through as it comes and also kept; on failure
+/// the error holds the lines a failed build script printed (cargo shows them indented after
+/// `--- stderr`: for build.rs, the asset compiler's diagnostics), or the last lines of the
+/// output if there are none.
+fn run_keeping_build_script_errors(command: &mut Command, what: &str) -> TaskResult<()> {
+    use std::io::BufRead;
+    let mut child = command
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .map_err(|error| TaskError(format!("{what}: could not start {command:?}: {error}")))?;
+    let mut lines = Vec::new();
+    if let Some(stderr) = child.stderr.take() {
+        for line in std::io::BufReader::new(stderr).lines() {
+            let line = line.map_err(|error| TaskError(format!("{what}: {error}")))?;
+            eprintln!("{line}");
+            lines.push(line);
+        }
+    }
+    let status = child
+        .wait()
+        .map_err(|error| TaskError(format!("{what}: {error}")))?;
+    if status.success() {
+        return Ok(());
+    }
+    let script_errors: Vec<&str> = lines
+        .iter()
+        .skip_while(|line| line.trim() != "--- stderr")
+        .skip(1)
+        .map(|line| line.trim())
+        .take_while(|line| !line.is_empty())
+        .collect();
+    let shown = if script_errors.is_empty() {
+        lines[lines.len().saturating_sub(20)..]
+            .iter()
+            .map(String::as_str)
+            .collect()
+    } else {
+        script_errors
+    };
+    fail(format!("{what} failed ({status}):\n{}", shown.join("\n")))
 }
 
 /// Converts a linked ELF into a `.gba` with a valid header (logo, complement check, title, game
