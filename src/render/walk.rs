@@ -146,6 +146,14 @@ impl Renderer {
         self.stats
     }
 
+    /// Draws `sector_index` in columns `first..end`, then walks into its portals.
+    ///
+    /// The recursion keeps only this small frame per level: the drawing, with its many locals,
+    /// happens in [`Renderer::draw_sector`] and [`Renderer::portal_columns`], whose frames are
+    /// gone before the next level starts. On the GBA a level of the walk then costs tens of
+    /// bytes of the 8 KB stack instead of the drawing's ~300, so a chain of
+    /// [`MAX_PORTAL_DEPTH`] portals fits (the extreme-map emulator test walks one and checks
+    /// the stack's high-water mark).
     fn visit(
         &mut self,
         scene: &Scene,
@@ -159,6 +167,44 @@ impl Renderer {
             self.stats.depth_cutoffs += 1;
             return;
         }
+        self.draw_sector(scene, canvas, sector_index, first, end);
+        let sector = &scene.map.sectors[usize::from(sector_index)];
+        for wall in scene.map.sector_walls(sector) {
+            if wall.portal == NO_PORTAL {
+                continue;
+            }
+            if let Some((start, stop)) = self.portal_columns(scene, wall, first, end) {
+                self.visit(scene, canvas, wall.portal, start, stop, depth + 1);
+            }
+        }
+    }
+
+    /// The columns of `first..end` that the portal `wall` owns, if any. Out of line so that
+    /// the ownership test's locals stay out of [`Renderer::visit`]'s frame.
+    #[inline(never)]
+    fn portal_columns(
+        &self,
+        scene: &Scene,
+        wall: &Wall,
+        first: i32,
+        end: i32,
+    ) -> Option<(i32, i32)> {
+        self.owned(scene, wall, first, end)
+            .map(|(_, _, start, stop)| (start, stop))
+    }
+
+    /// Draws one visit of `sector_index` in columns `first..end`: its walls and strips, then its
+    /// ceiling and floor, narrowing the clip windows of the columns its portals own. Out of line:
+    /// see [`Renderer::visit`].
+    #[inline(never)]
+    fn draw_sector(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        sector_index: u16,
+        first: i32,
+        end: i32,
+    ) {
         self.stats.sector_visits += 1;
         if let Some(word) = self.visited.get_mut(usize::from(sector_index) / 32) {
             let bit = 1u32 << (sector_index % 32);
@@ -226,14 +272,6 @@ impl Renderer {
             canvas,
         );
         self.stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
-        for wall in walls {
-            if wall.portal == NO_PORTAL {
-                continue;
-            }
-            if let Some((_, _, start, stop)) = self.owned(scene, wall, first, end) {
-                self.visit(scene, canvas, wall.portal, start, stop, depth + 1);
-            }
-        }
     }
 
     fn plane_job<'r>(
