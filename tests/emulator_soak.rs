@@ -48,6 +48,8 @@ const FRAME_CYCLES_BOUND: u64 = 16 * 280_896;
 const IWRAM_START: u32 = 0x0300_0000;
 /// The top of the user stack, where the painted room ends.
 const STACK_TOP: u32 = 0x0300_7F00;
+/// IWRAM the ROM may use: all but the 256 bytes at the top that the BIOS keeps.
+const IWRAM_USABLE: u32 = STACK_TOP - IWRAM_START;
 /// `portalcast::hw::memory::STACK_PAINT` (the hardware module exists only in the ROM).
 const STACK_PAINT: u32 = 0x5AC3_3CA5;
 
@@ -106,8 +108,8 @@ fn every_map_survives_random_and_adversarial_input() {
     });
     let mut failures = Vec::new();
     println!("soak: {frames} emulator frames per map, cycle bound {FRAME_CYCLES_BOUND}");
-    println!("| map | frames | ticks | frames drawn | sectors visited | max cycles (resolution) | flips / unflipped frames compared | stack used / room | mGBA warnings |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!("| map | frames | ticks | frames drawn | sectors visited | max cycles (resolution) | flips / unflipped frames compared | IWRAM code and data | stack high-water / room | IWRAM never touched (of {IWRAM_USABLE}) | mGBA warnings |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (map, report) in maps.iter().zip(reports) {
         match report {
             Ok(row) => println!("{row}"),
@@ -287,11 +289,12 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
         ));
     }
     Ok(format!(
-        "| {map} | {frames} | {} | {drawn} | {} | {} ({}) | {flips} / {pages_compared} | {stack_used_host} / {stack_room} | {warnings} |",
+        "| {map} | {frames} | {} | {drawn} | {} | {} ({}) | {flips} / {pages_compared} | {iwram_used} | {stack_used_host} / {stack_room} | {} | {warnings} |",
         last_tick,
         sectors.len(),
         max_cycles.0,
         max_cycles.1,
+        stack_room - stack_used_host,
     ))
 }
 
