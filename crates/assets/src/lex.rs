@@ -133,7 +133,8 @@ pub(crate) fn integer(token: Token<'_>, what: &str) -> Result<i64, Located> {
     let digits = token.text.strip_prefix(['-', '+']).unwrap_or(token.text);
     let valid = !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit());
     match token.text.parse::<i64>() {
-        Ok(value) if valid && value.abs() <= NUMBER_MAGNITUDE_MAX => Ok(value),
+        // Not `value.abs()`: i64::MIN (`-9223372036854775808`) parses but has no absolute value.
+        Ok(value) if valid && value.unsigned_abs() <= NUMBER_MAGNITUDE_MAX as u64 => Ok(value),
         Ok(_) => Err((token.loc, format!("{what} '{}' is far out of range; use a value within the limits in docs/MAP_FORMAT.md", token.text))),
         Err(_) if valid => Err((token.loc, format!("{what} '{}' is far out of range; use a value within the limits in docs/MAP_FORMAT.md", token.text))),
         Err(_) => Err((token.loc, format!("{what} '{}' is not an integer; write digits with an optional '-'", token.text))),
@@ -282,6 +283,7 @@ mod tests {
         assert_eq!(integer(token("-42"), "n"), Ok(-42));
         assert!(integer(token("4.2"), "n").is_err());
         assert!(integer(token("1099511627777"), "n").is_err());
+        assert!(integer(token("-9223372036854775808"), "n").is_err());
         assert!(integer_in(token("300"), "light", 0, 255).is_err());
         assert!(is_name("hall_2-b") && !is_name("a.b") && !is_name(""));
     }
