@@ -405,7 +405,10 @@ impl Renderer {
                 wall.y_offset,
             );
         }
-        let opening_top = if neighbour.ceil_z < sector.ceil_z {
+        // Where no upper strip is drawn (the neighbour's ceiling is not lower, or both show the
+        // sky), the neighbour gets the rows down from this sector's ceiling line: its own
+        // ceiling (sky) fills them, and nothing is left undrawn between the two ceiling lines.
+        let opening_top = if upper_drawn {
             neighbour_ceiling_row
         } else {
             ceiling_row

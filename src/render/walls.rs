@@ -136,6 +136,22 @@ pub struct WallStepper {
 /// `1/z'` of the far limit, in 2.30: the stepper never goes below it.
 const SMALLEST_INVERSE_DEPTH: i32 = (1 << 30) / portalcast_format::limits::EYE_DEPTH_MAX;
 
+/// Largest `|t/z'|` (2.30) multiplied by a depth. On the wall `t/z' ≤ 1/z' ≤ 1`; it grows past
+/// that only outside the wall, or without bound when the eye is a few 1/65536 of a unit from
+/// the wall's line (the scale `2d·cross` is then tiny), where the product would overflow i64.
+/// Clamping changes no result: at a depth of at least 1 unit (2^8 in 24.8), `|t/z'| ≥ 2^32`
+/// gives `|t| ≥ 2^32 > 2^30`, which the final clamp of `t` to `0..=2^30` maps to the same end.
+const ALONG_OVER_DEPTH_MAX: i64 = 1 << 32;
+
+/// `t = (t/z') · z'` in 2.30, from `t/z'` (2.30) and `z'` (24.8, at least `NEAR_DEPTH`), clamped to
+/// the wall: `0..=2^30`.
+fn along_at_depth(along_over_depth: i64, depth: Fx24_8) -> i64 {
+    // |t/z'| ≤ 2^32 and z' < 2^31 bits: the product stays below 2^63.
+    (along_over_depth.clamp(-ALONG_OVER_DEPTH_MAX, ALONG_OVER_DEPTH_MAX)
+        * i64::from(depth.to_bits()))
+        >> 8
+}
+
 impl WallProjector {
     /// A stepper starting at the owned column `first_column`.
     pub fn stepper(&self, first_column: i32) -> WallStepper {
@@ -163,7 +179,7 @@ impl WallStepper {
         let inverse_depth = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
         let depth = inverse_depth.recip_fx24_8();
         let along = if near_inverse_depth <= 1 << 30 {
-            (self.along_over_depth * i64::from(depth.to_bits())) >> 8
+            along_at_depth(self.along_over_depth, depth)
         } else {
             ratio_shifted(self.along_over_depth, 30, near_inverse_depth)
         };
@@ -186,7 +202,7 @@ impl WallStepper {
             self.along_over_depth + self.along_over_depth_step * i64::from(columns);
         let exact_inverse_depth = self.near_inverse_depth_ahead(columns);
         let along = if exact_inverse_depth <= 1 << 30 {
-            (along_over_depth * i64::from(depth.to_bits())) >> 8
+            along_at_depth(along_over_depth, depth)
         } else {
             // Closer than the near plane, where the depth read is clamped: t = (t/z')/(1/z')
             // from the exact accumulators instead.
