@@ -4,13 +4,13 @@
 //! its portals with the narrowed windows. Columns handed to different portals never overlap, so
 //! one set of per-column arrays serves the whole recursion.
 
-use portalcast_format::{MapTables, Sector, Wall, NO_PORTAL, SKY};
+use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, SKY};
 
 use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
 use super::view::View;
-use super::walls::{owned_columns, WallColumn, WallLerp, WallProjector};
+use super::walls::{owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector};
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, WorldPoint};
 use crate::raster::column::ColumnTexture;
@@ -79,6 +79,8 @@ struct Scene<'s, 'a> {
     map: &'s MapTables<'a>,
     assets: &'s RenderAssets<'a>,
     view: &'s View,
+    /// The 2.30 reciprocal of `d_y` (its bits), for the wall columns' `z'/d_y`.
+    inverse_focal_y: i64,
 }
 
 impl Renderer {
@@ -141,7 +143,12 @@ impl Renderer {
                 bottom: height,
             };
         }
-        let scene = Scene { map, assets, view };
+        let scene = Scene {
+            map,
+            assets,
+            view,
+            inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
+        };
         self.visit(&scene, canvas, view.sector, 0, width as i32, 0);
         self.stats
     }
@@ -172,19 +179,20 @@ impl Renderer {
             self.floor[column as usize] = Window::EMPTY;
         }
         let walls_started = (self.clock)();
+        let mut ownership = Ownership::new(first, end);
         for (offset, wall) in walls.iter().enumerate() {
             let wall_index = sector.first_wall + offset as u16;
-            let Some((a, b, start, stop)) = self.owned(scene, wall, first, end) else {
+            let Some((a, b, start, stop)) = ownership.wall(scene, wall) else {
                 continue;
             };
             let projector = WallProjector::new(&scene.view.viewport, a, b);
-            let length = wall_length(scene.map, wall);
+            let job = WallJob::new(scene, sector, wall, wall_index);
             let mut stepper = projector.stepper(start);
             let interval = scene.view.perspective.interval();
             if interval == 1 {
                 for column in start..stop {
                     let at = stepper.next_column();
-                    self.wall_column(scene, canvas, sector, wall, wall_index, at, length, column);
+                    self.wall_column(scene, canvas, &job, at, column);
                 }
                 continue;
             }
@@ -195,25 +203,14 @@ impl Renderer {
                 let last = (column + interval).min(stop - 1);
                 let left = stepper.ahead(0);
                 if last == column {
-                    self.wall_column(
-                        scene, canvas, sector, wall, wall_index, left, length, column,
-                    );
+                    self.wall_column(scene, canvas, &job, left, column);
                     break;
                 }
                 let span = last - column;
                 let lerp = WallLerp::new(left, stepper.ahead(span), span);
                 for offset in 0..span {
                     let at = lerp.at(offset, stepper.near_inverse_depth_ahead(offset));
-                    self.wall_column(
-                        scene,
-                        canvas,
-                        sector,
-                        wall,
-                        wall_index,
-                        at,
-                        length,
-                        column + offset,
-                    );
+                    self.wall_column(scene, canvas, &job, at, column + offset);
                 }
                 stepper.advance(span);
                 column = last;
@@ -226,11 +223,12 @@ impl Renderer {
             canvas,
         );
         self.stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
+        let mut ownership = Ownership::new(first, end);
         for wall in walls {
             if wall.portal == NO_PORTAL {
                 continue;
             }
-            if let Some((_, _, start, stop)) = self.owned(scene, wall, first, end) {
+            if let Some((_, _, start, stop)) = ownership.wall(scene, wall) {
                 self.visit(scene, canvas, wall.portal, start, stop, depth + 1);
             }
         }
@@ -258,38 +256,18 @@ impl Renderer {
         }
     }
 
-    /// The eye-space ends of `wall` and the columns of `[first, end)` it owns, if any.
-    fn owned(
-        &self,
-        scene: &Scene,
-        wall: &Wall,
-        first: i32,
-        end: i32,
-    ) -> Option<(EyePoint, EyePoint, i32, i32)> {
-        let a = scene.view.eye.to_eye(vertex(scene.map, wall.start));
-        let b = scene.view.eye.to_eye(vertex(scene.map, wall.end));
-        let (start, stop) = owned_columns(&scene.view.viewport, a, b);
-        let (start, stop) = (start.max(first), stop.min(end));
-        (start < stop).then_some((a, b, start, stop))
-    }
-
-    #[allow(clippy::too_many_arguments)]
     fn wall_column(
         &mut self,
         scene: &Scene,
         canvas: &mut impl Canvas,
-        sector: &Sector,
-        wall: &Wall,
-        wall_index: u16,
+        job: &WallJob,
         at: WallColumn,
-        length: Fx24_8,
         column: i32,
     ) {
         self.stats.wall_columns += 1;
         let x = column as usize;
         let view = scene.view;
-        let row_of = |height: i32| {
-            let above_eye = Fx24_8::from_int(height) - view.eye_z;
+        let row_of = |above_eye: Fx24_8| {
             let y = if at.near_inverse_depth <= 1 << 30 {
                 view.viewport.projected_y(above_eye, at.inverse_depth)
             } else {
@@ -298,8 +276,8 @@ impl Renderer {
             view.viewport.first_row_at_or_after(y) as i16
         };
         let clip = self.clip[x];
-        let ceiling_row = row_of(sector.ceil_z).max(clip.top);
-        let floor_row = row_of(sector.floor_z).min(clip.bottom);
+        let ceiling_row = row_of(job.ceiling_above_eye).max(clip.top);
+        let floor_row = row_of(job.floor_above_eye).min(clip.bottom);
         self.ceiling[x] = Window {
             top: clip.top,
             bottom: ceiling_row.min(clip.bottom),
@@ -309,70 +287,65 @@ impl Renderer {
             bottom: clip.bottom,
         };
         let u = Fx24_8::from_bits(
-            ((i64::from(at.along.to_bits()) * i64::from(length.to_bits())) >> 30) as i32,
-        ) + Fx24_8::from_int(i32::from(wall.x_offset));
-        let strip = WallStrip {
-            scene,
-            sector,
-            depth: at.depth,
+            ((i64::from(at.along.to_bits()) * i64::from(job.length.to_bits())) >> 30) as i32,
+        ) + job.x_offset;
+        let depth_over_focal = i64::from(at.depth.to_bits()) * scene.inverse_focal_y;
+        debug_assert_eq!(
+            (depth_over_focal >> 38) as i32,
+            mip_ratio(i64::from(at.depth.to_bits()), scene.inverse_focal_y)
+        );
+        let strip = StripColumn {
             u,
             column: x,
+            // z'/d_y in 24.8 × 2^30, through the 2.30 reciprocal of d_y (a table entry).
+            depth_over_focal,
+            // The same product as `depth_over_focal`: `mip_ratio` is its top bits.
+            mip_ratio: (depth_over_focal >> 38) as i32,
+            colormap: light_row(job.sector.light, at.depth.to_int_floor(), view.lighting)
+                .map(|row| &scene.assets.colormap[row]),
         };
-        if wall.portal == NO_PORTAL {
+        let Some(portal) = &job.portal else {
             self.draw_strip(
+                scene,
                 canvas,
                 &strip,
-                wall.texture,
-                sector.ceil_z,
-                Surface::Wall(wall_index),
+                &job.strips[0],
                 ceiling_row,
                 floor_row,
-                wall.y_offset,
             );
             self.clip[x] = Window::EMPTY;
             return;
-        }
-        let neighbour = &scene.map.sectors[usize::from(wall.portal)];
+        };
         let neighbour_ceiling_row =
-            row_of(neighbour.ceil_z).clamp(ceiling_row, floor_row.max(ceiling_row));
+            row_of(portal.ceiling_above_eye).clamp(ceiling_row, floor_row.max(ceiling_row));
         let neighbour_floor_row =
-            row_of(neighbour.floor_z).clamp(neighbour_ceiling_row.min(floor_row), floor_row);
-        // Between two sky sectors the lower ceiling's strip is sky too: leave it open so the
-        // neighbour's sky fills it (Doom's sky hack; the oracle draws the same).
-        let upper_drawn =
-            neighbour.ceil_z < sector.ceil_z && !(is_sky(sector) && is_sky(neighbour));
-        if upper_drawn {
-            let upper = Surface::Upper(wall_index);
+            row_of(portal.floor_above_eye).clamp(neighbour_ceiling_row.min(floor_row), floor_row);
+        if portal.upper_drawn {
             self.draw_strip(
+                scene,
                 canvas,
                 &strip,
-                wall.upper_texture,
-                sector.ceil_z,
-                upper,
+                &job.strips[0],
                 ceiling_row,
                 neighbour_ceiling_row,
-                wall.y_offset,
             );
         }
-        if neighbour.floor_z > sector.floor_z {
-            let lower = Surface::Lower(wall_index);
+        if portal.lower_drawn {
             self.draw_strip(
+                scene,
                 canvas,
                 &strip,
-                wall.lower_texture,
-                neighbour.floor_z,
-                lower,
+                &job.strips[1],
                 neighbour_floor_row,
                 floor_row,
-                wall.y_offset,
             );
         }
-        let opening_top = if neighbour.ceil_z < sector.ceil_z {
+        let opening_top = if portal.lowers_ceiling {
             neighbour_ceiling_row
         } else {
             ceiling_row
         };
-        let opening_bottom = if neighbour.floor_z > sector.floor_z {
+        let opening_bottom = if portal.lower_drawn {
             neighbour_floor_row
         } else {
             floor_row
@@ -383,34 +356,25 @@ impl Renderer {
         };
     }
 
-    /// Draws rows `top..bottom` of one wall column with texture `texture`, whose v is anchored
-    /// at height `anchor`.
-    #[allow(clippy::too_many_arguments)]
+    /// Draws rows `top..bottom` of one wall column with the strip texture `texture`.
     fn draw_strip(
         &mut self,
+        scene: &Scene,
         canvas: &mut impl Canvas,
-        strip: &WallStrip,
-        texture: u16,
-        anchor: i32,
-        surface: Surface,
+        strip: &StripColumn,
+        texture: &StripTexture,
         top: i16,
         bottom: i16,
-        y_offset: i16,
     ) {
         if top >= bottom {
             return;
         }
         let count = (bottom - top) as usize;
         self.stats.column_pixels += count as u32;
-        canvas.set_surface(surface);
-        let view = strip.scene.view;
-        let colormap = light_row(
-            strip.sector.light,
-            strip.depth.to_int_floor(),
-            view.lighting,
-        )
-        .map(|row| &strip.scene.assets.colormap[row]);
-        let Some(texture) = strip.scene.assets.textures.get(usize::from(texture)) else {
+        canvas.set_surface(texture.surface);
+        let view = scene.view;
+        let colormap = strip.colormap;
+        let Some(texture_image) = texture.texture else {
             let column = ColumnTexture {
                 texels: &BLANK_COLUMN,
                 log2_height: 3,
@@ -421,34 +385,27 @@ impl Renderer {
             canvas.column(strip.column, top as usize, count, &column);
             return;
         };
-        let level = mip_level(
-            strip.depth,
-            view.viewport.focal_y,
-            texture.mip_count,
-            texture.width_log2,
-            texture.height_log2,
+        let level = mip_level_of_ratio(
+            strip.mip_ratio,
+            texture_image.mip_count,
+            texture_image.width_log2,
+            texture_image.height_log2,
         );
-        let width_log2 = u32::from(texture.level_width_log2(level));
-        let height_log2 = u32::from(texture.level_height_log2(level));
-        let texels = texture.wall_level(level);
+        let width_log2 = u32::from(texture_image.level_width_log2(level));
+        let height_log2 = u32::from(texture_image.level_height_log2(level));
+        let texels = texture_image.wall_level(level);
         let u_texel = (strip.u.to_int_floor() >> level) & ((1 << width_log2) - 1);
         let column_texels =
             &texels[(u_texel as usize) << height_log2..((u_texel as usize) + 1) << height_log2];
         // v (texels at level 0) of row r: anchor − eye + y_offset + (r + ½ − cy)·z/d_y; as a
         // fraction of the texture height in 0.32 it is the same at every mip level.
-        let base_log2 = u32::from(texture.height_log2);
-        let eye_to_anchor = i64::from((Fx24_8::from_int(anchor) - view.eye_z).to_bits())
-            + (i64::from(y_offset) << 8);
+        let base_log2 = u32::from(texture_image.height_log2);
         let twice_row_offset = 2 * (i64::from(top) - i64::from(view.viewport.horizon_y)) + 1;
-        let depth_bits = i64::from(strip.depth.to_bits());
-        // z'/d_y in 24.8 through the 2.30 reciprocal of d_y (a table entry, no divide).
-        let inverse_focal_y = i64::from(recip_small(view.viewport.focal_y as u32).to_bits());
-        let step_bits = (depth_bits * inverse_focal_y) >> 30;
         // v in 24.8 texels; then scale to 0.32 of the height: × 2^(24 − log2 height).
-        let v_bits = eye_to_anchor + ((twice_row_offset * depth_bits * inverse_focal_y) >> 31);
+        let v_bits =
+            texture.eye_to_anchor + ((twice_row_offset * strip.depth_over_focal) >> 31);
         let v = (v_bits << (24 - base_log2)) as u32;
-        let dv = ((depth_bits * inverse_focal_y) >> (6 + base_log2)) as u32;
-        let _ = step_bits;
+        let dv = (strip.depth_over_focal >> (6 + base_log2)) as u32;
         let column = ColumnTexture {
             texels: column_texels,
             log2_height: height_log2,
@@ -460,13 +417,133 @@ impl Renderer {
     }
 }
 
-/// What one wall column's strips share.
-struct WallStrip<'s, 'a> {
-    scene: &'s Scene<'s, 'a>,
+/// The eye-space ends of a sector's walls and the columns of `[first, end)` each owns, one
+/// wall after the other: a wall's end is the next wall's start, so each vertex is transformed
+/// and split once per loop (twice for the loop's first vertex at most).
+struct Ownership {
+    first: i32,
+    end: i32,
+    last: Option<(u16, EyePoint, VertexSplit)>,
+}
+
+impl Ownership {
+    fn new(first: i32, end: i32) -> Ownership {
+        Ownership {
+            first,
+            end,
+            last: None,
+        }
+    }
+
+    fn vertex(&self, scene: &Scene, index: u16) -> (EyePoint, VertexSplit) {
+        let point = scene.view.eye.to_eye(vertex(scene.map, index));
+        let split = VertexSplit::new(&scene.view.viewport, point, self.first, self.end);
+        (point, split)
+    }
+
+    /// The eye-space ends of `wall` and the columns of `[first, end)` it owns, if any.
+    fn wall(&mut self, scene: &Scene, wall: &Wall) -> Option<(EyePoint, EyePoint, i32, i32)> {
+        let (a, a_split) = match self.last {
+            Some((index, point, split)) if index == wall.start => (point, split),
+            _ => self.vertex(scene, wall.start),
+        };
+        let (b, b_split) = self.vertex(scene, wall.end);
+        self.last = Some((wall.end, b, b_split));
+        let (start, stop) = owned_columns_in(a_split, b_split, self.first, self.end);
+        (start < stop).then_some((a, b, start, stop))
+    }
+}
+
+/// What every column of one wall shares: computed once per wall, not per column.
+struct WallJob<'s> {
     sector: &'s Sector,
-    depth: Fx24_8,
+    length: Fx24_8,
+    x_offset: Fx24_8,
+    /// The sector's ceiling and floor heights above the eye.
+    ceiling_above_eye: Fx24_8,
+    floor_above_eye: Fx24_8,
+    /// The wall's texture (solid) or its upper and lower strips' (portal).
+    strips: [StripTexture<'s>; 2],
+    portal: Option<PortalJob>,
+}
+
+/// A portal's neighbour, as its columns need it.
+struct PortalJob {
+    ceiling_above_eye: Fx24_8,
+    floor_above_eye: Fx24_8,
+    /// The neighbour's ceiling is lower: the opening's top is its row.
+    lowers_ceiling: bool,
+    /// Between two sky sectors the lower ceiling's strip is sky too: left open so the
+    /// neighbour's sky fills it (Doom's sky hack; the oracle draws the same).
+    upper_drawn: bool,
+    /// The neighbour's floor is higher: a lower strip, and the opening's bottom is its row.
+    lower_drawn: bool,
+}
+
+/// One strip's texture, surface and vertical anchor.
+struct StripTexture<'s> {
+    texture: Option<&'s Texture<'s>>,
+    surface: Surface,
+    /// `anchor − eye_z + y_offset` in 24.8 texels: v at the eye's height.
+    eye_to_anchor: i64,
+}
+
+impl<'s> WallJob<'s> {
+    fn new(scene: &Scene<'s, 's>, sector: &'s Sector, wall: &'s Wall, wall_index: u16) -> Self {
+        let view = scene.view;
+        let above_eye = |height: i32| Fx24_8::from_int(height) - view.eye_z;
+        let strip = |texture: u16, anchor: i32, surface: Surface| StripTexture {
+            texture: scene.assets.textures.get(usize::from(texture)),
+            surface,
+            eye_to_anchor: i64::from(above_eye(anchor).to_bits())
+                + (i64::from(wall.y_offset) << 8),
+        };
+        let (strips, portal) = if wall.portal == NO_PORTAL {
+            (
+                [
+                    strip(wall.texture, sector.ceil_z, Surface::Wall(wall_index)),
+                    strip(wall.texture, sector.ceil_z, Surface::Wall(wall_index)),
+                ],
+                None,
+            )
+        } else {
+            let neighbour = &scene.map.sectors[usize::from(wall.portal)];
+            (
+                [
+                    strip(wall.upper_texture, sector.ceil_z, Surface::Upper(wall_index)),
+                    strip(wall.lower_texture, neighbour.floor_z, Surface::Lower(wall_index)),
+                ],
+                Some(PortalJob {
+                    ceiling_above_eye: above_eye(neighbour.ceil_z),
+                    floor_above_eye: above_eye(neighbour.floor_z),
+                    lowers_ceiling: neighbour.ceil_z < sector.ceil_z,
+                    upper_drawn: neighbour.ceil_z < sector.ceil_z
+                        && !(is_sky(sector) && is_sky(neighbour)),
+                    lower_drawn: neighbour.floor_z > sector.floor_z,
+                }),
+            )
+        };
+        WallJob {
+            sector,
+            length: wall_length(scene.map, wall),
+            x_offset: Fx24_8::from_int(i32::from(wall.x_offset)),
+            ceiling_above_eye: above_eye(sector.ceil_z),
+            floor_above_eye: above_eye(sector.floor_z),
+            strips,
+            portal,
+        }
+    }
+}
+
+/// What one wall column's strips share.
+struct StripColumn<'s> {
     u: Fx24_8,
     column: usize,
+    /// `z'` (24.8 bits) × the 2.30 reciprocal of `d_y`: `z'/d_y` in 24.8 × 2^30.
+    depth_over_focal: i64,
+    /// The mip rule's `floor(z'/d_y)` ([`mip_ratio`]).
+    mip_ratio: i32,
+    colormap: Option<&'s [u8; 256]>,
 }
 
 /// Texels for a surface whose texture is missing: palette index 0, as the oracle draws it.
@@ -528,6 +605,7 @@ pub fn isqrt(n: u64) -> u64 {
 
 /// The mip level for depth `depth`: `floor(log2(depth / focal_y))`, at least 0, below
 /// `mip_count`, and keeping both sides at least 8 texels (the smallest column kernel).
+#[inline]
 pub fn mip_level(
     depth: Fx24_8,
     focal_y: i32,
@@ -535,9 +613,25 @@ pub fn mip_level(
     width_log2: u8,
     height_log2: u8,
 ) -> u8 {
-    // floor(depth / focal_y) through the 2.30 reciprocal of focal_y: no divide.
-    let ratio = ((i64::from(depth.to_bits()) * i64::from(recip_small(focal_y as u32).to_bits()))
-        >> 38) as i32;
+    let inverse_focal_y = i64::from(recip_small(focal_y as u32).to_bits());
+    mip_level_of_ratio(
+        mip_ratio(i64::from(depth.to_bits()), inverse_focal_y),
+        mip_count,
+        width_log2,
+        height_log2,
+    )
+}
+
+/// `floor(depth / focal_y)` for the mip rule, from the depth's 24.8 bits and the 2.30
+/// reciprocal of `focal_y` (its bits): no divide.
+#[inline(always)]
+fn mip_ratio(depth_bits: i64, inverse_focal_y: i64) -> i32 {
+    ((depth_bits * inverse_focal_y) >> 38) as i32
+}
+
+/// [`mip_level`] from its [`mip_ratio`].
+#[inline(always)]
+fn mip_level_of_ratio(ratio: i32, mip_count: u8, width_log2: u8, height_log2: u8) -> u8 {
     let mut level = 0u8;
     while (ratio >> (level + 1)) > 0 {
         level += 1;
