@@ -204,10 +204,15 @@ fn sky_column(
     let height = usize::from(sky.height);
     let texels = &sky.texels[sky_column as usize * height..(sky_column as usize + 1) * height];
     // Row r shows panorama row h/2 + floor((r + ½ − cy)·160/H); H is 80 or 160.
-    let lines_per_row = 160 / view.viewport.height;
     let top = i32::from(window.top);
-    let first_line =
-        ((2 * (top - view.viewport.horizon_y) + 1) * 80).div_euclid(view.viewport.height);
+    let twice_offset = 2 * (top - view.viewport.horizon_y) + 1;
+    // The shipped heights divide exactly by shifts (t·80 / 80 = t, ⌊t·80 / 160⌋ = t >> 1):
+    // the ARM7TDMI has no divide, and the library's is Thumb code in ROM.
+    let (lines_per_row, first_line) = match view.viewport.height {
+        80 => (2, twice_offset),
+        160 => (1, twice_offset >> 1),
+        height => (160 / height, (twice_offset * 80).div_euclid(height)),
+    };
     let v = ((i32::from(sky.height) / 2 + first_line) as u32) << (32 - height_log2);
     let dv = (lines_per_row as u32) << (32 - height_log2);
     let texture = ColumnTexture {

@@ -585,12 +585,13 @@ fn wall_length(map: &MapTables, wall: &Wall) -> Fx24_8 {
 
 /// Floor of the square root.
 pub fn isqrt(n: u64) -> u64 {
-    let mut root = 0u64;
-    let mut bit = 1u64 << 62;
-    let mut rest = n;
-    while bit > n {
-        bit >>= 2;
+    if n == 0 {
+        return 0;
     }
+    let mut root = 0u64;
+    // The largest power of 4 not above n.
+    let mut bit = 1u64 << ((63 - super::ratio::leading_zeros(n)) & !1);
+    let mut rest = n;
     while bit != 0 {
         if rest >= root + bit {
             rest -= root + bit;
@@ -667,4 +668,26 @@ pub fn column_angle(q: i32, twice_focal: i32) -> i16 {
         }
     }
     low as i16
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(5000))]
+        #[test]
+        fn isqrt_is_the_floor_of_the_square_root(n in any::<u64>(), shift in 0u32..64) {
+            let n = n >> shift;
+            prop_assert_eq!(isqrt(n), n.isqrt());
+        }
+    }
+
+    #[test]
+    fn isqrt_edges() {
+        for n in [0u64, 1, 2, 3, 4, 15, 16, 17, u64::MAX, 1 << 62, (1 << 62) - 1] {
+            assert_eq!(isqrt(n), n.isqrt(), "{n}");
+        }
+    }
 }
