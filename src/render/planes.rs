@@ -40,6 +40,7 @@ pub struct PlaneJob<'r> {
 }
 
 /// Draws the visit's ceiling (or sky) and floor.
+#[inline(never)]
 pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
     let PlaneJob {
         view,

@@ -54,7 +54,6 @@ pub struct Renderer {
     ceiling: [Window; MAX_COLUMNS],
     floor: [Window; MAX_COLUMNS],
     span_start: [i16; MAX_ROWS],
-    stats: FrameStats,
     column_angles: [i16; MAX_COLUMNS],
     column_angles_width: i32,
     clock: fn() -> u32,
@@ -98,16 +97,6 @@ impl Renderer {
             ceiling: [Window::EMPTY; MAX_COLUMNS],
             floor: [Window::EMPTY; MAX_COLUMNS],
             span_start: [0; MAX_ROWS],
-            stats: FrameStats {
-                sector_visits: 0,
-                wall_columns: 0,
-                column_pixels: 0,
-                span_pixels: 0,
-                depth_cutoffs: 0,
-                repeat_visits: 0,
-                wall_ticks: 0,
-                plane_ticks: 0,
-            },
             column_angles: [0; MAX_COLUMNS],
             column_angles_width: 0,
             visited: [0; VISITS_TRACKED / 32],
@@ -126,7 +115,9 @@ impl Renderer {
         let width = view.viewport.width as usize;
         let height = view.viewport.height as i16;
         debug_assert_eq!(width, canvas.resolution().width());
-        self.stats = FrameStats::default();
+        // The counters live on the stack (IWRAM on the GBA), not in the renderer's memory
+        // (EWRAM): the wall columns and strips count into them.
+        let mut stats = FrameStats::default();
         self.visited = [0; VISITS_TRACKED / 32];
         if self.column_angles_width != view.viewport.width {
             for (column, angle) in self.column_angles[..width].iter_mut().enumerate() {
@@ -149,27 +140,29 @@ impl Renderer {
             view,
             inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
         };
-        self.visit(&scene, canvas, view.sector, 0, width as i32, 0);
-        self.stats
+        self.visit(&scene, canvas, &mut stats, view.sector, 0, width as i32, 0);
+        stats
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn visit(
         &mut self,
         scene: &Scene,
         canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
         sector_index: u16,
         first: i32,
         end: i32,
         depth: u32,
     ) {
         if depth > MAX_PORTAL_DEPTH {
-            self.stats.depth_cutoffs += 1;
+            stats.depth_cutoffs += 1;
             return;
         }
-        self.stats.sector_visits += 1;
+        stats.sector_visits += 1;
         if let Some(word) = self.visited.get_mut(usize::from(sector_index) / 32) {
             let bit = 1u32 << (sector_index % 32);
-            self.stats.repeat_visits += u32::from(*word & bit != 0);
+            stats.repeat_visits += u32::from(*word & bit != 0);
             *word |= bit;
         }
         let sector = &scene.map.sectors[usize::from(sector_index)];
@@ -192,7 +185,7 @@ impl Renderer {
             if interval == 1 {
                 for column in start..stop {
                     let at = stepper.next_column();
-                    self.wall_column(scene, canvas, &job, at, column);
+                    self.wall_column(scene, canvas, stats, &job, at, column);
                 }
                 continue;
             }
@@ -203,33 +196,33 @@ impl Renderer {
                 let last = (column + interval).min(stop - 1);
                 let left = stepper.ahead(0);
                 if last == column {
-                    self.wall_column(scene, canvas, &job, left, column);
+                    self.wall_column(scene, canvas, stats, &job, left, column);
                     break;
                 }
                 let span = last - column;
                 let lerp = WallLerp::new(left, stepper.ahead(span), span);
                 for offset in 0..span {
                     let at = lerp.at(offset, stepper.near_inverse_depth_ahead(offset));
-                    self.wall_column(scene, canvas, &job, at, column + offset);
+                    self.wall_column(scene, canvas, stats, &job, at, column + offset);
                 }
                 stepper.advance(span);
                 column = last;
             }
         }
         let planes_started = (self.clock)();
-        self.stats.wall_ticks += planes_started.wrapping_sub(walls_started);
+        stats.wall_ticks += planes_started.wrapping_sub(walls_started);
         planes::draw(
-            self.plane_job(scene, sector, sector_index, first, end),
+            self.plane_job(scene, stats, sector, sector_index, first, end),
             canvas,
         );
-        self.stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
+        stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
         let mut ownership = Ownership::new(first, end);
         for wall in walls {
             if wall.portal == NO_PORTAL {
                 continue;
             }
             if let Some((_, _, start, stop)) = ownership.wall(scene, wall) {
-                self.visit(scene, canvas, wall.portal, start, stop, depth + 1);
+                self.visit(scene, canvas, stats, wall.portal, start, stop, depth + 1);
             }
         }
     }
@@ -237,6 +230,7 @@ impl Renderer {
     fn plane_job<'r>(
         &'r mut self,
         scene: &'r Scene,
+        stats: &'r mut FrameStats,
         sector: &'r Sector,
         sector_index: u16,
         first: i32,
@@ -251,7 +245,7 @@ impl Renderer {
             ceiling: &self.ceiling[first as usize..end as usize],
             floor: &self.floor[first as usize..end as usize],
             span_start: &mut self.span_start,
-            stats: &mut self.stats,
+            stats,
             column_angles: &self.column_angles,
         }
     }
@@ -260,11 +254,12 @@ impl Renderer {
         &mut self,
         scene: &Scene,
         canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
         job: &WallJob,
         at: WallColumn,
         column: i32,
     ) {
-        self.stats.wall_columns += 1;
+        stats.wall_columns += 1;
         let x = column as usize;
         let view = scene.view;
         let row_of = |above_eye: Fx24_8| {
@@ -308,6 +303,7 @@ impl Renderer {
             self.draw_strip(
                 scene,
                 canvas,
+                stats,
                 &strip,
                 &job.strips[0],
                 ceiling_row,
@@ -324,6 +320,7 @@ impl Renderer {
             self.draw_strip(
                 scene,
                 canvas,
+                stats,
                 &strip,
                 &job.strips[0],
                 ceiling_row,
@@ -334,6 +331,7 @@ impl Renderer {
             self.draw_strip(
                 scene,
                 canvas,
+                stats,
                 &strip,
                 &job.strips[1],
                 neighbour_floor_row,
@@ -361,6 +359,7 @@ impl Renderer {
         &mut self,
         scene: &Scene,
         canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
         strip: &StripColumn,
         texture: &StripTexture,
         top: i16,
@@ -370,7 +369,7 @@ impl Renderer {
             return;
         }
         let count = (bottom - top) as usize;
-        self.stats.column_pixels += count as u32;
+        stats.column_pixels += count as u32;
         canvas.set_surface(texture.surface);
         let view = scene.view;
         let colormap = strip.colormap;
