@@ -54,7 +54,8 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
         stats,
         column_angles,
     } = job;
-    if is_sky(sector) {
+    let sky = is_sky(sector);
+    if sky {
         canvas.set_surface(Surface::Sky);
         for (offset, window) in ceiling.iter().enumerate() {
             if !window.is_empty() {
@@ -62,32 +63,37 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
                 sky_column(view, assets, column_angles, canvas, first + offset, *window);
             }
         }
-    } else {
-        canvas.set_surface(Surface::Ceiling(sector_index));
+    }
+    // The ceiling (unless it is sky), then the floor: one span loop for both, so that its code
+    // is in IWRAM once.
+    let planes = [
+        (
+            Surface::Ceiling(sector_index),
+            ceiling,
+            sector.ceil_z,
+            sector.ceil_texture,
+        ),
+        (
+            Surface::Floor(sector_index),
+            floor,
+            sector.floor_z,
+            sector.floor_texture,
+        ),
+    ];
+    for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
+        canvas.set_surface(*surface);
         let plane = Plane {
             view,
             assets,
             sector,
-            height: sector.ceil_z,
-            texture: sector.ceil_texture,
+            height: *height,
+            texture: *texture,
         };
-        make_spans(ceiling, first, span_start, |row, start, end| {
+        make_spans(windows, first, span_start, |row, start, end| {
             stats.span_pixels += (end - start) as u32;
             plane.span(canvas, row, start, end);
         });
     }
-    canvas.set_surface(Surface::Floor(sector_index));
-    let plane = Plane {
-        view,
-        assets,
-        sector,
-        height: sector.floor_z,
-        texture: sector.floor_texture,
-    };
-    make_spans(floor, first, span_start, |row, start, end| {
-        stats.span_pixels += (end - start) as u32;
-        plane.span(canvas, row, start, end);
-    });
 }
 
 struct Plane<'r> {

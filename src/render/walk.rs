@@ -281,6 +281,51 @@ impl Renderer {
             top: floor_row.max(clip.top),
             bottom: clip.bottom,
         };
+        // The rows of the column's strips (`job.strips`, empty where not drawn), and the clip
+        // window the column leaves for the sectors behind it.
+        let rows = match &job.portal {
+            None => {
+                self.clip[x] = Window::EMPTY;
+                [(ceiling_row, floor_row), (0, 0)]
+            }
+            Some(portal) => {
+                let neighbour_ceiling_row = row_of(portal.ceiling_above_eye)
+                    .clamp(ceiling_row, floor_row.max(ceiling_row));
+                let neighbour_floor_row = row_of(portal.floor_above_eye)
+                    .clamp(neighbour_ceiling_row.min(floor_row), floor_row);
+                let opening_top = if portal.lowers_ceiling {
+                    neighbour_ceiling_row
+                } else {
+                    ceiling_row
+                };
+                let opening_bottom = if portal.lower_drawn {
+                    neighbour_floor_row
+                } else {
+                    floor_row
+                };
+                self.clip[x] = Window {
+                    top: opening_top,
+                    bottom: opening_bottom.max(opening_top),
+                };
+                [
+                    if portal.upper_drawn {
+                        (ceiling_row, neighbour_ceiling_row)
+                    } else {
+                        (0, 0)
+                    },
+                    if portal.lower_drawn {
+                        (neighbour_floor_row, floor_row)
+                    } else {
+                        (0, 0)
+                    },
+                ]
+            }
+        };
+        if rows.iter().all(|(top, bottom)| top >= bottom) {
+            // Nothing of the wall is drawn in this column (an open portal, or a clipped strip):
+            // its texture column is not needed.
+            return;
+        }
         let u = Fx24_8::from_bits(
             ((i64::from(at.along.to_bits()) * i64::from(job.length.to_bits())) >> 30) as i32,
         ) + job.x_offset;
@@ -299,59 +344,9 @@ impl Renderer {
             colormap: light_row(job.sector.light, at.depth.to_int_floor(), view.lighting)
                 .map(|row| &scene.assets.colormap[row]),
         };
-        let Some(portal) = &job.portal else {
-            self.draw_strip(
-                scene,
-                canvas,
-                stats,
-                &strip,
-                &job.strips[0],
-                ceiling_row,
-                floor_row,
-            );
-            self.clip[x] = Window::EMPTY;
-            return;
-        };
-        let neighbour_ceiling_row =
-            row_of(portal.ceiling_above_eye).clamp(ceiling_row, floor_row.max(ceiling_row));
-        let neighbour_floor_row =
-            row_of(portal.floor_above_eye).clamp(neighbour_ceiling_row.min(floor_row), floor_row);
-        if portal.upper_drawn {
-            self.draw_strip(
-                scene,
-                canvas,
-                stats,
-                &strip,
-                &job.strips[0],
-                ceiling_row,
-                neighbour_ceiling_row,
-            );
+        for (texture, (top, bottom)) in job.strips.iter().zip(rows) {
+            self.draw_strip(scene, canvas, stats, &strip, texture, top, bottom);
         }
-        if portal.lower_drawn {
-            self.draw_strip(
-                scene,
-                canvas,
-                stats,
-                &strip,
-                &job.strips[1],
-                neighbour_floor_row,
-                floor_row,
-            );
-        }
-        let opening_top = if portal.lowers_ceiling {
-            neighbour_ceiling_row
-        } else {
-            ceiling_row
-        };
-        let opening_bottom = if portal.lower_drawn {
-            neighbour_floor_row
-        } else {
-            floor_row
-        };
-        self.clip[x] = Window {
-            top: opening_top,
-            bottom: opening_bottom.max(opening_top),
-        };
     }
 
     /// Draws rows `top..bottom` of one wall column with the strip texture `texture`.
