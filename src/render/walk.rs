@@ -289,8 +289,8 @@ impl Renderer {
                 [(ceiling_row, floor_row), (0, 0)]
             }
             Some(portal) => {
-                let neighbour_ceiling_row = row_of(portal.ceiling_above_eye)
-                    .clamp(ceiling_row, floor_row.max(ceiling_row));
+                let neighbour_ceiling_row =
+                    row_of(portal.ceiling_above_eye).clamp(ceiling_row, floor_row.max(ceiling_row));
                 let neighbour_floor_row = row_of(portal.floor_above_eye)
                     .clamp(neighbour_ceiling_row.min(floor_row), floor_row);
                 let opening_top = if portal.lowers_ceiling {
@@ -350,6 +350,7 @@ impl Renderer {
     }
 
     /// Draws rows `top..bottom` of one wall column with the strip texture `texture`.
+    #[allow(clippy::too_many_arguments)]
     fn draw_strip(
         &mut self,
         scene: &Scene,
@@ -396,8 +397,7 @@ impl Renderer {
         let base_log2 = u32::from(texture_image.height_log2);
         let twice_row_offset = 2 * (i64::from(top) - i64::from(view.viewport.horizon_y)) + 1;
         // v in 24.8 texels; then scale to 0.32 of the height: × 2^(24 − log2 height).
-        let v_bits =
-            texture.eye_to_anchor + ((twice_row_offset * strip.depth_over_focal) >> 31);
+        let v_bits = texture.eye_to_anchor + ((twice_row_offset * strip.depth_over_focal) >> 31);
         let v = (v_bits << (24 - base_log2)) as u32;
         let dv = (strip.depth_over_focal >> (6 + base_log2)) as u32;
         let column = ColumnTexture {
@@ -489,8 +489,7 @@ impl<'s> WallJob<'s> {
         let strip = |texture: u16, anchor: i32, surface: Surface| StripTexture {
             texture: scene.assets.textures.get(usize::from(texture)),
             surface,
-            eye_to_anchor: i64::from(above_eye(anchor).to_bits())
-                + (i64::from(wall.y_offset) << 8),
+            eye_to_anchor: i64::from(above_eye(anchor).to_bits()) + (i64::from(wall.y_offset) << 8),
         };
         let (strips, portal) = if wall.portal == NO_PORTAL {
             (
@@ -504,8 +503,16 @@ impl<'s> WallJob<'s> {
             let neighbour = &scene.map.sectors[usize::from(wall.portal)];
             (
                 [
-                    strip(wall.upper_texture, sector.ceil_z, Surface::Upper(wall_index)),
-                    strip(wall.lower_texture, neighbour.floor_z, Surface::Lower(wall_index)),
+                    strip(
+                        wall.upper_texture,
+                        sector.ceil_z,
+                        Surface::Upper(wall_index),
+                    ),
+                    strip(
+                        wall.lower_texture,
+                        neighbour.floor_z,
+                        Surface::Lower(wall_index),
+                    ),
                 ],
                 Some(PortalJob {
                     ceiling_above_eye: above_eye(neighbour.ceil_z),
@@ -680,7 +687,19 @@ mod tests {
 
     #[test]
     fn isqrt_edges() {
-        for n in [0u64, 1, 2, 3, 4, 15, 16, 17, u64::MAX, 1 << 62, (1 << 62) - 1] {
+        for n in [
+            0u64,
+            1,
+            2,
+            3,
+            4,
+            15,
+            16,
+            17,
+            u64::MAX,
+            1 << 62,
+            (1 << 62) - 1,
+        ] {
             assert_eq!(isqrt(n), n.isqrt(), "{n}");
         }
     }
