@@ -172,6 +172,39 @@ impl Renderer {
             self.floor[column as usize] = Window::EMPTY;
         }
         let walls_started = (self.clock)();
+        self.draw_walls(scene, canvas, stats, sector, first, end);
+        let planes_started = (self.clock)();
+        stats.wall_ticks += planes_started.wrapping_sub(walls_started);
+        planes::draw(
+            self.plane_job(scene, stats, sector, sector_index, first, end),
+            canvas,
+        );
+        stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
+        let mut ownership = Ownership::new(first, end);
+        for wall in walls {
+            if wall.portal == NO_PORTAL {
+                continue;
+            }
+            if let Some((_, _, start, stop)) = ownership.wall(scene, wall) {
+                self.visit(scene, canvas, stats, wall.portal, start, stop, depth + 1);
+            }
+        }
+    }
+
+    /// The walls and strips of a visit's columns `[first, end)`. Not inlined: its per-wall
+    /// state stays off the stack frame of [`visit`](Self::visit), which the portal recursion
+    /// repeats once per level.
+    #[inline(never)]
+    fn draw_walls(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        sector: &Sector,
+        first: i32,
+        end: i32,
+    ) {
+        let walls = scene.map.sector_walls(sector);
         let mut ownership = Ownership::new(first, end);
         for (offset, wall) in walls.iter().enumerate() {
             let wall_index = sector.first_wall + offset as u16;
@@ -207,22 +240,6 @@ impl Renderer {
                 }
                 stepper.advance(span);
                 column = last;
-            }
-        }
-        let planes_started = (self.clock)();
-        stats.wall_ticks += planes_started.wrapping_sub(walls_started);
-        planes::draw(
-            self.plane_job(scene, stats, sector, sector_index, first, end),
-            canvas,
-        );
-        stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
-        let mut ownership = Ownership::new(first, end);
-        for wall in walls {
-            if wall.portal == NO_PORTAL {
-                continue;
-            }
-            if let Some((_, _, start, stop)) = ownership.wall(scene, wall) {
-                self.visit(scene, canvas, stats, wall.portal, start, stop, depth + 1);
             }
         }
     }

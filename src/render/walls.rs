@@ -230,7 +230,9 @@ impl WallStepper {
     }
 
     /// The depth and position along the wall `columns` columns after the current one, without
-    /// stepping.
+    /// stepping. Not inlined (the interpolating knobs call it twice per interval; IWRAM is
+    /// short).
+    #[inline(never)]
     pub fn ahead(&self, columns: i32) -> WallColumn {
         let inverse_depth = self.inverse_depth_ahead(columns);
         let depth = inverse_depth.recip_fx24_8();
