@@ -60,6 +60,12 @@ pub struct Renderer {
     visited: [u32; VISITS_TRACKED / 32],
 }
 
+/// A plane window no wall column has set yet (debug builds only).
+const UNSET: Window = Window {
+    top: i16::MIN,
+    bottom: i16::MIN,
+};
+
 /// Sectors (by index) a frame tracks for [`FrameStats::repeat_visits`]: a bit each.
 pub const VISITS_TRACKED: usize = 2048;
 
@@ -167,12 +173,23 @@ impl Renderer {
         }
         let sector = &scene.map.sectors[usize::from(sector_index)];
         let walls = scene.map.sector_walls(sector);
-        for column in first..end {
-            self.ceiling[column as usize] = Window::EMPTY;
-            self.floor[column as usize] = Window::EMPTY;
+        // Every column of `[first, end)` is owned by exactly one wall of the sector (the
+        // ownership rule, module `walls`: around the sector's closed outline the vertices right
+        // of a column's ray form one run, and the ray crosses the sector: the eye is inside the
+        // first sector, and a portal's column has its two ends on either side), and its wall
+        // column sets its ceiling and floor windows: no reset is needed. Debug builds (the host
+        // tests) mark the windows unset and check that every one was set.
+        let range = first as usize..end as usize;
+        if cfg!(debug_assertions) {
+            self.ceiling[range.clone()].fill(UNSET);
+            self.floor[range.clone()].fill(UNSET);
         }
         let walls_started = (self.clock)();
         self.draw_walls(scene, canvas, stats, sector, first, end);
+        debug_assert!(
+            !self.ceiling[range.clone()].contains(&UNSET) && !self.floor[range].contains(&UNSET),
+            "a column of sector {sector_index} owned by none of its walls"
+        );
         let planes_started = (self.clock)();
         stats.wall_ticks += planes_started.wrapping_sub(walls_started);
         planes::draw(
