@@ -10,9 +10,11 @@ use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
 use super::view::View;
-use super::walls::{owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector};
+use super::walls::{
+    owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector, WallStepper,
+};
 use super::RenderAssets;
-use crate::math::{recip_small, EyePoint, Fx24_8, WorldPoint};
+use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
 use crate::raster::column::ColumnTexture;
 use crate::raster::Canvas;
 use crate::render::light::light_row;
@@ -234,8 +236,9 @@ impl Renderer {
             let interval = scene.view.perspective.interval();
             if interval == 1 {
                 for column in start..stop {
-                    let at = stepper.next_column();
-                    self.wall_column(scene, canvas, stats, &job, at, column);
+                    let at = ColumnAt::Stepper(&stepper);
+                    self.wall_column(scene, canvas, stats, &job, &at, column);
+                    stepper.step();
                 }
                 continue;
             }
@@ -246,14 +249,15 @@ impl Renderer {
                 let last = (column + interval).min(stop - 1);
                 let left = stepper.ahead(0);
                 if last == column {
-                    self.wall_column(scene, canvas, stats, &job, left, column);
+                    self.wall_column(scene, canvas, stats, &job, &ColumnAt::Known(left), column);
                     break;
                 }
                 let span = last - column;
                 let lerp = WallLerp::new(left, stepper.ahead(span), span);
                 for offset in 0..span {
                     let at = lerp.at(offset, stepper.near_inverse_depth_ahead(offset));
-                    self.wall_column(scene, canvas, stats, &job, at, column + offset);
+                    let at = ColumnAt::Known(at);
+                    self.wall_column(scene, canvas, stats, &job, &at, column + offset);
                 }
                 stepper.advance(span);
                 column = last;
@@ -290,17 +294,18 @@ impl Renderer {
         canvas: &mut impl Canvas,
         stats: &mut FrameStats,
         job: &WallJob,
-        at: WallColumn,
+        at: &ColumnAt,
         column: i32,
     ) {
         stats.wall_columns += 1;
         let x = column as usize;
         let view = scene.view;
+        let (inverse_depth, near_inverse_depth) = at.rows();
         let row_of = |above_eye: Fx24_8| {
-            let y = if at.near_inverse_depth <= 1 << 30 {
-                view.viewport.projected_y(above_eye, at.inverse_depth)
+            let y = if near_inverse_depth <= 1 << 30 {
+                view.viewport.projected_y(above_eye, inverse_depth)
             } else {
-                projected_y_closer_than_near(&view.viewport, above_eye, at.near_inverse_depth)
+                projected_y_closer_than_near(&view.viewport, above_eye, near_inverse_depth)
             };
             view.viewport.first_row_at_or_after(y) as i16
         };
@@ -360,13 +365,14 @@ impl Renderer {
             // its texture column is not needed.
             return;
         }
+        let (depth, along) = at.texturing();
         let u = Fx24_8::from_bits(
-            ((i64::from(at.along.to_bits()) * i64::from(job.length.to_bits())) >> 30) as i32,
+            ((i64::from(along.to_bits()) * i64::from(job.length.to_bits())) >> 30) as i32,
         ) + job.x_offset;
-        let depth_over_focal = i64::from(at.depth.to_bits()) * scene.inverse_focal_y;
+        let depth_over_focal = i64::from(depth.to_bits()) * scene.inverse_focal_y;
         debug_assert_eq!(
             (depth_over_focal >> 38) as i32,
-            mip_ratio(i64::from(at.depth.to_bits()), scene.inverse_focal_y)
+            mip_ratio(i64::from(depth.to_bits()), scene.inverse_focal_y)
         );
         let strip = StripColumn {
             u,
@@ -375,7 +381,7 @@ impl Renderer {
             depth_over_focal,
             // The same product as `depth_over_focal`: `mip_ratio` is its top bits.
             mip_ratio: (depth_over_focal >> 38) as i32,
-            colormap: light_row(job.sector.light, at.depth.to_int_floor(), view.lighting)
+            colormap: light_row(job.sector.light, depth.to_int_floor(), view.lighting)
                 .map(|row| &scene.assets.colormap[row]),
         };
         for (texture, (top, bottom)) in job.strips.iter().zip(rows) {
@@ -479,6 +485,34 @@ impl Ownership {
         self.last = Some((wall.end, b, b_split));
         let (start, stop) = owned_columns_in(a_split, b_split, self.first, self.end);
         (start < stop).then_some((a, b, start, stop))
+    }
+}
+
+/// One wall column's projection: from the exact stepper, whose depth and position along the
+/// wall (a reciprocal) are only computed where a strip is drawn, or already known (the
+/// interpolating knobs).
+enum ColumnAt<'s> {
+    Stepper(&'s WallStepper),
+    Known(WallColumn),
+}
+
+impl ColumnAt<'_> {
+    /// `1/z'`, clamped and unclamped: see [`WallStepper::rows`].
+    #[inline]
+    fn rows(&self) -> (Fx2_30, i64) {
+        match self {
+            ColumnAt::Stepper(stepper) => stepper.rows(),
+            ColumnAt::Known(at) => (at.inverse_depth, at.near_inverse_depth),
+        }
+    }
+
+    /// Depth and position along the wall: see [`WallStepper::texturing`].
+    #[inline]
+    fn texturing(&self) -> (Fx24_8, Fx2_30) {
+        match self {
+            ColumnAt::Stepper(stepper) => stepper.texturing(),
+            ColumnAt::Known(at) => (at.depth, at.along),
+        }
     }
 }
 

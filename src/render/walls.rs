@@ -210,23 +210,48 @@ impl WallProjector {
 impl WallStepper {
     /// The current column's depth and position along the wall; then steps to the next column.
     pub fn next_column(&mut self) -> WallColumn {
-        // `ahead(0)` without its multiplies: this is the exact setting's per-column path.
+        let (inverse_depth, near_inverse_depth) = self.rows();
+        let (depth, along) = self.texturing();
+        self.step();
+        WallColumn {
+            depth,
+            inverse_depth,
+            near_inverse_depth,
+            along,
+        }
+    }
+
+    /// The current column's `1/z'`, clamped to the near plane and the far limit, and before
+    /// the near-plane clamp ([`WallColumn::inverse_depth`], [`WallColumn::near_inverse_depth`]):
+    /// what the wall's rows need. No reciprocal.
+    #[inline]
+    pub fn rows(&self) -> (Fx2_30, i64) {
         let near_inverse_depth = self.inverse_depth.max(i64::from(SMALLEST_INVERSE_DEPTH));
         let inverse_depth = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
+        (inverse_depth, near_inverse_depth)
+    }
+
+    /// The current column's depth and position along the wall ([`WallColumn::depth`],
+    /// [`WallColumn::along`]): what its texture column needs, one reciprocal. `ahead(0)` without
+    /// its multiplies: this is the exact setting's per-column path. Not inlined (IWRAM is
+    /// short; it is called only where a strip is drawn).
+    #[inline(never)]
+    pub fn texturing(&self) -> (Fx24_8, Fx2_30) {
+        let (inverse_depth, near_inverse_depth) = self.rows();
         let depth = inverse_depth.recip_fx24_8();
         let along = if near_inverse_depth <= 1 << 30 {
             (self.along_over_depth * i64::from(depth.to_bits())) >> 8
         } else {
             ratio_shifted(self.along_over_depth, 30, near_inverse_depth)
         };
+        (depth, Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32))
+    }
+
+    /// Steps to the next column.
+    #[inline]
+    pub fn step(&mut self) {
         self.inverse_depth += self.inverse_depth_step;
         self.along_over_depth += self.along_over_depth_step;
-        WallColumn {
-            depth,
-            inverse_depth,
-            near_inverse_depth,
-            along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
-        }
     }
 
     /// The depth and position along the wall `columns` columns after the current one, without
