@@ -87,7 +87,7 @@ mod rom {
     /// them, an `input vblank=… keys=…` line for every change of the buttons: a recording of
     /// the game that a harness key script replays.
     fn play_scene(display: &mut Display) -> ! {
-        let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
+        let renderer = memory::renderer_in_ewram(meter::now);
         let colours = MenuColours::from_palette(&assets::PALETTE);
         let mut game = Game::new(assets::MAPS);
         let mut sampler = input::Sampler::new();
@@ -189,7 +189,7 @@ mod rom {
     /// [`bench::FRAMES_PER_SETTING`] frames of the map's [`Flight`], one line per frame, then
     /// `bench done`. `cargo bench-report` and the guard test read the lines.
     fn bench_scene(display: &mut Display, guard_only: bool) -> ! {
-        let renderer = memory::renderer_in_ewram(Renderer::new().with_clock(meter::now));
+        let renderer = memory::renderer_in_ewram(meter::now);
         for (map, settings) in bench::guard_runs() {
             let render_assets = demo::assets_for(settings.textures, textures_in_ewram);
             bench_run(display, renderer, &render_assets, map, &settings);
@@ -460,6 +460,13 @@ mod rom {
                 DecimalOrDash(op.has_arm().then(|| cost(arm))),
             ));
         }
+        // The paint above the overlay tells how deep this scene's stack went: the linker
+        // script's MATH_SCENE_STACK must cover it.
+        log::info(format_args!(
+            "stack used={} room={}",
+            memory::stack_high_water_above(code.end()),
+            memory::STACK_TOP - code.end()
+        ));
         log::info(format_args!("math done"));
         loop {
             display.wait_vblank();

@@ -88,6 +88,22 @@ fn figures(op: Op) -> (u64, u64, Option<u64>) {
     (number(line, "rom"), number(line, "iwram"), arm)
 }
 
+/// The math scene's stack stays inside the reserve the linker script keeps between its code
+/// overlay and the stack's top (`MATH_SCENE_STACK`): the scene prints how deep it went, read
+/// from the boot paint above the overlay.
+#[test]
+fn the_math_scene_stack_stays_in_its_reserve() {
+    /// `MATH_SCENE_STACK` in linker.ld.
+    const RESERVE: u64 = 1280;
+    let line = math_lines()
+        .iter()
+        .find(|line| line.starts_with("stack "))
+        .expect("a `stack used=… room=…` line");
+    println!("math scene: {line} (reserve {RESERVE})");
+    let (used, room) = (number(line, "used"), number(line, "room"));
+    assert!(used > 0 && used < RESERVE && RESERVE <= room, "{line}");
+}
+
 #[test]
 fn every_operation_is_timed_and_the_figures_are_consistent() {
     let begin = math_lines()

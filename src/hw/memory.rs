@@ -72,7 +72,15 @@ fn painted_start() -> usize {
 /// [`STACK_TOP`]: the distance from the top to the lowest word that lost its paint. Compare it
 /// with [`stack_room`]; when they meet, the stack has run into `.bss`.
 pub fn stack_high_water() -> usize {
-    let mut address = painted_start();
+    stack_high_water_above(painted_start())
+}
+
+/// [`stack_high_water`] for a stack whose room starts at `bottom` (word aligned, above the end
+/// of `.bss`): the math scene's, whose room ends at its code overlay, which overwrote the paint
+/// below it.
+pub fn stack_high_water_above(bottom: usize) -> usize {
+    debug_assert!(bottom >= painted_start() && bottom.is_multiple_of(4));
+    let mut address = bottom;
     // SAFETY: word-aligned reads inside IWRAM, between the end of .bss and the stack top.
     while address < STACK_TOP && unsafe { (address as *const u32).read_volatile() } == STACK_PAINT {
         address += 4;
@@ -87,9 +95,11 @@ use core::mem::MaybeUninit;
 static mut RENDERER: MaybeUninit<Renderer> = MaybeUninit::uninit();
 static mut RENDERER_TAKEN: bool = false;
 
-/// The renderer's working memory (clip and plane windows, about 3.7 KB), placed in EWRAM so it
-/// does not take the IWRAM stack the portal recursion needs. Hands it out once.
-pub fn renderer_in_ewram(renderer: Renderer) -> &'static mut Renderer {
+/// The renderer's working memory (clip and plane windows, the portal walk's levels: about
+/// 6 KB), placed in EWRAM, timing its stages with `clock`. Built in place from the constant
+/// empty renderer: passed in by value it would go through the stack first, whose whole room is
+/// about that size. Hands it out once.
+pub fn renderer_in_ewram(clock: fn() -> u32) -> &'static mut Renderer {
     // SAFETY: single-threaded, and the flag makes this the only reference ever made to the
     // static; the interrupt handler never touches either.
     unsafe {
@@ -97,8 +107,10 @@ pub fn renderer_in_ewram(renderer: Renderer) -> &'static mut Renderer {
         assert!(!*taken, "the renderer's memory is handed out once");
         *taken = true;
         let slot: *mut Renderer = (&raw mut RENDERER).cast();
-        slot.write(renderer);
-        &mut *slot
+        slot.write(const { Renderer::new() });
+        let renderer = &mut *slot;
+        renderer.set_clock(clock);
+        renderer
     }
 }
 

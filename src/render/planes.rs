@@ -40,6 +40,7 @@ pub struct PlaneJob<'r> {
 }
 
 /// Draws the visit's ceiling (or sky) and floor.
+#[inline(never)]
 pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
     let PlaneJob {
         view,
@@ -53,7 +54,8 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
         stats,
         column_angles,
     } = job;
-    if is_sky(sector) {
+    let sky = is_sky(sector);
+    if sky {
         canvas.set_surface(Surface::Sky);
         for (offset, window) in ceiling.iter().enumerate() {
             if !window.is_empty() {
@@ -61,32 +63,37 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
                 sky_column(view, assets, column_angles, canvas, first + offset, *window);
             }
         }
-    } else {
-        canvas.set_surface(Surface::Ceiling(sector_index));
+    }
+    // The ceiling (unless it is sky), then the floor: one span loop for both, so that its code
+    // is in IWRAM once.
+    let planes = [
+        (
+            Surface::Ceiling(sector_index),
+            ceiling,
+            sector.ceil_z,
+            sector.ceil_texture,
+        ),
+        (
+            Surface::Floor(sector_index),
+            floor,
+            sector.floor_z,
+            sector.floor_texture,
+        ),
+    ];
+    for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
+        canvas.set_surface(*surface);
         let plane = Plane {
             view,
             assets,
             sector,
-            height: sector.ceil_z,
-            texture: sector.ceil_texture,
+            height: *height,
+            texture: *texture,
         };
-        make_spans(ceiling, first, span_start, |row, start, end| {
+        make_spans(windows, first, span_start, |row, start, end| {
             stats.span_pixels += (end - start) as u32;
             plane.span(canvas, row, start, end);
         });
     }
-    canvas.set_surface(Surface::Floor(sector_index));
-    let plane = Plane {
-        view,
-        assets,
-        sector,
-        height: sector.floor_z,
-        texture: sector.floor_texture,
-    };
-    make_spans(floor, first, span_start, |row, start, end| {
-        stats.span_pixels += (end - start) as u32;
-        plane.span(canvas, row, start, end);
-    });
 }
 
 struct Plane<'r> {
@@ -204,10 +211,15 @@ fn sky_column(
     let height = usize::from(sky.height);
     let texels = &sky.texels[sky_column as usize * height..(sky_column as usize + 1) * height];
     // Row r shows panorama row h/2 + floor((r + ½ − cy)·160/H); H is 80 or 160.
-    let lines_per_row = 160 / view.viewport.height;
     let top = i32::from(window.top);
-    let first_line =
-        ((2 * (top - view.viewport.horizon_y) + 1) * 80).div_euclid(view.viewport.height);
+    let twice_offset = 2 * (top - view.viewport.horizon_y) + 1;
+    // The shipped heights divide exactly by shifts (t·80 / 80 = t, ⌊t·80 / 160⌋ = t >> 1):
+    // the ARM7TDMI has no divide, and the library's is Thumb code in ROM.
+    let (lines_per_row, first_line) = match view.viewport.height {
+        80 => (2, twice_offset),
+        160 => (1, twice_offset >> 1),
+        height => (160 / height, (twice_offset * 80).div_euclid(height)),
+    };
     let v = ((i32::from(sky.height) / 2 + first_line) as u32) << (32 - height_log2);
     let dv = (lines_per_row as u32) << (32 - height_log2);
     let texture = ColumnTexture {

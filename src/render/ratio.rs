@@ -14,7 +14,7 @@ pub fn ratio_shifted(num: i64, shift: u32, den: i64) -> i64 {
     let negative = (num < 0) != (den < 0);
     let d = den.unsigned_abs();
     // d ≈ mantissa · 2^exponent with the mantissa in [2^31, 2^32).
-    let exponent = 32 - d.leading_zeros() as i32;
+    let exponent = 32 - leading_zeros(d) as i32;
     let mantissa = if exponent >= 0 {
         (d >> exponent) as u32
     } else {
@@ -36,6 +36,35 @@ pub fn ratio_shifted(num: i64, shift: u32, den: i64) -> i64 {
     } else {
         quotient
     }
+}
+
+/// `d.leading_zeros()` for `d > 0`, by compare-and-shift steps on 32-bit halves: the ARM7TDMI
+/// has no count-leading-zeros instruction, and the library's `__clzsi2` is a Thumb call.
+#[inline(always)]
+pub fn leading_zeros(d: u64) -> u32 {
+    debug_assert!(d != 0, "leading zeros of zero");
+    let high = (d >> 32) as u32;
+    let (mut word, mut zeros) = if high != 0 { (high, 0) } else { (d as u32, 32) };
+    if word < 1 << 16 {
+        word <<= 16;
+        zeros += 16;
+    }
+    if word < 1 << 24 {
+        word <<= 8;
+        zeros += 8;
+    }
+    if word < 1 << 28 {
+        word <<= 4;
+        zeros += 4;
+    }
+    if word < 1 << 30 {
+        word <<= 2;
+        zeros += 2;
+    }
+    if word < 1 << 31 {
+        zeros += 1;
+    }
+    zeros
 }
 
 /// Approximately `num / den`, rounded to nearest; see [`ratio_shifted`].
@@ -63,6 +92,14 @@ mod tests {
             let approximate = ratio_shifted(num, shift, den) as f64;
             let bound = exact.abs() / 2f64.powi(28) + 1.0;
             prop_assert!((approximate - exact).abs() <= bound, "{num}<<{shift}/{den}: {approximate} vs {exact}");
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn leading_zeros_is_the_library_count(d in 1u64.., shift in 0u32..64) {
+            let d = (d >> shift).max(1);
+            prop_assert_eq!(leading_zeros(d), d.leading_zeros());
         }
     }
 

@@ -37,6 +37,11 @@ pub fn make_spans(
             Some(window) if !window.is_empty() => *window,
             _ => Window::EMPTY,
         };
+        if new == old {
+            // The same rows as the column before (or no rows, as before): no span ends or
+            // starts here.
+            continue;
+        }
         let (mut top, mut bottom) = if old.is_empty() {
             (0, 0)
         } else {

@@ -2,17 +2,20 @@
 //! clip window per column. Each visit of a sector draws the walls and strips of the columns it
 //! was given, records its ceiling and floor windows, draws those planes, and then recurses into
 //! its portals with the narrowed windows. Columns handed to different portals never overlap, so
-//! one set of per-column arrays serves the whole recursion.
+//! one set of per-column arrays serves the whole recursion. The recursion is depth first, with
+//! its levels in the renderer's memory rather than on the call stack ([`Renderer::walk`]).
 
-use portalcast_format::{MapTables, Sector, Wall, NO_PORTAL, SKY};
+use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, SKY};
 
 use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
 use super::view::View;
-use super::walls::{owned_columns, WallColumn, WallLerp, WallProjector};
+use super::walls::{
+    owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector, WallStepper,
+};
 use super::RenderAssets;
-use crate::math::{recip_small, EyePoint, Fx24_8, WorldPoint};
+use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
 use crate::raster::column::ColumnTexture;
 use crate::raster::Canvas;
 use crate::render::light::light_row;
@@ -54,12 +57,39 @@ pub struct Renderer {
     ceiling: [Window; MAX_COLUMNS],
     floor: [Window; MAX_COLUMNS],
     span_start: [i16; MAX_ROWS],
-    stats: FrameStats,
     column_angles: [i16; MAX_COLUMNS],
     column_angles_width: i32,
     clock: fn() -> u32,
     visited: [u32; VISITS_TRACKED / 32],
+    /// The portal walk's levels: level `d` is the sector visited at depth `d` (see
+    /// [`Renderer::walk`]).
+    levels: [WalkLevel; MAX_PORTAL_DEPTH as usize + 1],
 }
+
+/// One level of the portal walk: the sector visited, the next of its walls to look at, and the
+/// ownership state of its walls so far (each vertex is projected once per visit).
+#[derive(Clone, Copy)]
+struct WalkLevel {
+    sector: u16,
+    next_wall: u16,
+    ownership: Ownership,
+}
+
+impl WalkLevel {
+    const fn new(sector: u16, first: i32, end: i32) -> WalkLevel {
+        WalkLevel {
+            sector,
+            next_wall: 0,
+            ownership: Ownership::new(first, end),
+        }
+    }
+}
+
+/// A plane window no wall column has set yet (debug builds only).
+const UNSET: Window = Window {
+    top: i16::MIN,
+    bottom: i16::MIN,
+};
 
 /// Sectors (by index) a frame tracks for [`FrameStats::repeat_visits`]: a bit each.
 pub const VISITS_TRACKED: usize = 2048;
@@ -79,14 +109,21 @@ struct Scene<'s, 'a> {
     map: &'s MapTables<'a>,
     assets: &'s RenderAssets<'a>,
     view: &'s View,
+    /// The 2.30 reciprocal of `d_y` (its bits), for the wall columns' `z'/d_y`.
+    inverse_focal_y: i64,
 }
 
 impl Renderer {
     /// Times the wall and plane stages with `clock` (a free-running counter, e.g. the ROM's
     /// cycle meter), reported in [`FrameStats`].
     pub fn with_clock(mut self, clock: fn() -> u32) -> Renderer {
-        self.clock = clock;
+        self.set_clock(clock);
         self
+    }
+
+    /// [`Renderer::with_clock`] for a renderer already in place.
+    pub fn set_clock(&mut self, clock: fn() -> u32) {
+        self.clock = clock;
     }
 
     /// A renderer with empty working memory.
@@ -96,20 +133,11 @@ impl Renderer {
             ceiling: [Window::EMPTY; MAX_COLUMNS],
             floor: [Window::EMPTY; MAX_COLUMNS],
             span_start: [0; MAX_ROWS],
-            stats: FrameStats {
-                sector_visits: 0,
-                wall_columns: 0,
-                column_pixels: 0,
-                span_pixels: 0,
-                depth_cutoffs: 0,
-                repeat_visits: 0,
-                wall_ticks: 0,
-                plane_ticks: 0,
-            },
             column_angles: [0; MAX_COLUMNS],
             column_angles_width: 0,
             visited: [0; VISITS_TRACKED / 32],
             clock: no_clock,
+            levels: [WalkLevel::new(0, 0, 0); MAX_PORTAL_DEPTH as usize + 1],
         }
     }
 
@@ -124,7 +152,9 @@ impl Renderer {
         let width = view.viewport.width as usize;
         let height = view.viewport.height as i16;
         debug_assert_eq!(width, canvas.resolution().width());
-        self.stats = FrameStats::default();
+        // The counters live on the stack (IWRAM on the GBA), not in the renderer's memory
+        // (EWRAM): the wall columns and strips count into them.
+        let mut stats = FrameStats::default();
         self.visited = [0; VISITS_TRACKED / 32];
         if self.column_angles_width != view.viewport.width {
             for (column, angle) in self.column_angles[..width].iter_mut().enumerate() {
@@ -141,96 +171,146 @@ impl Renderer {
                 bottom: height,
             };
         }
-        let scene = Scene { map, assets, view };
-        self.visit(&scene, canvas, view.sector, 0, width as i32, 0);
-        self.stats
+        let scene = Scene {
+            map,
+            assets,
+            view,
+            inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
+        };
+        self.walk(&scene, canvas, &mut stats, view.sector, 0, width as i32);
+        stats
     }
 
-    /// Draws `sector_index` in columns `first..end`, then walks into its portals.
+    /// The portal walk: draws `sector_index` in columns `first..end`, then, depth first and
+    /// front to back, every sector seen through its portals, each in the columns its portal
+    /// owns.
     ///
-    /// The recursion keeps only this small frame per level: the drawing, with its many locals,
-    /// happens in [`Renderer::draw_sector`] and [`Renderer::portal_columns`], whose frames are
-    /// gone before the next level starts. On the GBA a level of the walk then costs tens of
-    /// bytes of the 8 KB stack instead of the drawing's ~300, so a chain of
-    /// [`MAX_PORTAL_DEPTH`] portals fits (the extreme-map emulator test walks one and checks
-    /// the stack's high-water mark).
-    fn visit(
+    /// The recursion's state is kept in [`Renderer::levels`] (the renderer's memory: EWRAM on
+    /// the GBA), not on the call stack: a level is a sector and how far its portals have been
+    /// followed. The GBA's stack (8 KB of IWRAM) then holds one drawing frame whatever the
+    /// depth; recursing through calls cost ~300 bytes a level, so a chain of
+    /// [`MAX_PORTAL_DEPTH`] portals overran it.
+    ///
+    /// Out of line, so that [`Renderer::render`]'s own set-up stays small enough to be inlined
+    /// into its callers, outside IWRAM.
+    #[inline(never)]
+    fn walk(
         &mut self,
         scene: &Scene,
         canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
         sector_index: u16,
         first: i32,
         end: i32,
-        depth: u32,
     ) {
-        if depth > MAX_PORTAL_DEPTH {
-            self.stats.depth_cutoffs += 1;
-            return;
-        }
-        self.draw_sector(scene, canvas, sector_index, first, end);
-        let sector = &scene.map.sectors[usize::from(sector_index)];
-        for wall in scene.map.sector_walls(sector) {
-            if wall.portal == NO_PORTAL {
-                continue;
+        self.draw_sector(scene, canvas, stats, sector_index, first, end);
+        self.levels[0] = WalkLevel::new(sector_index, first, end);
+        let mut depth = 0;
+        loop {
+            let mut level = self.levels[depth];
+            let walls = scene
+                .map
+                .sector_walls(&scene.map.sectors[usize::from(level.sector)]);
+            let mut seen = None;
+            while let Some(wall) = walls.get(usize::from(level.next_wall)) {
+                level.next_wall += 1;
+                if wall.portal == NO_PORTAL {
+                    continue;
+                }
+                if let Some((_, _, start, stop)) = level.ownership.wall(scene, wall) {
+                    seen = Some((wall.portal, start, stop));
+                    break;
+                }
             }
-            if let Some((start, stop)) = self.portal_columns(scene, wall, first, end) {
-                self.visit(scene, canvas, wall.portal, start, stop, depth + 1);
+            self.levels[depth] = level;
+            match seen {
+                Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
+                Some((neighbour, start, stop)) => {
+                    self.draw_sector(scene, canvas, stats, neighbour, start, stop);
+                    depth += 1;
+                    self.levels[depth] = WalkLevel::new(neighbour, start, stop);
+                }
+                None if depth == 0 => return,
+                None => depth -= 1,
             }
         }
     }
 
-    /// The columns of `first..end` that the portal `wall` owns, if any. Out of line so that
-    /// the ownership test's locals stay out of [`Renderer::visit`]'s frame.
-    #[inline(never)]
-    fn portal_columns(
-        &self,
-        scene: &Scene,
-        wall: &Wall,
-        first: i32,
-        end: i32,
-    ) -> Option<(i32, i32)> {
-        self.owned(scene, wall, first, end)
-            .map(|(_, _, start, stop)| (start, stop))
-    }
-
-    /// Draws one visit of `sector_index` in columns `first..end`: its walls and strips, then its
-    /// ceiling and floor, narrowing the clip windows of the columns its portals own. Out of line:
-    /// see [`Renderer::visit`].
+    /// One visit of `sector_index` in columns `first..end`: its walls and strips, then its
+    /// ceiling and floor, narrowing the clip windows of the columns its portals own. Out of
+    /// line: [`Renderer::walk`] calls it from two places.
     #[inline(never)]
     fn draw_sector(
         &mut self,
         scene: &Scene,
         canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
         sector_index: u16,
         first: i32,
         end: i32,
     ) {
-        self.stats.sector_visits += 1;
+        stats.sector_visits += 1;
         if let Some(word) = self.visited.get_mut(usize::from(sector_index) / 32) {
             let bit = 1u32 << (sector_index % 32);
-            self.stats.repeat_visits += u32::from(*word & bit != 0);
+            stats.repeat_visits += u32::from(*word & bit != 0);
             *word |= bit;
         }
         let sector = &scene.map.sectors[usize::from(sector_index)];
-        let walls = scene.map.sector_walls(sector);
-        for column in first..end {
-            self.ceiling[column as usize] = Window::EMPTY;
-            self.floor[column as usize] = Window::EMPTY;
+        // Every column of `[first, end)` is owned by exactly one wall of the sector (the
+        // ownership rule, module `walls`: around the sector's closed outline the vertices right
+        // of a column's ray form one run, and the ray crosses the sector: the eye is inside the
+        // first sector, and a portal's column has its two ends on either side), and its wall
+        // column sets its ceiling and floor windows: no reset is needed. Debug builds (the host
+        // tests) mark the windows unset and check that every one was set.
+        let range = first as usize..end as usize;
+        if cfg!(debug_assertions) {
+            self.ceiling[range.clone()].fill(UNSET);
+            self.floor[range.clone()].fill(UNSET);
         }
         let walls_started = (self.clock)();
+        self.draw_walls(scene, canvas, stats, sector, first, end);
+        debug_assert!(
+            !self.ceiling[range.clone()].contains(&UNSET) && !self.floor[range].contains(&UNSET),
+            "a column of sector {sector_index} owned by none of its walls"
+        );
+        let planes_started = (self.clock)();
+        stats.wall_ticks += planes_started.wrapping_sub(walls_started);
+        planes::draw(
+            self.plane_job(scene, stats, sector, sector_index, first, end),
+            canvas,
+        );
+        stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
+    }
+
+    /// The walls and strips of a visit's columns `[first, end)`. Not inlined: its per-wall
+    /// state stays off the stack frame of [`visit`](Self::visit), which the portal recursion
+    /// repeats once per level.
+    #[inline(never)]
+    fn draw_walls(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        sector: &Sector,
+        first: i32,
+        end: i32,
+    ) {
+        let walls = scene.map.sector_walls(sector);
+        let mut ownership = Ownership::new(first, end);
         for (offset, wall) in walls.iter().enumerate() {
             let wall_index = sector.first_wall + offset as u16;
-            let Some((a, b, start, stop)) = self.owned(scene, wall, first, end) else {
+            let Some((a, b, start, stop)) = ownership.wall(scene, wall) else {
                 continue;
             };
             let projector = WallProjector::new(&scene.view.viewport, a, b);
-            let length = wall_length(scene.map, wall);
+            let job = WallJob::new(scene, sector, wall, wall_index);
             let mut stepper = projector.stepper(start);
             let interval = scene.view.perspective.interval();
             if interval == 1 {
                 for column in start..stop {
-                    let at = stepper.next_column();
-                    self.wall_column(scene, canvas, sector, wall, wall_index, at, length, column);
+                    let at = ColumnAt::Stepper(&stepper);
+                    self.wall_column(scene, canvas, stats, &job, &at, column);
+                    stepper.step();
                 }
                 continue;
             }
@@ -241,42 +321,26 @@ impl Renderer {
                 let last = (column + interval).min(stop - 1);
                 let left = stepper.ahead(0);
                 if last == column {
-                    self.wall_column(
-                        scene, canvas, sector, wall, wall_index, left, length, column,
-                    );
+                    self.wall_column(scene, canvas, stats, &job, &ColumnAt::Known(left), column);
                     break;
                 }
                 let span = last - column;
                 let lerp = WallLerp::new(left, stepper.ahead(span), span);
                 for offset in 0..span {
                     let at = lerp.at(offset, stepper.near_inverse_depth_ahead(offset));
-                    self.wall_column(
-                        scene,
-                        canvas,
-                        sector,
-                        wall,
-                        wall_index,
-                        at,
-                        length,
-                        column + offset,
-                    );
+                    let at = ColumnAt::Known(at);
+                    self.wall_column(scene, canvas, stats, &job, &at, column + offset);
                 }
                 stepper.advance(span);
                 column = last;
             }
         }
-        let planes_started = (self.clock)();
-        self.stats.wall_ticks += planes_started.wrapping_sub(walls_started);
-        planes::draw(
-            self.plane_job(scene, sector, sector_index, first, end),
-            canvas,
-        );
-        self.stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
     }
 
     fn plane_job<'r>(
         &'r mut self,
         scene: &'r Scene,
+        stats: &'r mut FrameStats,
         sector: &'r Sector,
         sector_index: u16,
         first: i32,
@@ -291,53 +355,35 @@ impl Renderer {
             ceiling: &self.ceiling[first as usize..end as usize],
             floor: &self.floor[first as usize..end as usize],
             span_start: &mut self.span_start,
-            stats: &mut self.stats,
+            stats,
             column_angles: &self.column_angles,
         }
     }
 
-    /// The eye-space ends of `wall` and the columns of `[first, end)` it owns, if any.
-    fn owned(
-        &self,
-        scene: &Scene,
-        wall: &Wall,
-        first: i32,
-        end: i32,
-    ) -> Option<(EyePoint, EyePoint, i32, i32)> {
-        let a = scene.view.eye.to_eye(vertex(scene.map, wall.start));
-        let b = scene.view.eye.to_eye(vertex(scene.map, wall.end));
-        let (start, stop) = owned_columns(&scene.view.viewport, a, b);
-        let (start, stop) = (start.max(first), stop.min(end));
-        (start < stop).then_some((a, b, start, stop))
-    }
-
-    #[allow(clippy::too_many_arguments)]
     fn wall_column(
         &mut self,
         scene: &Scene,
         canvas: &mut impl Canvas,
-        sector: &Sector,
-        wall: &Wall,
-        wall_index: u16,
-        at: WallColumn,
-        length: Fx24_8,
+        stats: &mut FrameStats,
+        job: &WallJob,
+        at: &ColumnAt,
         column: i32,
     ) {
-        self.stats.wall_columns += 1;
+        stats.wall_columns += 1;
         let x = column as usize;
         let view = scene.view;
-        let row_of = |height: i32| {
-            let above_eye = Fx24_8::from_int(height) - view.eye_z;
-            let y = if at.near_inverse_depth <= 1 << 30 {
-                view.viewport.projected_y(above_eye, at.inverse_depth)
+        let (inverse_depth, near_inverse_depth) = at.rows();
+        let row_of = |above_eye: Fx24_8| {
+            let y = if near_inverse_depth <= 1 << 30 {
+                view.viewport.projected_y(above_eye, inverse_depth)
             } else {
-                projected_y_closer_than_near(&view.viewport, above_eye, at.near_inverse_depth)
+                projected_y_closer_than_near(&view.viewport, above_eye, near_inverse_depth)
             };
             view.viewport.first_row_at_or_after(y) as i16
         };
         let clip = self.clip[x];
-        let ceiling_row = row_of(sector.ceil_z).max(clip.top);
-        let floor_row = row_of(sector.floor_z).min(clip.bottom);
+        let ceiling_row = row_of(job.ceiling_above_eye).max(clip.top);
+        let floor_row = row_of(job.floor_above_eye).min(clip.bottom);
         self.ceiling[x] = Window {
             top: clip.top,
             bottom: ceiling_row.min(clip.bottom),
@@ -346,112 +392,100 @@ impl Renderer {
             top: floor_row.max(clip.top),
             bottom: clip.bottom,
         };
-        let u = Fx24_8::from_bits(
-            ((i64::from(at.along.to_bits()) * i64::from(length.to_bits())) >> 30) as i32,
-        ) + Fx24_8::from_int(i32::from(wall.x_offset));
-        let strip = WallStrip {
-            scene,
-            sector,
-            depth: at.depth,
-            u,
-            column: x,
+        // The rows of the column's strips (`job.strips`, empty where not drawn), and the clip
+        // window the column leaves for the sectors behind it.
+        let rows = match &job.portal {
+            None => {
+                self.clip[x] = Window::EMPTY;
+                [(ceiling_row, floor_row), (0, 0)]
+            }
+            Some(portal) => {
+                let neighbour_ceiling_row =
+                    row_of(portal.ceiling_above_eye).clamp(ceiling_row, floor_row.max(ceiling_row));
+                let neighbour_floor_row = row_of(portal.floor_above_eye)
+                    .clamp(neighbour_ceiling_row.min(floor_row), floor_row);
+                // Where no upper strip is drawn (the neighbour's ceiling is not lower, or both
+                // show the sky), the neighbour gets the rows down from this sector's ceiling
+                // line: its own ceiling (sky) fills them, and no row between the two ceiling
+                // lines is left undrawn.
+                let opening_top = if portal.upper_drawn {
+                    neighbour_ceiling_row
+                } else {
+                    ceiling_row
+                };
+                let opening_bottom = if portal.lower_drawn {
+                    neighbour_floor_row
+                } else {
+                    floor_row
+                };
+                self.clip[x] = Window {
+                    top: opening_top,
+                    bottom: opening_bottom.max(opening_top),
+                };
+                [
+                    if portal.upper_drawn {
+                        (ceiling_row, neighbour_ceiling_row)
+                    } else {
+                        (0, 0)
+                    },
+                    if portal.lower_drawn {
+                        (neighbour_floor_row, floor_row)
+                    } else {
+                        (0, 0)
+                    },
+                ]
+            }
         };
-        if wall.portal == NO_PORTAL {
-            self.draw_strip(
-                canvas,
-                &strip,
-                wall.texture,
-                sector.ceil_z,
-                Surface::Wall(wall_index),
-                ceiling_row,
-                floor_row,
-                wall.y_offset,
-            );
-            self.clip[x] = Window::EMPTY;
+        if rows.iter().all(|(top, bottom)| top >= bottom) {
+            // Nothing of the wall is drawn in this column (an open portal, or a clipped strip):
+            // its texture column is not needed.
             return;
         }
-        let neighbour = &scene.map.sectors[usize::from(wall.portal)];
-        let neighbour_ceiling_row =
-            row_of(neighbour.ceil_z).clamp(ceiling_row, floor_row.max(ceiling_row));
-        let neighbour_floor_row =
-            row_of(neighbour.floor_z).clamp(neighbour_ceiling_row.min(floor_row), floor_row);
-        // Between two sky sectors the lower ceiling's strip is sky too: leave it open so the
-        // neighbour's sky fills it (Doom's sky hack; the oracle draws the same).
-        let upper_drawn =
-            neighbour.ceil_z < sector.ceil_z && !(is_sky(sector) && is_sky(neighbour));
-        if upper_drawn {
-            let upper = Surface::Upper(wall_index);
-            self.draw_strip(
-                canvas,
-                &strip,
-                wall.upper_texture,
-                sector.ceil_z,
-                upper,
-                ceiling_row,
-                neighbour_ceiling_row,
-                wall.y_offset,
-            );
+        let (depth, along) = at.texturing();
+        let u = Fx24_8::from_bits(
+            ((i64::from(along.to_bits()) * i64::from(job.length.to_bits())) >> 30) as i32,
+        ) + job.x_offset;
+        let depth_over_focal = i64::from(depth.to_bits()) * scene.inverse_focal_y;
+        debug_assert_eq!(
+            (depth_over_focal >> 38) as i32,
+            mip_ratio(i64::from(depth.to_bits()), scene.inverse_focal_y)
+        );
+        let strip = StripColumn {
+            u,
+            column: x,
+            // z'/d_y in 24.8 × 2^30, through the 2.30 reciprocal of d_y (a table entry).
+            depth_over_focal,
+            // The same product as `depth_over_focal`: `mip_ratio` is its top bits.
+            mip_ratio: (depth_over_focal >> 38) as i32,
+            colormap: light_row(job.sector.light, depth.to_int_floor(), view.lighting)
+                .map(|row| &scene.assets.colormap[row]),
+        };
+        for (texture, (top, bottom)) in job.strips.iter().zip(rows) {
+            self.draw_strip(scene, canvas, stats, &strip, texture, top, bottom);
         }
-        if neighbour.floor_z > sector.floor_z {
-            let lower = Surface::Lower(wall_index);
-            self.draw_strip(
-                canvas,
-                &strip,
-                wall.lower_texture,
-                neighbour.floor_z,
-                lower,
-                neighbour_floor_row,
-                floor_row,
-                wall.y_offset,
-            );
-        }
-        // Where no upper strip is drawn (the neighbour's ceiling is not lower, or both show the
-        // sky), the neighbour gets the rows down from this sector's ceiling line: its own
-        // ceiling (sky) fills them, and nothing is left undrawn between the two ceiling lines.
-        let opening_top = if upper_drawn {
-            neighbour_ceiling_row
-        } else {
-            ceiling_row
-        };
-        let opening_bottom = if neighbour.floor_z > sector.floor_z {
-            neighbour_floor_row
-        } else {
-            floor_row
-        };
-        self.clip[x] = Window {
-            top: opening_top,
-            bottom: opening_bottom.max(opening_top),
-        };
     }
 
-    /// Draws rows `top..bottom` of one wall column with texture `texture`, whose v is anchored
-    /// at height `anchor`.
+    /// Draws rows `top..bottom` of one wall column with the strip texture `texture`.
     #[allow(clippy::too_many_arguments)]
     fn draw_strip(
         &mut self,
+        scene: &Scene,
         canvas: &mut impl Canvas,
-        strip: &WallStrip,
-        texture: u16,
-        anchor: i32,
-        surface: Surface,
+        stats: &mut FrameStats,
+        strip: &StripColumn,
+        texture: &StripTexture,
         top: i16,
         bottom: i16,
-        y_offset: i16,
     ) {
         if top >= bottom {
             return;
         }
         let count = (bottom - top) as usize;
-        self.stats.column_pixels += count as u32;
-        canvas.set_surface(surface);
-        let view = strip.scene.view;
-        let colormap = light_row(
-            strip.sector.light,
-            strip.depth.to_int_floor(),
-            view.lighting,
-        )
-        .map(|row| &strip.scene.assets.colormap[row]);
-        let Some(texture) = strip.scene.assets.textures.get(usize::from(texture)) else {
+        stats.column_pixels += count as u32;
+        canvas.set_surface(texture.surface);
+        let view = scene.view;
+        let colormap = strip.colormap;
+        let Some(texture_image) = texture.texture else {
             let column = ColumnTexture {
                 texels: &BLANK_COLUMN,
                 log2_height: 3,
@@ -462,34 +496,26 @@ impl Renderer {
             canvas.column(strip.column, top as usize, count, &column);
             return;
         };
-        let level = mip_level(
-            strip.depth,
-            view.viewport.focal_y,
-            texture.mip_count,
-            texture.width_log2,
-            texture.height_log2,
+        let level = mip_level_of_ratio(
+            strip.mip_ratio,
+            texture_image.mip_count,
+            texture_image.width_log2,
+            texture_image.height_log2,
         );
-        let width_log2 = u32::from(texture.level_width_log2(level));
-        let height_log2 = u32::from(texture.level_height_log2(level));
-        let texels = texture.wall_level(level);
+        let width_log2 = u32::from(texture_image.level_width_log2(level));
+        let height_log2 = u32::from(texture_image.level_height_log2(level));
+        let texels = texture_image.wall_level(level);
         let u_texel = (strip.u.to_int_floor() >> level) & ((1 << width_log2) - 1);
         let column_texels =
             &texels[(u_texel as usize) << height_log2..((u_texel as usize) + 1) << height_log2];
         // v (texels at level 0) of row r: anchor − eye + y_offset + (r + ½ − cy)·z/d_y; as a
         // fraction of the texture height in 0.32 it is the same at every mip level.
-        let base_log2 = u32::from(texture.height_log2);
-        let eye_to_anchor = i64::from((Fx24_8::from_int(anchor) - view.eye_z).to_bits())
-            + (i64::from(y_offset) << 8);
+        let base_log2 = u32::from(texture_image.height_log2);
         let twice_row_offset = 2 * (i64::from(top) - i64::from(view.viewport.horizon_y)) + 1;
-        let depth_bits = i64::from(strip.depth.to_bits());
-        // z'/d_y in 24.8 through the 2.30 reciprocal of d_y (a table entry, no divide).
-        let inverse_focal_y = i64::from(recip_small(view.viewport.focal_y as u32).to_bits());
-        let step_bits = (depth_bits * inverse_focal_y) >> 30;
         // v in 24.8 texels; then scale to 0.32 of the height: × 2^(24 − log2 height).
-        let v_bits = eye_to_anchor + ((twice_row_offset * depth_bits * inverse_focal_y) >> 31);
+        let v_bits = texture.eye_to_anchor + ((twice_row_offset * strip.depth_over_focal) >> 31);
         let v = (v_bits << (24 - base_log2)) as u32;
-        let dv = ((depth_bits * inverse_focal_y) >> (6 + base_log2)) as u32;
-        let _ = step_bits;
+        let dv = (strip.depth_over_focal >> (6 + base_log2)) as u32;
         let column = ColumnTexture {
             texels: column_texels,
             log2_height: height_log2,
@@ -501,13 +527,167 @@ impl Renderer {
     }
 }
 
-/// What one wall column's strips share.
-struct WallStrip<'s, 'a> {
-    scene: &'s Scene<'s, 'a>,
+/// The eye-space ends of a sector's walls and the columns of `[first, end)` each owns, one
+/// wall after the other: a wall's end is the next wall's start, so each vertex is transformed
+/// and split once per loop (twice for the loop's first vertex at most).
+#[derive(Clone, Copy)]
+struct Ownership {
+    first: i32,
+    end: i32,
+    last: Option<(u16, EyePoint, VertexSplit)>,
+}
+
+impl Ownership {
+    const fn new(first: i32, end: i32) -> Ownership {
+        Ownership {
+            first,
+            end,
+            last: None,
+        }
+    }
+
+    fn vertex(&self, scene: &Scene, index: u16) -> (EyePoint, VertexSplit) {
+        let point = scene.view.eye.to_eye(vertex(scene.map, index));
+        let split = VertexSplit::new(&scene.view.viewport, point, self.first, self.end);
+        (point, split)
+    }
+
+    /// The eye-space ends of `wall` and the columns of `[first, end)` it owns, if any.
+    fn wall(&mut self, scene: &Scene, wall: &Wall) -> Option<(EyePoint, EyePoint, i32, i32)> {
+        let (a, a_split) = match self.last {
+            Some((index, point, split)) if index == wall.start => (point, split),
+            _ => self.vertex(scene, wall.start),
+        };
+        let (b, b_split) = self.vertex(scene, wall.end);
+        self.last = Some((wall.end, b, b_split));
+        let (start, stop) = owned_columns_in(a_split, b_split, self.first, self.end);
+        (start < stop).then_some((a, b, start, stop))
+    }
+}
+
+/// One wall column's projection: from the exact stepper, whose depth and position along the
+/// wall (a reciprocal) are only computed where a strip is drawn, or already known (the
+/// interpolating knobs).
+enum ColumnAt<'s> {
+    Stepper(&'s WallStepper),
+    Known(WallColumn),
+}
+
+impl ColumnAt<'_> {
+    /// `1/z'`, clamped and unclamped: see [`WallStepper::rows`].
+    #[inline]
+    fn rows(&self) -> (Fx2_30, i64) {
+        match self {
+            ColumnAt::Stepper(stepper) => stepper.rows(),
+            ColumnAt::Known(at) => (at.inverse_depth, at.near_inverse_depth),
+        }
+    }
+
+    /// Depth and position along the wall: see [`WallStepper::texturing`].
+    #[inline]
+    fn texturing(&self) -> (Fx24_8, Fx2_30) {
+        match self {
+            ColumnAt::Stepper(stepper) => stepper.texturing(),
+            ColumnAt::Known(at) => (at.depth, at.along),
+        }
+    }
+}
+
+/// What every column of one wall shares: computed once per wall, not per column.
+struct WallJob<'s> {
     sector: &'s Sector,
-    depth: Fx24_8,
+    length: Fx24_8,
+    x_offset: Fx24_8,
+    /// The sector's ceiling and floor heights above the eye.
+    ceiling_above_eye: Fx24_8,
+    floor_above_eye: Fx24_8,
+    /// The wall's texture (solid) or its upper and lower strips' (portal).
+    strips: [StripTexture<'s>; 2],
+    portal: Option<PortalJob>,
+}
+
+/// A portal's neighbour, as its columns need it.
+struct PortalJob {
+    ceiling_above_eye: Fx24_8,
+    floor_above_eye: Fx24_8,
+    /// The neighbour's ceiling is lower, and not both show the sky: an upper strip, and the
+    /// opening's top is its row. Between two sky sectors the lower ceiling's strip is sky too:
+    /// left open so the neighbour's sky fills it (Doom's sky hack; the oracle draws the same).
+    upper_drawn: bool,
+    /// The neighbour's floor is higher: a lower strip, and the opening's bottom is its row.
+    lower_drawn: bool,
+}
+
+/// One strip's texture, surface and vertical anchor.
+struct StripTexture<'s> {
+    texture: Option<&'s Texture<'s>>,
+    surface: Surface,
+    /// `anchor − eye_z + y_offset` in 24.8 texels: v at the eye's height.
+    eye_to_anchor: i64,
+}
+
+impl<'s> WallJob<'s> {
+    fn new(scene: &Scene<'s, 's>, sector: &'s Sector, wall: &'s Wall, wall_index: u16) -> Self {
+        let view = scene.view;
+        let above_eye = |height: i32| Fx24_8::from_int(height) - view.eye_z;
+        let strip = |texture: u16, anchor: i32, surface: Surface| StripTexture {
+            texture: scene.assets.textures.get(usize::from(texture)),
+            surface,
+            eye_to_anchor: i64::from(above_eye(anchor).to_bits()) + (i64::from(wall.y_offset) << 8),
+        };
+        let (strips, portal) = if wall.portal == NO_PORTAL {
+            (
+                [
+                    strip(wall.texture, sector.ceil_z, Surface::Wall(wall_index)),
+                    strip(wall.texture, sector.ceil_z, Surface::Wall(wall_index)),
+                ],
+                None,
+            )
+        } else {
+            let neighbour = &scene.map.sectors[usize::from(wall.portal)];
+            (
+                [
+                    strip(
+                        wall.upper_texture,
+                        sector.ceil_z,
+                        Surface::Upper(wall_index),
+                    ),
+                    strip(
+                        wall.lower_texture,
+                        neighbour.floor_z,
+                        Surface::Lower(wall_index),
+                    ),
+                ],
+                Some(PortalJob {
+                    ceiling_above_eye: above_eye(neighbour.ceil_z),
+                    floor_above_eye: above_eye(neighbour.floor_z),
+                    upper_drawn: neighbour.ceil_z < sector.ceil_z
+                        && !(is_sky(sector) && is_sky(neighbour)),
+                    lower_drawn: neighbour.floor_z > sector.floor_z,
+                }),
+            )
+        };
+        WallJob {
+            sector,
+            length: wall_length(scene.map, wall),
+            x_offset: Fx24_8::from_int(i32::from(wall.x_offset)),
+            ceiling_above_eye: above_eye(sector.ceil_z),
+            floor_above_eye: above_eye(sector.floor_z),
+            strips,
+            portal,
+        }
+    }
+}
+
+/// What one wall column's strips share.
+struct StripColumn<'s> {
     u: Fx24_8,
     column: usize,
+    /// `z'` (24.8 bits) × the 2.30 reciprocal of `d_y`: `z'/d_y` in 24.8 × 2^30.
+    depth_over_focal: i64,
+    /// The mip rule's `floor(z'/d_y)` ([`mip_ratio`]).
+    mip_ratio: i32,
+    colormap: Option<&'s [u8; 256]>,
 }
 
 /// Texels for a surface whose texture is missing: palette index 0, as the oracle draws it.
@@ -549,12 +729,13 @@ fn wall_length(map: &MapTables, wall: &Wall) -> Fx24_8 {
 
 /// Floor of the square root.
 pub fn isqrt(n: u64) -> u64 {
-    let mut root = 0u64;
-    let mut bit = 1u64 << 62;
-    let mut rest = n;
-    while bit > n {
-        bit >>= 2;
+    if n == 0 {
+        return 0;
     }
+    let mut root = 0u64;
+    // The largest power of 4 not above n.
+    let mut bit = 1u64 << ((63 - super::ratio::leading_zeros(n)) & !1);
+    let mut rest = n;
     while bit != 0 {
         if rest >= root + bit {
             rest -= root + bit;
@@ -569,6 +750,7 @@ pub fn isqrt(n: u64) -> u64 {
 
 /// The mip level for depth `depth`: `floor(log2(depth / focal_y))`, at least 0, below
 /// `mip_count`, and keeping both sides at least 8 texels (the smallest column kernel).
+#[inline]
 pub fn mip_level(
     depth: Fx24_8,
     focal_y: i32,
@@ -576,9 +758,25 @@ pub fn mip_level(
     width_log2: u8,
     height_log2: u8,
 ) -> u8 {
-    // floor(depth / focal_y) through the 2.30 reciprocal of focal_y: no divide.
-    let ratio = ((i64::from(depth.to_bits()) * i64::from(recip_small(focal_y as u32).to_bits()))
-        >> 38) as i32;
+    let inverse_focal_y = i64::from(recip_small(focal_y as u32).to_bits());
+    mip_level_of_ratio(
+        mip_ratio(i64::from(depth.to_bits()), inverse_focal_y),
+        mip_count,
+        width_log2,
+        height_log2,
+    )
+}
+
+/// `floor(depth / focal_y)` for the mip rule, from the depth's 24.8 bits and the 2.30
+/// reciprocal of `focal_y` (its bits): no divide.
+#[inline(always)]
+fn mip_ratio(depth_bits: i64, inverse_focal_y: i64) -> i32 {
+    ((depth_bits * inverse_focal_y) >> 38) as i32
+}
+
+/// [`mip_level`] from its [`mip_ratio`].
+#[inline(always)]
+fn mip_level_of_ratio(ratio: i32, mip_count: u8, width_log2: u8, height_log2: u8) -> u8 {
     let mut level = 0u8;
     while (ratio >> (level + 1)) > 0 {
         level += 1;
@@ -614,4 +812,38 @@ pub fn column_angle(q: i32, twice_focal: i32) -> i16 {
         }
     }
     low as i16
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(5000))]
+        #[test]
+        fn isqrt_is_the_floor_of_the_square_root(n in any::<u64>(), shift in 0u32..64) {
+            let n = n >> shift;
+            prop_assert_eq!(isqrt(n), n.isqrt());
+        }
+    }
+
+    #[test]
+    fn isqrt_edges() {
+        for n in [
+            0u64,
+            1,
+            2,
+            3,
+            4,
+            15,
+            16,
+            17,
+            u64::MAX,
+            1 << 62,
+            (1 << 62) - 1,
+        ] {
+            assert_eq!(isqrt(n), n.isqrt(), "{n}");
+        }
+    }
 }

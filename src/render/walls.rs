@@ -47,6 +47,58 @@ pub fn owned_columns(viewport: &Viewport, a: EyePoint, b: EyePoint) -> (i32, i32
     (a_start.max(b_start), a_end.min(b_end))
 }
 
+/// Which of the columns `[first, end)` have a point to the right of their ray: a prefix or a
+/// suffix of them, since [`Viewport::side_of_column_ray`] is monotone in the column (the ray's
+/// slope grows with it). Found by bisection over `[first, end)` only, so a narrow portal window
+/// costs few steps, and computed once per vertex: the walls meeting at a vertex share it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VertexSplit {
+    /// The point is right of column `first`'s ray, so right of every ray before `boundary`.
+    right_first: bool,
+    /// The first column in `(first, end]` whose side differs from column `first`'s (or `end`).
+    boundary: i32,
+}
+
+impl VertexSplit {
+    /// The split of the columns `[first, end)` (`first < end`) by the eye-space point `p`.
+    pub fn new(viewport: &Viewport, p: EyePoint, first: i32, end: i32) -> VertexSplit {
+        debug_assert!(first < end, "an empty column range");
+        let right_first = viewport.side_of_column_ray(p, first) == Side::Right;
+        let (mut low, mut high) = (first + 1, end);
+        while low < high {
+            let middle = (low + high) / 2;
+            if (viewport.side_of_column_ray(p, middle) == Side::Right) == right_first {
+                low = middle + 1;
+            } else {
+                high = middle;
+            }
+        }
+        VertexSplit {
+            right_first,
+            boundary: low,
+        }
+    }
+}
+
+/// The columns of `[first, end)` whose rays leave through the wall `a → b`, from the splits of
+/// the same range by `a` and `b`: `a` not right of the ray and `b` right of it. The same
+/// columns as [`owned_columns`] clamped to `[first, end)`: a monotone predicate restricted to a
+/// range changes at the same column, clamped into it (and where it does not change inside the
+/// range, the range is wholly in or out of the wall's columns on both ways).
+pub fn owned_columns_in(a: VertexSplit, b: VertexSplit, first: i32, end: i32) -> (i32, i32) {
+    let (a_start, a_end) = if a.right_first {
+        (a.boundary, end)
+    } else {
+        (first, a.boundary)
+    };
+    let (b_start, b_end) = if b.right_first {
+        (first, b.boundary)
+    } else {
+        (b.boundary, end)
+    };
+    (a_start.max(b_start), a_end.min(b_end))
+}
+
 /// A wall's depth and texture parameter along the columns it owns.
 #[derive(Clone, Copy, Debug)]
 pub struct WallProjector {
@@ -174,27 +226,54 @@ impl WallProjector {
 impl WallStepper {
     /// The current column's depth and position along the wall; then steps to the next column.
     pub fn next_column(&mut self) -> WallColumn {
-        // `ahead(0)` without its multiplies: this is the exact setting's per-column path.
+        let (inverse_depth, near_inverse_depth) = self.rows();
+        let (depth, along) = self.texturing();
+        self.step();
+        WallColumn {
+            depth,
+            inverse_depth,
+            near_inverse_depth,
+            along,
+        }
+    }
+
+    /// The current column's `1/z'`, clamped to the near plane and the far limit, and before
+    /// the near-plane clamp ([`WallColumn::inverse_depth`], [`WallColumn::near_inverse_depth`]):
+    /// what the wall's rows need. No reciprocal.
+    #[inline]
+    pub fn rows(&self) -> (Fx2_30, i64) {
         let near_inverse_depth = self.inverse_depth.max(i64::from(SMALLEST_INVERSE_DEPTH));
         let inverse_depth = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
+        (inverse_depth, near_inverse_depth)
+    }
+
+    /// The current column's depth and position along the wall ([`WallColumn::depth`],
+    /// [`WallColumn::along`]): what its texture column needs, one reciprocal. `ahead(0)` without
+    /// its multiplies: this is the exact setting's per-column path. Not inlined (IWRAM is
+    /// short; it is called only where a strip is drawn).
+    #[inline(never)]
+    pub fn texturing(&self) -> (Fx24_8, Fx2_30) {
+        let (inverse_depth, near_inverse_depth) = self.rows();
         let depth = inverse_depth.recip_fx24_8();
         let along = if near_inverse_depth <= 1 << 30 {
             along_at_depth(self.along_over_depth, depth)
         } else {
             ratio_shifted(self.along_over_depth, 30, near_inverse_depth)
         };
+        (depth, Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32))
+    }
+
+    /// Steps to the next column.
+    #[inline]
+    pub fn step(&mut self) {
         self.inverse_depth += self.inverse_depth_step;
         self.along_over_depth += self.along_over_depth_step;
-        WallColumn {
-            depth,
-            inverse_depth,
-            near_inverse_depth,
-            along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
-        }
     }
 
     /// The depth and position along the wall `columns` columns after the current one, without
-    /// stepping.
+    /// stepping. Not inlined (the interpolating knobs call it twice per interval; IWRAM is
+    /// short).
+    #[inline(never)]
     pub fn ahead(&self, columns: i32) -> WallColumn {
         let inverse_depth = self.inverse_depth_ahead(columns);
         let depth = inverse_depth.recip_fx24_8();
@@ -374,6 +453,37 @@ mod tests {
         // Every column whose ray crosses either wall in front is owned exactly once.
         for column in 0..120 {
             assert!(owners(column) <= 1, "column {column}");
+        }
+    }
+}
+
+#[cfg(test)]
+mod split_tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+        #[test]
+        fn split_ownership_is_the_clamped_full_ownership(
+            ax in -3000i32..3000, az in -3000i32..3000,
+            bx in -3000i32..3000, bz in -3000i32..3000,
+            wide in any::<bool>(),
+            first in 0i32..240, len in 1i32..240,
+        ) {
+            let viewport = if wide { Viewport::new(240, 160) } else { Viewport::new(120, 80) };
+            let first = first % viewport.width;
+            let end = (first + len).min(viewport.width);
+            let a = EyePoint::new(Fx24_8::from_bits(ax * 37), Fx24_8::from_bits(az * 37));
+            let b = EyePoint::new(Fx24_8::from_bits(bx * 37), Fx24_8::from_bits(bz * 37));
+            let (start, stop) = owned_columns(&viewport, a, b);
+            let (start, stop) = (start.max(first), stop.min(end));
+            let split = |p| VertexSplit::new(&viewport, p, first, end);
+            let (split_start, split_stop) = owned_columns_in(split(a), split(b), first, end);
+            prop_assert_eq!(start < stop, split_start < split_stop);
+            if start < stop {
+                prop_assert_eq!((start, stop), (split_start, split_stop));
+            }
         }
     }
 }
