@@ -693,19 +693,28 @@ struct StripColumn<'s> {
 /// Texels for a surface whose texture is missing: palette index 0, as the oracle draws it.
 static BLANK_COLUMN: [u8; 8] = [0; 8];
 
+/// Largest `1/z'` (units of 2^-30) [`projected_y_closer_than_near`] multiplies by: `z'` of
+/// 2^-12 unit. An eye a few 1/65536 of a unit from a wall's line sees `1/z'` far beyond it, and
+/// `h · d_y · 1/z'` would overflow i64 (`|h| ≤ 2^22` in 24.8 bits, `d_y < 2^7`). The cut
+/// changes no row: at `1/z' = 2^42` even the smallest height, 1/256 unit, lies
+/// `60 · 2^12 / 2^8 = 960` rows or more from the horizon, off every screen, like the true row.
+const NEAR_INVERSE_DEPTH_MAX: i64 = 1 << 42;
+
 /// Screen `y` of a height `height_above_eye` on a wall closer than the near plane, where `1/z'`
 /// (`near_inverse_depth`, units of 2^-30) exceeds 2.30's range: the same `cy − d_y·h/z'`, with
-/// `1/z'` cut to 2^-22 units so the product stays in 64 bits, saturated to ±2^22 rows (any
-/// such row is off screen and clamps to an edge).
+/// `1/z'` cut to 2^-22 units (and at [`NEAR_INVERSE_DEPTH_MAX`]) so the product stays in 64
+/// bits, saturated to ±2^22 rows (any such row is off screen and clamps to an edge).
 fn projected_y_closer_than_near(
     viewport: &crate::math::Viewport,
     height_above_eye: Fx24_8,
     near_inverse_depth: i64,
 ) -> Fx24_8 {
+    // |h| ≤ 2^22 bits (HEIGHT_DIFF_MAX), d_y ≤ 120, 1/z' >> 8 ≤ 2^34: |product| ≤ 120 · 2^56,
+    // below 2^63.
     // 24.8 × int × 2^-22 units → 24.8 after >> 22.
     let offset = (i64::from(height_above_eye.to_bits())
         * i64::from(viewport.focal_y)
-        * (near_inverse_depth >> 8))
+        * (near_inverse_depth.min(NEAR_INVERSE_DEPTH_MAX) >> 8))
         >> 22;
     let y = (i64::from(viewport.horizon_y) << 8) - offset;
     Fx24_8::from_bits(y.clamp(-(1 << 30), 1 << 30) as i32)
