@@ -15,14 +15,16 @@
 //!   the player's first frame at every resolution and perspective mode, and a frame after a
 //!   short walk, writing every pixel exactly once (the dev profile panics on overflow).
 //!
-//! Two renderer faults the fuzzer found are the renderer's to fix, not the compiler's: they are
-//! recognised narrowly ([`known_render_issue`]), counted and printed instead of failing, and each
-//! has an ignored regression test with its minimal map. A known renderer panic still prints its
-//! panic line while the test passes.
+//! One renderer fault the fuzzer found is the renderer's to fix, not the compiler's (an eye 1/256
+//! unit from a corner): it is recognised narrowly ([`known_render_issue`]), counted and printed
+//! instead of failing, and has an ignored regression test with its minimal map. A known
+//! renderer panic still prints its panic line while the test passes. The others it found are
+//! fixed, and their regression tests run.
 //!
 //! `PORTALCAST_FUZZ_CASES` sets the case count (default [`DEFAULT_CASES`], the short form that
-//! `cargo xtest` runs); `PROPTEST_RNG_SEED` replays a run. The long form and its last result are
-//! in `docs/RELIABILITY_FUZZ.md`. Crashes found become the named regression tests at the end.
+//! `cargo xtest` runs, with a fixed seed); `PROPTEST_RNG_SEED` replays a run. The long form and
+//! its last result are in `docs/RELIABILITY.md`. Crashes found become the named regression tests
+//! at the end.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -1722,6 +1724,9 @@ struct Tally {
     known_issues: HashMap<&'static str, usize>,
 }
 
+/// The short form's seed: fixed, so the test command fuzzes the same 2000 cases on every run.
+const SHORT_FORM_SEED: u64 = 0x5EED_0F_C0_4D_1E5;
+
 #[test]
 fn every_map_compiles_to_valid_tables_or_fails_cleanly() {
     let cases = case_count();
@@ -1735,9 +1740,12 @@ fn every_map_compiles_to_valid_tables_or_fails_cleanly() {
         ))),
         ..Config::default()
     };
-    // A random run still prints its seed, so any failure can be replayed.
+    // The short form (the test command, so CI) is the same run every time: a new bug must come
+    // from a change, not from a lucky draw on someone else's submission. A long run (a case
+    // count given) draws a fresh seed, and still prints it, so any failure can be replayed.
     let seed = match config.rng_seed {
         RngSeed::Fixed(seed) => seed,
+        RngSeed::Random if std::env::var_os(CASES_ENV).is_none() => SHORT_FORM_SEED,
         RngSeed::Random => {
             let now = std::time::SystemTime::now()
                 .duration_since(std::time::UNIX_EPOCH)
