@@ -14,7 +14,7 @@ use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
-use portalcast::render::view::{Camera, Perspective, Settings, TexturePlacement, View};
+use portalcast::render::view::{Camera, Perspective, Projection, Settings, TexturePlacement, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_harness::{Emulator, Keys};
@@ -89,11 +89,17 @@ impl Checker {
             look_lines: player.look,
         };
         let perspective = Perspective::from_label(field(text, "persp").unwrap()).unwrap();
+        // The game's render line names no projection: the game always splits columns exactly
+        // (the precision knob is the bench scene's), so a missing `proj=` is `exact`.
+        let projection = field(text, "proj").map_or(Projection::Exact, |label| {
+            Projection::from_label(label).unwrap()
+        });
         let textures = TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap();
         let settings = Settings {
             resolution,
             lighting,
             perspective,
+            projection,
             textures,
         };
         let mut page = HostPage::new();
