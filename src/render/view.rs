@@ -180,6 +180,15 @@ impl Projection {
             .find(|projection| projection.label() == label)
     }
 
+    /// The value after this one (the menu cycles through them).
+    pub const fn next(self) -> Projection {
+        match self {
+            Projection::Exact => Projection::Fx16_16,
+            Projection::Fx16_16 => Projection::Fx24_8,
+            Projection::Fx24_8 => Projection::Exact,
+        }
+    }
+
     /// The split of the columns `[first, end)` by the eye-space vertex `p` at this precision:
     /// for a vertex beyond the near plane, from its screen `x` rounded to the format (16.16 or
     /// 24.8) by the column rule of [`Viewport::first_column_at_or_after`]; at or behind it, and
