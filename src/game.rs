@@ -86,6 +86,7 @@ impl<'m> Game<'m> {
             run: self.controls.always_run,
             hud: self.hud,
             perspective: self.settings.perspective,
+            projection: self.settings.projection,
             textures: self.settings.textures,
         }
     }
@@ -168,6 +169,12 @@ impl<'m> Game<'m> {
                 let steps = if forward { 1 } else { 2 };
                 for _ in 0..steps {
                     self.settings.perspective = self.settings.perspective.next();
+                }
+            }
+            Entry::Projection => {
+                let steps = if forward { 1 } else { 2 };
+                for _ in 0..steps {
+                    self.settings.projection = self.settings.projection.next();
                 }
             }
             Entry::Hud => self.hud = !self.hud,

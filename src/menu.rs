@@ -14,7 +14,7 @@ use crate::raster::flat::{FlatTexture, PackedUv};
 use crate::raster::Canvas;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Perspective, TexturePlacement};
+use crate::render::view::{Perspective, Projection, TexturePlacement};
 
 /// One line of the menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,6 +31,8 @@ pub enum Entry {
     Run,
     /// Wall perspective (exact, or exact every 8 or 16 columns).
     Perspective,
+    /// Fixed-point precision of the column splits (exact, 16.16 or 24.8).
+    Projection,
     /// Where texels are read from (EWRAM or the cartridge).
     Textures,
     /// The heads-up display: frame rate and cycles of the last frame.
@@ -38,13 +40,14 @@ pub enum Entry {
 }
 
 /// The menu's entries, top to bottom.
-pub const ENTRIES: [Entry; 8] = [
+pub const ENTRIES: [Entry; 9] = [
     Entry::Resolution,
     Entry::Lighting,
     Entry::Map,
     Entry::Fly,
     Entry::Run,
     Entry::Perspective,
+    Entry::Projection,
     Entry::Textures,
     Entry::Hud,
 ];
@@ -59,6 +62,7 @@ impl Entry {
             Entry::Fly => "FLY",
             Entry::Run => "RUN",
             Entry::Perspective => "PERSP",
+            Entry::Projection => "PROJ",
             Entry::Textures => "TEX",
             Entry::Hud => "HUD",
         }
@@ -82,6 +86,8 @@ pub struct Shown<'a> {
     pub hud: bool,
     /// Wall perspective.
     pub perspective: Perspective,
+    /// Column split precision.
+    pub projection: Projection,
     /// Texture placement.
     pub textures: TexturePlacement,
 }
@@ -97,6 +103,7 @@ impl Entry {
             Entry::Fly => on_off(shown.fly),
             Entry::Run => on_off(shown.run),
             Entry::Perspective => shown.perspective.label(),
+            Entry::Projection => shown.projection.label(),
             Entry::Textures => shown.textures.label(),
             Entry::Hud => on_off(shown.hud),
         }

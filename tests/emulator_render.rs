@@ -14,7 +14,7 @@ use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
-use portalcast::render::view::{Camera, Perspective, Settings, TexturePlacement, View};
+use portalcast::render::view::{Camera, Perspective, Projection, Settings, TexturePlacement, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_harness::{Emulator, Keys};
@@ -26,6 +26,7 @@ struct Compared {
     resolution: Resolution,
     lighting: portalcast::render::light::Lighting,
     perspective: Perspective,
+    projection: Projection,
     textures: TexturePlacement,
     hud: bool,
     menu: bool,
@@ -89,11 +90,13 @@ impl Checker {
             look_lines: player.look,
         };
         let perspective = Perspective::from_label(field(text, "persp").unwrap()).unwrap();
+        let projection = Projection::from_label(field(text, "proj").unwrap()).unwrap();
         let textures = TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap();
         let settings = Settings {
             resolution,
             lighting,
             perspective,
+            projection,
             textures,
         };
         let mut page = HostPage::new();
@@ -121,6 +124,7 @@ impl Checker {
                 run: player.run,
                 hud: player.hud,
                 perspective,
+                projection,
                 textures,
             };
             menu::draw(
@@ -171,6 +175,7 @@ impl Checker {
             resolution,
             lighting,
             perspective,
+            projection,
             textures,
             hud: player.hud,
             menu: menu_open,
@@ -243,10 +248,12 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         checker.press(key);
     }
     checker.hold_until_compared(right, 2, false);
-    // The quality knobs at the end of the menu: perspective every 8, every 16, then the
-    // textures from the cartridge.
-    let knob_phases: [&[Keys]; 4] = [
+    // The quality knobs at the end of the menu: perspective every 8, every 16, the column
+    // splits in 16.16, in 24.8, then the textures from the cartridge.
+    let knob_phases: [&[Keys]; 6] = [
         &[start, down, down, down, right, start],
+        &[start, right, start],
+        &[start, down, right, start],
         &[start, right, start],
         &[start, down, right, start],
         // The HUD on: its figures are this frame's cycles, which the host reads from the line.
@@ -276,6 +283,12 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         assert!(
             compared.iter().any(|c| c.perspective == perspective),
             "perspective {perspective:?} never compared"
+        );
+    }
+    for projection in Projection::ALL {
+        assert!(
+            compared.iter().any(|c| c.projection == projection),
+            "projection {projection:?} never compared"
         );
     }
     assert!(

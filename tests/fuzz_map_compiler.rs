@@ -622,8 +622,6 @@ struct RenderFault {
     camera: Camera,
     /// The renderer panicked (else it left pixels unwritten or wrote some twice).
     panicked: bool,
-    /// Pixels written twice or more.
-    overdrawn: usize,
 }
 
 fn render(map: &MapTables, compiled: &Compiled) -> Result<(), RenderFault> {
@@ -684,7 +682,6 @@ fn draw(
             message: format!("{what}: the renderer panicked: {}", panic_text(&*payload)),
             camera: *camera,
             panicked: true,
-            overdrawn: 0,
         })?;
         if !faults.is_empty() {
             return Err(RenderFault {
@@ -695,7 +692,6 @@ fn draw(
                 ),
                 camera: *camera,
                 panicked: false,
-                overdrawn: faults.iter().filter(|f| f.2 > 1).count(),
             });
         }
     }

@@ -233,6 +233,19 @@ impl Viewport {
         self.projection_numerator(p).saturating_ratio_fx16_16(p.z)
     }
 
+    /// Continuous screen `x` correctly rounded to 24.8 (1/256 pixel, the thesis' format) and
+    /// clamped, through the integer divide: the projection of the 24.8 precision knob
+    /// (`render::view::Projection`). `z' > 0`.
+    #[inline]
+    #[track_caller]
+    pub fn projected_x_fx24_8(&self, p: EyePoint) -> Fx24_8 {
+        debug_assert!(
+            p.z.to_bits() > 0,
+            "projection needs a point in front of the eye"
+        );
+        self.projection_numerator(p).saturating_ratio_fx24_8(p.z)
+    }
+
     /// `cx·z' + d·x'`, so that `x = (cx·z' + d·x') / z'` saturates once. Each term is at most
     /// `120 · 23171` in 24.8 and the sum fits i32 within the declared limits.
     #[inline]
@@ -258,6 +271,12 @@ impl Viewport {
     /// `[0, width]`: the column rule for positions already in screen space (a sprite's edge).
     #[inline]
     pub const fn first_column_at_or_after_x(&self, x: Fx16_16) -> i32 {
+        clamp(x.first_pixel_at_or_after(), 0, self.width)
+    }
+
+    /// [`first_column_at_or_after_x`](Self::first_column_at_or_after_x) for an `x` in 24.8.
+    #[inline]
+    pub const fn first_column_at_or_after_x_fx24_8(&self, x: Fx24_8) -> i32 {
         clamp(x.first_pixel_at_or_after(), 0, self.width)
     }
 

@@ -1,9 +1,10 @@
 //! The camera and the per-frame view derived from it.
 
 use crate::frame::Resolution;
-use crate::math::{Angle, EyeFrame, Fx24_8, Viewport, WorldPoint};
+use crate::math::{Angle, EyeFrame, EyePoint, Fx24_8, Viewport, WorldPoint, NEAR_DEPTH};
 
 use super::light::Lighting;
+use super::walls::VertexSplit;
 
 /// Where the eye is and where it looks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,6 +35,8 @@ pub struct Settings {
     pub lighting: Lighting,
     /// How walls find their depth and texture column.
     pub perspective: Perspective,
+    /// How exactly vertices are projected to the columns that split walls.
+    pub projection: Projection,
     /// Where the ROM reads texels from. The renderer draws whatever textures it is handed; the
     /// ROM picks them by this knob ([`crate::render::demo::assets_for`]).
     pub textures: TexturePlacement,
@@ -66,12 +69,13 @@ impl TexturePlacement {
 }
 
 impl Settings {
-    /// The shipped defaults: 120×80, sector + depth lighting, exact perspective, textures in
-    /// EWRAM (each the faster or more exact choice by measurement: docs/BENCH.md).
+    /// The shipped defaults: 120×80, sector + depth lighting, exact perspective, exact
+    /// column splits, textures in EWRAM (each the faster or more exact choice by measurement: docs/BENCH.md).
     pub const DEFAULT: Settings = Settings {
         resolution: Resolution::R120x80,
         lighting: Lighting::SectorDepth,
         perspective: Perspective::Exact,
+        projection: Projection::Exact,
         textures: TexturePlacement::Ewram,
     };
 }
@@ -140,6 +144,73 @@ impl Perspective {
     }
 }
 
+/// The fixed-point precision knob: how a wall's end vertex is placed among the columns (which
+/// wall owns which column). The thesis projected vertices to a screen `x` in 24.8 and took the
+/// column from it, which put portals on the wrong column and missed sectors; the engine decides
+/// ownership exactly instead, from 64-bit cross products of each vertex against each column's
+/// ray. The rounded values measure what a projected `x` costs in accuracy and cycles. At every
+/// value the two walls meeting at a vertex share its split, so every column stays owned once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Projection {
+    /// Exact: the column rays' cross products ([`crate::math::Viewport::side_of_column_ray`]).
+    Exact,
+    /// The vertex's `x = cx + d·x'/z'` correctly rounded to 16.16, then the column rule.
+    Fx16_16,
+    /// The same, rounded to 24.8 (1/256 pixel): the thesis' format.
+    Fx24_8,
+}
+
+impl Projection {
+    /// Every value, exact first.
+    pub const ALL: [Projection; 3] = [Projection::Exact, Projection::Fx16_16, Projection::Fx24_8];
+
+    /// The label the ROM prints and the benchmarks read.
+    pub const fn label(self) -> &'static str {
+        match self {
+            Projection::Exact => "exact",
+            Projection::Fx16_16 => "fx16_16",
+            Projection::Fx24_8 => "fx24_8",
+        }
+    }
+
+    /// Parses [`Projection::label`].
+    pub fn from_label(label: &str) -> Option<Projection> {
+        Projection::ALL
+            .into_iter()
+            .find(|projection| projection.label() == label)
+    }
+
+    /// The value after this one (the menu cycles through them).
+    pub const fn next(self) -> Projection {
+        match self {
+            Projection::Exact => Projection::Fx16_16,
+            Projection::Fx16_16 => Projection::Fx24_8,
+            Projection::Fx24_8 => Projection::Exact,
+        }
+    }
+
+    /// The split of the columns `[first, end)` by the eye-space vertex `p` at this precision:
+    /// for a vertex beyond the near plane, from its screen `x` rounded to the format (16.16 or
+    /// 24.8) by the column rule of [`Viewport::first_column_at_or_after`]; at or behind it, and
+    /// for [`Projection::Exact`], the exact [`VertexSplit::new`] (a projection is undefined
+    /// there). Out of line and in this module, which stays in ROM (linker.ld), so that the hot
+    /// IWRAM code of the default, exact path does not grow with it.
+    #[inline(never)]
+    pub fn split(self, viewport: &Viewport, p: EyePoint, first: i32, end: i32) -> VertexSplit {
+        let first_column = match self {
+            _ if p.z <= NEAR_DEPTH => return VertexSplit::new(viewport, p, first, end),
+            Projection::Exact => return VertexSplit::new(viewport, p, first, end),
+            Projection::Fx16_16 => {
+                viewport.first_column_at_or_after_x(viewport.projected_x_exact(p))
+            }
+            Projection::Fx24_8 => {
+                viewport.first_column_at_or_after_x_fx24_8(viewport.projected_x_fx24_8(p))
+            }
+        };
+        VertexSplit::from_first_column(first_column, first, end)
+    }
+}
+
 /// Everything per frame that follows from the camera and the settings.
 #[derive(Clone, Copy, Debug)]
 pub struct View {
@@ -155,6 +226,8 @@ pub struct View {
     pub lighting: Lighting,
     /// Wall perspective rule.
     pub perspective: Perspective,
+    /// How vertices split the columns.
+    pub projection: Projection,
 }
 
 impl View {
@@ -171,6 +244,7 @@ impl View {
             sector: camera.sector,
             lighting: settings.lighting,
             perspective: settings.perspective,
+            projection: settings.projection,
         }
     }
 }

@@ -10,7 +10,7 @@ use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, SKY};
 use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
-use super::view::View;
+use super::view::{Projection, View};
 use super::walls::{
     owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector, WallStepper,
 };
@@ -548,7 +548,13 @@ impl Ownership {
 
     fn vertex(&self, scene: &Scene, index: u16) -> (EyePoint, VertexSplit) {
         let point = scene.view.eye.to_eye(vertex(scene.map, index));
-        let split = VertexSplit::new(&scene.view.viewport, point, self.first, self.end);
+        let viewport = &scene.view.viewport;
+        // The precision knob's rounded projection is out of line: the default, exact split
+        // stays as small and fast as before.
+        let split = match scene.view.projection {
+            Projection::Exact => VertexSplit::new(viewport, point, self.first, self.end),
+            projection => projection.split(viewport, point, self.first, self.end),
+        };
         (point, split)
     }
 

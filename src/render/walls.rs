@@ -78,6 +78,29 @@ impl VertexSplit {
             boundary: low,
         }
     }
+
+    /// The split of the columns `[first, end)` (`first < end`) by a vertex whose own columns
+    /// start at `first_column` (the first column whose centre is at or right of its projection,
+    /// in `[0, width]`): it is right of the rays of the columns before `first_column` and not
+    /// right of the others, which is the shape [`VertexSplit::new`] finds by bisection.
+    #[inline]
+    pub const fn from_first_column(first_column: i32, first: i32, end: i32) -> VertexSplit {
+        if first_column > first {
+            VertexSplit {
+                right_first: true,
+                boundary: if first_column < end {
+                    first_column
+                } else {
+                    end
+                },
+            }
+        } else {
+            VertexSplit {
+                right_first: false,
+                boundary: end,
+            }
+        }
+    }
 }
 
 /// The columns of `[first, end)` whose rays leave through the wall `a → b`, from the splits of
@@ -484,6 +507,25 @@ mod split_tests {
             if start < stop {
                 prop_assert_eq!((start, stop), (split_start, split_stop));
             }
+        }
+
+        #[test]
+        fn a_split_from_the_exact_first_column_is_the_bisected_split(
+            x in -3000i32..3000, z in 1i32..3000,
+            wide in any::<bool>(),
+            first in 0i32..240, len in 1i32..240,
+        ) {
+            // The precision knob builds its splits with `from_first_column`: given the exact
+            // first column, it must agree with the bisection, so only the rounding differs.
+            let viewport = if wide { Viewport::new(240, 160) } else { Viewport::new(120, 80) };
+            let first = first % viewport.width;
+            let end = (first + len).min(viewport.width);
+            let p = EyePoint::new(Fx24_8::from_bits(x * 37), Fx24_8::from_bits(z * 37));
+            let column = viewport.first_column_at_or_after(p);
+            prop_assert_eq!(
+                VertexSplit::from_first_column(column, first, end),
+                VertexSplit::new(&viewport, p, first, end)
+            );
         }
     }
 }
