@@ -94,7 +94,7 @@ fn figures(op: Op) -> (u64, u64, Option<u64>) {
 #[test]
 fn the_math_scene_stack_stays_in_its_reserve() {
     /// `MATH_SCENE_STACK` in linker.ld.
-    const RESERVE: u64 = 1280;
+    const RESERVE: u64 = 1152;
     let line = math_lines()
         .iter()
         .find(|line| line.starts_with("stack "))

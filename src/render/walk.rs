@@ -3,7 +3,7 @@
 //! was given, records its ceiling and floor windows, draws those planes, and then recurses into
 //! its portals with the narrowed windows. Columns handed to different portals never overlap, so
 //! one set of per-column arrays serves the whole recursion. The recursion is depth first, with
-//! its levels in the renderer's memory rather than on the call stack ([`Renderer::walk`]).
+//! its levels in the renderer's memory rather than on the call stack (`Renderer::walk`).
 
 use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, SKY};
 
