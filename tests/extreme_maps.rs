@@ -14,7 +14,7 @@
 //! them); on vertices and 1/256 from them; on portal lines (facing across and along). How many
 //! walls, vertices and portals, and how many sampled poses (at most 64), is
 //! `PORTALCAST_EXTREME_POSES` per map (default [`DEFAULT_POSES`]); `PORTALCAST_EXTREME_POSES=all`
-//! takes every one (the long form, docs/RELIABILITY_EXTREME.md).
+//! takes every one (the long form, docs/RELIABILITY.md).
 //!
 //! The main test checks the poses within the renderer's contract (the eye strictly inside its
 //! sector) except the frames of [`KNOWN_FAULTS`]; those, the poses 1/256 from a vertex and the
