@@ -31,6 +31,8 @@ use portalcast::game::Game;
 use portalcast::menu::{Entry, ENTRIES};
 use portalcast::player::input::Buttons;
 use portalcast_harness::{Emulator, KeyScript, Keys, LogLevel};
+// SplitMix64, seeded: the soak is the same run every time.
+use portalcast_oracle::Rng;
 use std::collections::BTreeSet;
 
 /// Emulator frames per map in the test command's short soak: 100 seconds of play each.
@@ -350,7 +352,7 @@ struct Plan {
     keys: Vec<u16>,
     /// `states[j]`: the game after `j` ticks.
     states: Vec<Game<'static>>,
-    rng: SplitMix,
+    rng: Rng,
 }
 
 impl Plan {
@@ -358,7 +360,7 @@ impl Plan {
         let mut plan = Plan {
             keys: Vec::new(),
             states: vec![Game::new(portalcast::assets::MAPS)],
-            rng: SplitMix(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15)),
+            rng: Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15)),
         };
         // Idle first: the game may have ticked once or twice before the script takes over.
         plan.hold(0, 8);
@@ -561,23 +563,5 @@ impl Plan {
             }
         }
         KeyScript::from_changes(changes)
-    }
-}
-
-/// A small, seedable random source (SplitMix64): the soak is the same run every time.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// A number in `0..bound`.
-    fn below(&mut self, bound: u64) -> u64 {
-        self.next() % bound
     }
 }

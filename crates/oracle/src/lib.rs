@@ -54,7 +54,7 @@ pub use engine::{compare_with_engine, EngineComparison, RecordingCanvas};
 pub use geometry::find_sector;
 pub use portalcast::render::light::Lighting;
 pub use portalcast::render::surface::Surface;
-pub use poses::sample_poses;
+pub use poses::{sample_poses, Rng};
 pub use render::{mip_level, render, TIE_NUDGE};
 
 use portalcast::math::Viewport;

@@ -45,7 +45,7 @@ pub fn sample_poses(map: &MapTables, count: usize, seed: u64) -> Vec<Camera> {
         tries -= 1;
         let x = on_fx8_grid(f64::from(min_x) + rng.unit() * f64::from(max_x - min_x));
         let y = on_fx8_grid(f64::from(min_y) + rng.unit() * f64::from(max_y - min_y));
-        let angle = angle_from_bits(rng.next() as u16);
+        let angle = angle_from_bits(rng.next_u64() as u16);
         let Some(sector_index) = find_sector(map, x, y) else {
             continue;
         };
@@ -79,11 +79,13 @@ fn on_fx8_grid(value: f64) -> f64 {
     (value * 256.0).round() / 256.0
 }
 
-/// SplitMix64: tiny, seedable, and the same on every host.
-struct Rng(u64);
+/// SplitMix64: tiny, seedable, and the same on every host. The pose sampler's, and the
+/// soak's (tests/emulator_soak.rs): a seeded run is the same run everywhere.
+pub struct Rng(pub u64);
 
 impl Rng {
-    fn next(&mut self) -> u64 {
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -92,7 +94,13 @@ impl Rng {
     }
 
     /// Uniform in `[0, 1)`, from the top 53 bits.
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A number in `0..bound` (`bound > 0`; the modulo's bias is below 2^-40 for the small
+    /// bounds it is used with).
+    pub fn below(&mut self, bound: u64) -> u64 {
+        self.next_u64() % bound
     }
 }
