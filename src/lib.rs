@@ -20,6 +20,7 @@ pub mod player;
 pub mod raster;
 pub mod render;
 pub mod selfcheck;
+pub mod stack;
 pub mod testpic;
 
 #[cfg(target_os = "none")]

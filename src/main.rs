@@ -175,13 +175,15 @@ mod rom {
     /// prints a `stack …` line when the mark has grown.
     const STACK_CHECK_FRAMES: u32 = 64;
 
-    /// `stack used=U room=R`: the deepest the stack has gone since boot (the paint it left
-    /// intact, [`memory::stack_high_water`]) against the room the linker left it.
+    /// `stack used=U room=R reserve=S`: the deepest the stack has gone since boot (the paint it
+    /// left intact, [`memory::stack_high_water`]) against the room the linker left it and the
+    /// reserve its script keeps for it.
     fn log_stack() {
         log::info(format_args!(
-            "stack used={} room={}",
+            "stack used={} room={} reserve={}",
             memory::stack_high_water(),
-            memory::stack_room()
+            memory::stack_room(),
+            memory::stack_reserve()
         ));
     }
 
@@ -464,9 +466,10 @@ mod rom {
         // The paint above the overlay tells how deep this scene's stack went: the linker
         // script's MATH_SCENE_STACK must cover it.
         log::info(format_args!(
-            "stack used={} room={}",
+            "stack used={} room={} reserve={}",
             memory::stack_high_water_above(code.end()),
-            memory::STACK_TOP - code.end()
+            memory::STACK_TOP - code.end(),
+            code.stack_reserve()
         ));
         log::info(format_args!("math done"));
         loop {

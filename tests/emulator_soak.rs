@@ -30,6 +30,7 @@ use common::{boot, field, number};
 use portalcast::game::Game;
 use portalcast::menu::{Entry, ENTRIES};
 use portalcast::player::input::Buttons;
+use portalcast::stack::{IWRAM_START, STACK_PAINT, STACK_TOP};
 use portalcast_harness::{Emulator, KeyScript, Keys, LogLevel};
 // SplitMix64, seeded: the soak is the same run every time.
 use portalcast_oracle::Rng;
@@ -46,18 +47,8 @@ const SHORT_SOAK_FRAMES: u32 = 6000;
 /// or column run past its window.
 const FRAME_CYCLES_BOUND: u64 = 16 * 280_896;
 
-/// Where the boot code's stack paint starts: IWRAM's first address (the used part follows).
-const IWRAM_START: u32 = 0x0300_0000;
-/// The top of the user stack, where the painted room ends.
-const STACK_TOP: u32 = 0x0300_7F00;
-/// `STACK_RESERVE` in linker.ld: the stack the link keeps free below the BIOS area. The ROM's
-/// stack must stay inside it, so that code growing into the rest of IWRAM fails the link rather
-/// than a frame on a real GBA.
-const STACK_RESERVE: u32 = 4096;
 /// IWRAM the ROM may use: all but the 256 bytes at the top that the BIOS keeps.
-const IWRAM_USABLE: u32 = STACK_TOP - IWRAM_START;
-/// `portalcast::hw::memory::STACK_PAINT` (the hardware module exists only in the ROM).
-const STACK_PAINT: u32 = 0x5AC3_3CA5;
+const IWRAM_USABLE: u32 = (STACK_TOP - IWRAM_START) as u32;
 
 /// Mode 4's two pages and what surrounds them in VRAM.
 const PAGE_BYTES: u32 = 240 * 160;
@@ -170,6 +161,8 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
     let (mut pages_compared, mut flips) = (0u64, 0u64);
     let mut max_cycles = (0u64, String::new());
     let mut stack_used_rom = 0u32;
+    // The linker script's STACK_RESERVE, as the ROM prints it; the room until a line says.
+    let mut stack_reserve = stack_room;
     let mut sectors = BTreeSet::new();
     let mut drawn = 0u64;
     let mut last_tick = 0u32;
@@ -238,9 +231,13 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
             } else if text.starts_with("stack ") {
                 let used = number(text, "used") as u32;
                 let room = number(text, "room") as u32;
+                stack_reserve = number(text, "reserve") as u32;
                 stack_used_rom = stack_used_rom.max(used);
-                if used >= room {
-                    return Err(format!("the stack reached .bss: {text}\n{}", context()));
+                if used >= room.min(stack_reserve) {
+                    return Err(format!(
+                        "the stack reached the linker's reserve or its room: {text}\n{}",
+                        context()
+                    ));
                 }
             }
         }
@@ -279,9 +276,9 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
         }
     }
     let stack_used_host = host_stack_high_water(&emulator, iwram_used);
-    if stack_used_host >= stack_room.min(STACK_RESERVE) {
+    if stack_used_host >= stack_room.min(stack_reserve) {
         return Err(format!(
-            "the stack reached {stack_used_host} bytes: past the linker's reserve ({STACK_RESERVE}) or the room ({stack_room})"
+            "the stack reached {stack_used_host} bytes: past the linker's reserve ({stack_reserve}) or the room ({stack_room})"
         ));
     }
     if stack_used_rom > stack_used_host {
@@ -338,11 +335,12 @@ impl Shown {
 /// How deep the stack has been, from the paint the boot code left: the distance from the stack
 /// top to the lowest word that lost it. Read by the host, independently of the ROM's own count.
 fn host_stack_high_water(emulator: &Emulator, iwram_used: u32) -> u32 {
-    let mut address = (IWRAM_START + iwram_used + 3) & !3;
-    while address < STACK_TOP && emulator.read_u32(address) == STACK_PAINT {
+    let top = STACK_TOP as u32;
+    let mut address = (IWRAM_START as u32 + iwram_used + 3) & !3;
+    while address < top && emulator.read_u32(address) == STACK_PAINT {
         address += 4;
     }
-    STACK_TOP - address
+    top - address
 }
 
 /// The buttons of every tick, and the game after every tick, written together: each choice

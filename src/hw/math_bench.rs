@@ -13,6 +13,9 @@ use crate::math_bench::{iwram_loops, Op, Pair, BENCH_EYE, BENCH_VIEWPORT};
 extern "C" {
     static __bench_iwram_start: u8;
     static __bench_iwram_end: u8;
+    /// linker.ld's reserve for the math scene's stack above the overlay (the symbol's address is
+    /// the value).
+    static MATH_SCENE_STACK: u8;
     static __bench_iwram_position_in_rom: u8;
 }
 
@@ -77,6 +80,12 @@ impl BenchCode {
     /// Where the overlay ends: the bottom of the math scene's stack room.
     pub fn end(&self) -> usize {
         (&raw const __bench_iwram_end as usize + 3) & !3
+    }
+
+    /// The stack the linker script keeps between the overlay's end and the stack's top
+    /// (`MATH_SCENE_STACK`); printed with the scene's high-water mark for the tests.
+    pub fn stack_reserve(&self) -> usize {
+        &raw const MATH_SCENE_STACK as usize
     }
 
     /// Size of the overlay in bytes.

@@ -4,6 +4,17 @@ extern "C" {
     static __iwram_start: u8;
     static __bss_end: u8;
     static __ewram_bss_end: u8;
+    /// linker.ld's reserve for the stack (a symbol whose address is the value).
+    static STACK_RESERVE: u8;
+}
+
+pub use crate::stack::{IWRAM_START, STACK_PAINT, STACK_TOP};
+
+/// The stack room the linker script reserves below the BIOS area (`STACK_RESERVE` in linker.ld):
+/// the stack must never go deeper, or code and data grown into the rest of IWRAM would be
+/// overwritten. Printed with the high-water mark, so the tests compare with the script itself.
+pub fn stack_reserve() -> usize {
+    &raw const STACK_RESERVE as usize
 }
 
 /// Start of EWRAM.
@@ -14,11 +25,6 @@ pub const EWRAM_START: usize = 0x0200_0000;
 pub fn ewram_used() -> usize {
     &raw const __ewram_bss_end as usize - EWRAM_START
 }
-
-/// Where the BIOS's user-mode stack starts; it grows down towards our data.
-pub const STACK_TOP: usize = 0x0300_7F00;
-/// Start of IWRAM.
-pub const IWRAM_START: usize = 0x0300_0000;
 
 /// Bytes of IWRAM taken by code, data and zeroed data.
 pub fn iwram_used() -> usize {
@@ -32,11 +38,6 @@ pub fn stack_room() -> usize {
     debug_assert_eq!(start, IWRAM_START);
     STACK_TOP - (&raw const __bss_end as usize)
 }
-
-/// The word the boot code paints the stack's room with; the deepest word that no longer holds it
-/// marks how far the stack has ever reached. An odd, unlikely value: not a small integer, not an
-/// address in any GBA region, not a pattern of repeated bytes.
-pub const STACK_PAINT: u32 = 0x5AC3_3CA5;
 
 /// Bytes left unpainted below the caller's stack pointer: the painting function's own frame
 /// and anything the compiler keeps just below `sp` while it runs.

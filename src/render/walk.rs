@@ -116,12 +116,6 @@ struct Scene<'s, 'a> {
 impl Renderer {
     /// Times the wall and plane stages with `clock` (a free-running counter, e.g. the ROM's
     /// cycle meter), reported in [`FrameStats`].
-    pub fn with_clock(mut self, clock: fn() -> u32) -> Renderer {
-        self.set_clock(clock);
-        self
-    }
-
-    /// [`Renderer::with_clock`] for a renderer already in place.
     pub fn set_clock(&mut self, clock: fn() -> u32) {
         self.clock = clock;
     }
