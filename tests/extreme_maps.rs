@@ -764,26 +764,7 @@ fn render_one_pose() {
     portalcast_oracle::write_diff_png(&run.engine.surfaces, &run.oracle, &png)
         .expect("writing the diff");
     println!("diff: {}", png.display());
-    let width = resolution.width();
-    // Per (engine surface, oracle surface): count, first and last column, first and last row.
-    let mut pairs =
-        std::collections::BTreeMap::<String, (usize, usize, usize, usize, usize)>::new();
-    for row in 0..resolution.height() {
-        for x in 0..width {
-            let engine = run.engine.surfaces[row * width + x];
-            let reference = run.oracle.surface(x, row);
-            if engine != reference {
-                let entry = pairs
-                    .entry(format!("{engine:?}/{reference:?}"))
-                    .or_insert((0, x, x, row, row));
-                entry.0 += 1;
-                entry.1 = entry.1.min(x);
-                entry.2 = entry.2.max(x);
-                entry.3 = entry.3.min(row);
-                entry.4 = entry.4.max(row);
-            }
-        }
-    }
+    let pairs = portalcast_oracle::mismatch_regions(&run.engine.surfaces, &run.oracle);
     for (pair, (count, x0, x1, y0, y1)) in pairs {
         println!("{pair}: {count} pixels, columns {x0}..={x1}, rows {y0}..={y1}");
     }

@@ -5,7 +5,7 @@
 //! `cargo test --release --test projection_knob -- --nocapture` prints the accuracy lines.
 
 use portalcast::assets;
-use portalcast::bench::{default_settings, ACCURACY_FRAME_STEP, FRAMES_PER_SETTING};
+use portalcast::bench::{default_settings, FRAMES_PER_SETTING};
 use portalcast::flight::Flight;
 use portalcast::frame::Resolution;
 use portalcast::math::Angle;
@@ -14,7 +14,7 @@ use portalcast::render::surface::Surface;
 use portalcast::render::view::{Camera, Projection, Settings, View};
 use portalcast::render::walk::Renderer;
 use portalcast_format::MapTables;
-use portalcast_oracle::{compare_with_engine, RecordingCanvas};
+use portalcast_oracle::{bench_run_accuracy, RecordingCanvas};
 
 /// The poses sampled on `map`: every frame of its fly-through, and its first pose turned
 /// by eighths of a turn (a vertex behind the eye on most of them).
@@ -118,38 +118,24 @@ fn rounded_projections_against_the_oracle() {
         for resolution in Resolution::ALL {
             for projection in Projection::ALL {
                 let settings = settings(resolution, projection);
-                let (mut pixels, mut surface, mut texel) = (0u64, 0u64, 0u64);
-                let (mut wall_edge, mut missed, mut holes) = (0u32, 0u64, 0u64);
-                let poses = Flight::new(map)
-                    .take(FRAMES_PER_SETTING as usize)
-                    .step_by(ACCURACY_FRAME_STEP as usize);
-                for camera in poses {
-                    let result =
-                        compare_with_engine(&mut renderer, map, &assets, &camera, &settings);
-                    let comparison = result.comparison;
-                    pixels += comparison.pixels as u64;
-                    surface += comparison.surface_mismatches as u64;
-                    texel += comparison.texel_mismatches as u64;
-                    wall_edge = wall_edge.max(comparison.max_wall_edge_error_px);
-                    missed += comparison.missed_sectors.len() as u64;
-                    holes += comparison.holes as u64;
-                }
+                let accuracy = bench_run_accuracy(&mut renderer, map, &assets, &settings);
                 let mut differ = 0u64;
                 for camera in Flight::new(map).take(FRAMES_PER_SETTING as usize) {
                     differ += surfaces_differing_from_exact(&mut renderer, map, &camera, &settings);
                 }
-                let percent = |count: u64| 100.0 * count as f64 / pixels as f64;
                 println!(
                     "projection map={} res={} proj={} surface%={:.3} texel%={:.2} \
-                     wall_edge_px={wall_edge} missed_sectors={missed} holes={holes} \
-                     px_differing_from_exact={differ}",
+                     wall_edge_px={} missed_sectors={} holes={} px_differing_from_exact={differ}",
                     map.name,
                     resolution.label(),
                     projection.label(),
-                    percent(surface),
-                    percent(texel),
+                    accuracy.percent(accuracy.surface_mismatches),
+                    accuracy.percent(accuracy.texel_mismatches),
+                    accuracy.wall_edge_px,
+                    accuracy.missed_sectors,
+                    accuracy.holes,
                 );
-                assert!(pixels > 0);
+                assert!(accuracy.pixels > 0);
             }
         }
     }

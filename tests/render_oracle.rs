@@ -202,27 +202,7 @@ fn thesis_failure_poses_match_the_oracle() {
                     portalcast_oracle::write_diff_png(&canvas.surfaces, &oracle, &png)
                         .expect("writing the diff");
                     println!("diff: {}", png.display());
-                    let width = resolution.width();
-                    let mut pairs = std::collections::BTreeMap::<
-                        String,
-                        (usize, usize, usize, usize, usize),
-                    >::new();
-                    for row in 0..resolution.height() {
-                        for x in 0..width {
-                            let engine = canvas.surfaces[row * width + x];
-                            let reference = oracle.surface(x, row);
-                            if engine != reference {
-                                let e = pairs
-                                    .entry(format!("{engine:?}/{reference:?}"))
-                                    .or_insert((0, x, x, row, row));
-                                e.0 += 1;
-                                e.1 = e.1.min(x);
-                                e.2 = e.2.max(x);
-                                e.3 = e.3.min(row);
-                                e.4 = e.4.max(row);
-                            }
-                        }
-                    }
+                    let pairs = portalcast_oracle::mismatch_regions(&canvas.surfaces, &oracle);
                     println!("mismatches (count, x range, row range): {pairs:?}");
                 }
                 assert!(

@@ -1,6 +1,6 @@
 //! Engine frame against oracle frame: counts, edge error, sectors, and a diff picture.
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::io;
 use std::path::Path;
 
@@ -55,6 +55,33 @@ fn percent(count: usize, total: usize) -> f64 {
     } else {
         100.0 * count as f64 / total as f64
     }
+}
+
+/// Where a frame differs from the oracle's, per pair of surfaces (`"engine/oracle"`, e.g.
+/// `"Wall(3)/Floor(1)"`): the pixel count, the first and last column, the first and last row.
+/// For a failing test's message, next to [`write_diff_png`]'s picture.
+pub fn mismatch_regions(
+    engine_surfaces: &[Surface],
+    oracle: &Frame,
+) -> BTreeMap<String, (usize, usize, usize, usize, usize)> {
+    let mut regions = BTreeMap::<String, (usize, usize, usize, usize, usize)>::new();
+    for row in 0..oracle.height {
+        for x in 0..oracle.width {
+            let engine = engine_surfaces[row * oracle.width + x];
+            let reference = oracle.surface(x, row);
+            if engine != reference {
+                let region = regions
+                    .entry(format!("{engine:?}/{reference:?}"))
+                    .or_insert((0, x, x, row, row));
+                region.0 += 1;
+                region.1 = region.1.min(x);
+                region.2 = region.2.max(x);
+                region.3 = region.3.min(row);
+                region.4 = region.4.max(row);
+            }
+        }
+    }
+    regions
 }
 
 /// Compares an engine frame (surfaces and final palette indices, row-major, the oracle's size)

@@ -2,6 +2,8 @@
 //! (through the rasterizer twins, recording which surface each pixel shows), render it with the
 //! oracle, and compare. The accuracy test and the benchmark report both go through here.
 
+use portalcast::bench::{ACCURACY_FRAME_STEP, FRAMES_PER_SETTING};
+use portalcast::flight::Flight;
 use portalcast::frame::Resolution;
 use portalcast::raster::column::ColumnTexture;
 use portalcast::raster::flat::FlatTexture;
@@ -155,4 +157,61 @@ pub fn compare_with_engine(
         oracle,
         comparison,
     }
+}
+
+/// A bench run's accuracy against the oracle, summed over its compared frames: what the
+/// benchmark report prints per run (`bench-accuracy`) and the knob tests print.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct RunAccuracy {
+    /// Frames compared.
+    pub frames: u64,
+    /// Pixels compared.
+    pub pixels: u64,
+    /// Pixels on another surface than the oracle's (holes included).
+    pub surface_mismatches: u64,
+    /// Pixels on the oracle's surface with another palette index.
+    pub texel_mismatches: u64,
+    /// The largest vertical wall-edge error of any frame, in rows.
+    pub wall_edge_px: u32,
+    /// Sectors the oracle shows and the engine misses, summed over the frames.
+    pub missed_sectors: u64,
+    /// Pixels left unwritten.
+    pub holes: u64,
+}
+
+impl RunAccuracy {
+    /// Adds one frame's comparison.
+    pub fn add(&mut self, comparison: &Comparison) {
+        self.frames += 1;
+        self.pixels += comparison.pixels as u64;
+        self.surface_mismatches += comparison.surface_mismatches as u64;
+        self.texel_mismatches += comparison.texel_mismatches as u64;
+        self.wall_edge_px = self.wall_edge_px.max(comparison.max_wall_edge_error_px);
+        self.missed_sectors += comparison.missed_sectors.len() as u64;
+        self.holes += comparison.holes as u64;
+    }
+
+    /// `count` in per cent of the pixels compared.
+    pub fn percent(&self, count: u64) -> f64 {
+        100.0 * count as f64 / self.pixels as f64
+    }
+}
+
+/// The accuracy of the bench run `(map, settings)`: every [`ACCURACY_FRAME_STEP`]-th frame of the
+/// map's fly-through (the frames the ROM's bench scene times) rendered by the engine and by the
+/// oracle and compared.
+pub fn bench_run_accuracy(
+    renderer: &mut Renderer,
+    map: &MapTables,
+    assets: &RenderAssets,
+    settings: &Settings,
+) -> RunAccuracy {
+    let mut accuracy = RunAccuracy::default();
+    let poses = Flight::new(map)
+        .take(FRAMES_PER_SETTING as usize)
+        .step_by(ACCURACY_FRAME_STEP as usize);
+    for camera in poses {
+        accuracy.add(&compare_with_engine(renderer, map, assets, &camera, settings).comparison);
+    }
+    accuracy
 }

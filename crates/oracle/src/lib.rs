@@ -49,8 +49,10 @@ mod geometry;
 mod poses;
 mod render;
 
-pub use compare::{compare, surface_colour, write_diff_png, Comparison};
-pub use engine::{compare_with_engine, EngineComparison, RecordingCanvas};
+pub use compare::{compare, mismatch_regions, surface_colour, write_diff_png, Comparison};
+pub use engine::{
+    bench_run_accuracy, compare_with_engine, EngineComparison, RecordingCanvas, RunAccuracy,
+};
 pub use geometry::find_sector;
 pub use portalcast::render::light::Lighting;
 pub use portalcast::render::surface::Surface;

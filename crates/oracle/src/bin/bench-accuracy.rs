@@ -10,37 +10,28 @@
 //! is the largest over them. The engine's frames on the host are the ROM's frames: the emulator
 //! test `emulator_render` proves them identical pixel for pixel.
 
-use portalcast::bench::{all_runs, SettingsLabel, ACCURACY_FRAME_STEP, FRAMES_PER_SETTING};
-use portalcast::flight::Flight;
+use portalcast::bench::{all_runs, SettingsLabel};
 use portalcast::render::demo::render_assets;
 use portalcast::render::walk::Renderer;
-use portalcast_oracle::compare_with_engine;
+use portalcast_oracle::bench_run_accuracy;
 
 fn main() {
     let assets = render_assets();
     let mut renderer = Renderer::new();
     for (map, settings) in all_runs() {
-        let (mut frames, mut pixels, mut surface, mut texel) = (0u64, 0u64, 0u64, 0u64);
-        let (mut wall_edge, mut missed, mut holes) = (0u32, 0u64, 0u64);
-        let poses = Flight::new(map)
-            .take(FRAMES_PER_SETTING as usize)
-            .step_by(ACCURACY_FRAME_STEP as usize);
-        for camera in poses {
-            let result = compare_with_engine(&mut renderer, map, &assets, &camera, &settings);
-            let comparison = result.comparison;
-            frames += 1;
-            pixels += comparison.pixels as u64;
-            surface += comparison.surface_mismatches as u64;
-            texel += comparison.texel_mismatches as u64;
-            wall_edge = wall_edge.max(comparison.max_wall_edge_error_px);
-            missed += comparison.missed_sectors.len() as u64;
-            holes += comparison.holes as u64;
-        }
+        let accuracy = bench_run_accuracy(&mut renderer, map, &assets, &settings);
         println!(
-            "accuracy map={} {} frames={frames} pixels={pixels} surface_mismatches={surface} \
-             texel_mismatches={texel} wall_edge_px={wall_edge} missed_sectors={missed} holes={holes}",
+            "accuracy map={} {} frames={} pixels={} surface_mismatches={} texel_mismatches={} \
+             wall_edge_px={} missed_sectors={} holes={}",
             map.name,
             SettingsLabel(&settings),
+            accuracy.frames,
+            accuracy.pixels,
+            accuracy.surface_mismatches,
+            accuracy.texel_mismatches,
+            accuracy.wall_edge_px,
+            accuracy.missed_sectors,
+            accuracy.holes,
         );
     }
 }
