@@ -263,5 +263,11 @@ BENCH_LOOP
     eorhi   r0, r0, #0x80000000
 BENCH_END pc_mb_project_x, r0
 
+@ linker.ld ends .iwram_render with this empty word-aligned section, so that the overlay's image,
+@ loaded right after it, starts on a word even when the renderer is Thumb code (whose size may
+@ be a multiple of 2 only). "R": kept, though nothing refers to it.
+    .section .iwram_render_end, "aR", %progbits
+    .balign 4
+
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

@@ -407,7 +407,9 @@ mod rom {
         use portalcast::hw::math_bench::BenchCode;
         use portalcast::math_bench::{mix, Op, Pair, INPUTS};
 
-        let code = BenchCode::load();
+        // SAFETY: the overlay replaces the renderer's per-frame code; this scene draws nothing
+        // and never returns (its caller would go on to the game).
+        let code = unsafe { BenchCode::load() };
         let code_mode = if cfg!(target_feature = "thumb-mode") {
             "thumb"
         } else {
@@ -463,14 +465,7 @@ mod rom {
                 DecimalOrDash(op.has_arm().then(|| cost(arm))),
             ));
         }
-        // The paint above the overlay tells how deep this scene's stack went: the linker
-        // script's MATH_SCENE_STACK must cover it.
-        log::info(format_args!(
-            "stack used={} room={} reserve={}",
-            memory::stack_high_water_above(code.end()),
-            memory::STACK_TOP - code.end(),
-            code.stack_reserve()
-        ));
+        log_stack();
         log::info(format_args!("math done"));
         loop {
             display.wait_vblank();

@@ -88,9 +88,10 @@ fn figures(op: Op) -> (u64, u64, Option<u64>) {
     (number(line, "rom"), number(line, "iwram"), arm)
 }
 
-/// The math scene's stack stays inside the reserve the linker script keeps between its code
-/// overlay and the stack's top (`MATH_SCENE_STACK`, which the scene prints as `reserve=`): the
-/// scene prints how deep it went, read from the boot paint above the overlay.
+/// The math scene's stack stays inside the linker script's `STACK_RESERVE`, like every scene's:
+/// its code overlay runs over the renderer's code, not in the stack's room, so the boot paint
+/// from the end of `.bss` up tells how deep the scene went (`stack used=… room=… reserve=…`,
+/// printed before `math done`).
 #[test]
 fn the_math_scene_stack_stays_in_its_reserve() {
     let line = math_lines()

@@ -1,11 +1,12 @@
 //! The math benchmark's IWRAM code: the overlay that holds it, and safe calls into it.
 //!
-//! The benchmark's IWRAM variants (the Thumb loops of `math_bench::iwram_loops` and the ARM
-//! routines of `asm/mathbench.s`) are linked to run just above `.bss`, in the part of IWRAM the
-//! stack only reaches when it is more than `stack_room − overlay size` deep, and stored in ROM
-//! after the EWRAM image (`linker.ld`, section `.bench_iwram`). Only the math scene copies them
-//! in ([`BenchCode::load`]), so the game keeps all of its stack room; the scene's own stack stays
-//! far above the overlay (checked when loading).
+//! The benchmark's IWRAM variants (the loops of `math_bench::iwram_loops` and the ARM routines of
+//! `asm/mathbench.s`) are stored in ROM after the IWRAM image and linked to run over the
+//! renderer's per-frame code (`linker.ld`: `.bench_iwram` shares its run addresses with
+//! `.iwram_render`: the portal walk and its wall and span stages). The math scene never runs that
+//! code, so the overlay costs the game neither IWRAM nor stack room; but loading it
+//! destroys the renderer until the next reset, which is why [`BenchCode::load`] is `unsafe` and
+//! the math scene never returns.
 
 use crate::math::tables::{RECIP_SEED_U16, SIN_QUARTER_FX2_30};
 use crate::math_bench::{iwram_loops, Op, Pair, BENCH_EYE, BENCH_VIEWPORT};
@@ -13,18 +14,8 @@ use crate::math_bench::{iwram_loops, Op, Pair, BENCH_EYE, BENCH_VIEWPORT};
 extern "C" {
     static __bench_iwram_start: u8;
     static __bench_iwram_end: u8;
-    /// linker.ld's reserve for the math scene's stack above the overlay (the symbol's address is
-    /// the value).
-    static MATH_SCENE_STACK: u8;
     static __bench_iwram_position_in_rom: u8;
 }
-
-/// Stack the math scene keeps free between its stack pointer and the overlay's end when it
-/// loads the overlay. Its deepest calls (formatting a log line) reach about 612 bytes below that
-/// frame: the scene prints its high-water mark (`stack used=…`, 868 bytes below the stack's top,
-/// 256 of them above this frame, when this was set), and tests/emulator_math.rs checks it
-/// against the linker's reserve.
-const STACK_MARGIN: usize = 768;
 
 /// The ARM routines' common signature (documented at the top of `asm/mathbench.s`): pairs, pairs
 /// per round, rounds, context block.
@@ -49,43 +40,32 @@ pub struct BenchCode {
 }
 
 impl BenchCode {
-    /// Copies the overlay from ROM into IWRAM. Panics if the caller's stack is within
-    /// `STACK_MARGIN` bytes of the overlay's end (the copy would overwrite live stack, or the
-    /// stack would later grow into the code).
-    pub fn load() -> BenchCode {
+    /// Copies the overlay from ROM into IWRAM, over the renderer's per-frame code. There is no
+    /// way back short of a reset: the IWRAM image is copied only at boot.
+    ///
+    /// # Safety
+    ///
+    /// No code of `.iwram_render` (`render::walk`, `render::walls`, `render::spans`: every
+    /// `Renderer::render`) may run after this call, and the caller must not be running from there
+    /// itself. The math scene calls it once, renders nothing and
+    /// never returns to `main`.
+    pub unsafe fn load() -> BenchCode {
         let start = &raw const __bench_iwram_start as usize;
         let end = &raw const __bench_iwram_end as usize;
         let source = &raw const __bench_iwram_position_in_rom as usize;
-        let marker = core::hint::black_box(0u8);
-        let stack = &raw const marker as usize;
-        assert!(
-            end + STACK_MARGIN <= stack,
-            "the benchmark overlay (0x{start:08x}..0x{end:08x}) is too close to the stack (0x{stack:08x})"
-        );
         for offset in (0..end - start).step_by(4) {
-            // SAFETY: the linker script places the overlay's image at `source` in ROM and
-            // reserves `start..end` in IWRAM for it, word-aligned; nothing else lives there (it
-            // is above .bss, and the stack is more than STACK_MARGIN bytes above, checked).
-            // Volatile, so the stores are kept and stay before the calls into the overlay (the
-            // compiler does not know the code is run). A fence would do it too, but on the
-            // ARMv4T it links to a missing `__sync_synchronize`.
+            // SAFETY: the linker script places the overlay's image at `source` in ROM and its
+            // run addresses `start..end`, word-aligned (asserted there), inside `.iwram_render`,
+            // which holds only code that the caller promises never to run again: no data, no
+            // stack. Volatile, so the stores are kept and stay before the calls into the
+            // overlay (the compiler does not know the code is run). A fence would do it too, but
+            // on the ARMv4T it links to a missing `__sync_synchronize`.
             unsafe {
                 let word = ((source + offset) as *const u32).read_volatile();
                 ((start + offset) as *mut u32).write_volatile(word);
             }
         }
         BenchCode { bytes: end - start }
-    }
-
-    /// Where the overlay ends: the bottom of the math scene's stack room.
-    pub fn end(&self) -> usize {
-        (&raw const __bench_iwram_end as usize + 3) & !3
-    }
-
-    /// The stack the linker script keeps between the overlay's end and the stack's top
-    /// (`MATH_SCENE_STACK`); printed with the scene's high-water mark for the tests.
-    pub fn stack_reserve(&self) -> usize {
-        &raw const MATH_SCENE_STACK as usize
     }
 
     /// Size of the overlay in bytes.

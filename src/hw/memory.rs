@@ -73,15 +73,7 @@ fn painted_start() -> usize {
 /// [`STACK_TOP`]: the distance from the top to the lowest word that lost its paint. Compare it
 /// with [`stack_room`]; when they meet, the stack has run into `.bss`.
 pub fn stack_high_water() -> usize {
-    stack_high_water_above(painted_start())
-}
-
-/// [`stack_high_water`] for a stack whose room starts at `bottom` (word aligned, above the end
-/// of `.bss`): the math scene's, whose room ends at its code overlay, which overwrote the paint
-/// below it.
-pub fn stack_high_water_above(bottom: usize) -> usize {
-    debug_assert!(bottom >= painted_start() && bottom.is_multiple_of(4));
-    let mut address = bottom;
+    let mut address = painted_start();
     // SAFETY: word-aligned reads inside IWRAM, between the end of .bss and the stack top.
     while address < STACK_TOP && unsafe { (address as *const u32).read_volatile() } == STACK_PAINT {
         address += 4;

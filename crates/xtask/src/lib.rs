@@ -8,6 +8,7 @@ pub mod baseline;
 pub mod bench_log;
 pub mod bench_math;
 pub mod extreme_maps;
+pub mod overlay;
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -335,6 +336,7 @@ fn run_keeping_build_script_errors(command: &mut Command, what: &str) -> TaskRes
 
 /// Converts a linked ELF into a `.gba` with a valid header (logo, complement check, title, game
 /// code). Writes a temporary file and renames it, so a failure leaves no half-written ROM.
+/// Refuses an ELF whose math benchmark overlay would run code it replaces ([`overlay::check`]).
 pub fn elf_to_gba(elf: &Path, gba: &Path) -> TaskResult<()> {
     let elf_bytes = std::fs::read(elf).map_err(|error| {
         TaskError(format!(
@@ -342,6 +344,8 @@ pub fn elf_to_gba(elf: &Path, gba: &Path) -> TaskResult<()> {
             elf.display()
         ))
     })?;
+    overlay::check(&elf_bytes)
+        .map_err(|problem| TaskError(format!("{}: {problem}", elf.display())))?;
     let header = agb_gbafix::GbaHeader {
         start_code: [0; 4],
         game_title: *b"PORTALCAST\0\0",

@@ -651,6 +651,20 @@ fn sizes(doc: &mut String, measurements: &Measurements) {
             group_digits(u64::from(section.size))
         );
     }
+    for (index, section) in sizes.sections.iter().enumerate() {
+        let shared = sizes.sections[..index]
+            .iter()
+            .find(|earlier| earlier.address == section.address);
+        if let Some(under) = shared {
+            let _ = write!(
+                doc,
+                "\n`{}` shares its run addresses with `{}`: an overlay that the one scene using it \
+                 copies over that code, which the scene never runs (linker.ld). IWRAM's use above \
+                 counts those bytes once.\n",
+                section.name, under.name
+            );
+        }
+    }
     doc.push_str(
         "\n`cargo rom` prints the asset compiler's size report (ROM bytes per asset kind, and the \
          RAM each would need if copied) after the build.\n\n",

@@ -1,0 +1,372 @@
+//! A check of the linked ROM that the linker script cannot make itself: nothing the math
+//! benchmark's overlay calls may lie in the code the overlay replaces.
+//!
+//! The overlay (`.bench_iwram`) runs over the renderer's code (`.iwram_render`, linker.ld): once
+//! the math scene has loaded it, the bytes it covers hold the overlay, and the rest of
+//! `.iwram_render` holds renderer code that nothing the math scene runs may depend on. The
+//! script's NOCROSSREFS makes the linker refuse a direct reference between the two. It cannot
+//! see lld's thunks: a call that needs a long-branch or interworking veneer (every call from
+//! IWRAM to the ROM) goes through a thunk placed after the first caller's input sections, and lld
+//! hands that one thunk to every later caller in range, whatever its section. A renderer call
+//! to, say, `__aeabi_idiv` made first would put the thunk in `.iwram_render`, and the overlay's
+//! own divide would jump there. So this decodes every branch of the overlay (ARM `B`/`BL`; Thumb
+//! `B`, `B<cond>`, `BL`) and refuses one that leaves the overlay for `.iwram_render`, or that lands
+//! on one of lld's thunks in `.iwram_render` under the overlay's own bytes.
+//!
+//! Indirect jumps (`BX`, loads into `pc`) are not followed: the overlay's are returns, its jump
+//! table and its own thunks, whose targets are in the ROM.
+
+/// The section names of linker.ld.
+const OVERLAY: &str = ".bench_iwram";
+const REPLACED: &str = ".iwram_render";
+
+/// A range of run addresses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Span {
+    pub start: u32,
+    pub end: u32,
+}
+
+impl Span {
+    fn contains(self, address: u32) -> bool {
+        (self.start..self.end).contains(&address)
+    }
+}
+
+/// What the code at an address is, after the ARM ELF mapping symbols (`$a`, `$t`, `$d`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    Arm,
+    Thumb,
+    Data,
+}
+
+/// The branches in `code` (run from `at.start`), as (address of the branch, target), with
+/// `modes` sorted by address (code before the first one is ARM).
+pub fn branches(code: &[u8], at: Span, modes: &[(u32, Mode)]) -> Vec<(u32, u32)> {
+    let mut found = Vec::new();
+    let halfword = |address: u32| -> Option<u16> {
+        let offset = (address - at.start) as usize;
+        code.get(offset..offset + 2)
+            .map(|bytes| u16::from_le_bytes([bytes[0], bytes[1]]))
+    };
+    let mut address = at.start;
+    while address < at.end {
+        let mode = modes
+            .iter()
+            .rev()
+            .find(|(start, _)| *start <= address)
+            .map_or(Mode::Arm, |&(_, mode)| mode);
+        match mode {
+            Mode::Data => address += 2,
+            Mode::Arm if !address.is_multiple_of(4) => address += 2,
+            Mode::Arm => {
+                let (Some(low), Some(high)) = (halfword(address), halfword(address + 2)) else {
+                    break;
+                };
+                let word = u32::from(low) | u32::from(high) << 16;
+                if word >> 28 != 0xF && (word >> 25) & 7 == 0b101 {
+                    let offset = sign_extend(word & 0x00FF_FFFF, 24) << 2;
+                    found.push((address, address.wrapping_add(8).wrapping_add(offset as u32)));
+                }
+                address += 4;
+            }
+            Mode::Thumb => {
+                let Some(first) = halfword(address) else {
+                    break;
+                };
+                let pc = address.wrapping_add(4);
+                let second = halfword(address + 2).unwrap_or(0);
+                if first & 0xF800 == 0xF000 && second & 0xF800 == 0xF800 {
+                    let offset = u32::from(first & 0x7FF) << 12 | u32::from(second & 0x7FF) << 1;
+                    found.push((address, pc.wrapping_add(sign_extend(offset, 23) as u32)));
+                    address += 4;
+                    continue;
+                }
+                if first & 0xF800 == 0xE000 {
+                    let offset = sign_extend(u32::from(first & 0x7FF) << 1, 12);
+                    found.push((address, pc.wrapping_add(offset as u32)));
+                } else if first & 0xF000 == 0xD000 && (first >> 8) & 0xF < 0xE {
+                    let offset = sign_extend(u32::from(first & 0xFF) << 1, 9);
+                    found.push((address, pc.wrapping_add(offset as u32)));
+                }
+                address += 2;
+            }
+        }
+    }
+    found
+}
+
+fn sign_extend(value: u32, bits: u32) -> i32 {
+    ((value << (32 - bits)) as i32) >> (32 - bits)
+}
+
+/// The overlay's branches that would run code it does not hold once loaded: `branches` are
+/// (from, to); `overlay` its bytes, `replaced` the section it is loaded over (starting at the
+/// same address), `replaced_symbols` that section's symbols (address, name), sorted.
+pub fn stray_branches(
+    branches: &[(u32, u32)],
+    overlay: Span,
+    replaced: Span,
+    replaced_symbols: &[(u32, String)],
+) -> Vec<String> {
+    let mut problems = Vec::new();
+    for &(from, to) in branches {
+        if !replaced.contains(to) {
+            continue;
+        }
+        if !overlay.contains(to) {
+            let name = replaced_symbols
+                .iter()
+                .rev()
+                .find(|(at, _)| *at <= to)
+                .map_or("", |(_, name)| name.as_str());
+            problems.push(format!(
+                "0x{from:08x} branches to 0x{to:08x} ({name}), past the overlay's end in {REPLACED}"
+            ));
+        } else if let Some((_, name)) = replaced_symbols
+            .iter()
+            .find(|(at, name)| *at == to && name.contains("Thunk_"))
+        {
+            problems.push(format!(
+                "0x{from:08x} branches to 0x{to:08x} ({name}), which the overlay overwrites"
+            ));
+        }
+    }
+    problems
+}
+
+/// Checks a linked ROM ELF (see the module's documentation). A ROM without the two sections
+/// passes.
+pub fn check(elf: &[u8]) -> Result<(), String> {
+    let sections = sections(elf)?;
+    let find = |name: &str| sections.iter().position(|section| section.name == name);
+    let (Some(overlay_index), Some(replaced_index)) = (find(OVERLAY), find(REPLACED)) else {
+        return Ok(());
+    };
+    let (overlay, replaced) = (&sections[overlay_index], &sections[replaced_index]);
+    let code = elf
+        .get(overlay.offset as usize..(overlay.offset + overlay.size) as usize)
+        .ok_or("the overlay's bytes are past the end of the file")?;
+    let mut modes = Vec::new();
+    let mut replaced_symbols = Vec::new();
+    for symbol in symbols(elf, &sections)? {
+        let mode = match symbol.name.split('.').next() {
+            Some("$a") => Mode::Arm,
+            Some("$t") => Mode::Thumb,
+            Some("$d") => Mode::Data,
+            _ => {
+                if symbol.section == replaced_index && !symbol.name.is_empty() {
+                    replaced_symbols.push((symbol.value & !1, symbol.name));
+                }
+                continue;
+            }
+        };
+        if symbol.section == overlay_index {
+            modes.push((symbol.value, mode));
+        }
+    }
+    modes.sort_by_key(|&(address, _)| address);
+    replaced_symbols.sort();
+    let overlay_span = Span {
+        start: overlay.address,
+        end: overlay.address + overlay.size,
+    };
+    let replaced_span = Span {
+        start: replaced.address,
+        end: replaced.address + replaced.size,
+    };
+    let problems = stray_branches(
+        &branches(code, overlay_span, &modes),
+        overlay_span,
+        replaced_span,
+        &replaced_symbols,
+    );
+    if problems.is_empty() {
+        return Ok(());
+    }
+    Err(format!(
+        "the math benchmark's overlay ({OVERLAY}) would run code of {REPLACED}, which it replaces \
+         when the math scene loads it:\n  {}\nlld shares a thunk between every caller in range: \
+         in linker.ld, move the renderer module that calls the same function from {REPLACED} to \
+         .iwram, so that the thunk is made there (as render::planes is, for __aeabi_idiv).",
+        problems.join("\n  ")
+    ))
+}
+
+struct Section {
+    name: String,
+    kind: u32,
+    address: u32,
+    offset: u32,
+    size: u32,
+    link: u32,
+}
+
+struct Symbol {
+    name: String,
+    value: u32,
+    section: usize,
+}
+
+fn u16_at(elf: &[u8], at: usize) -> Result<u16, String> {
+    elf.get(at..at + 2)
+        .map(|bytes| u16::from_le_bytes([bytes[0], bytes[1]]))
+        .ok_or_else(|| format!("truncated ELF at {at}"))
+}
+
+fn u32_at(elf: &[u8], at: usize) -> Result<u32, String> {
+    elf.get(at..at + 4)
+        .map(|bytes| u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
+        .ok_or_else(|| format!("truncated ELF at {at}"))
+}
+
+fn string_at(elf: &[u8], at: usize) -> String {
+    let tail = elf.get(at..).unwrap_or(&[]);
+    let end = tail
+        .iter()
+        .position(|&byte| byte == 0)
+        .unwrap_or(tail.len());
+    String::from_utf8_lossy(&tail[..end]).into_owned()
+}
+
+/// The section headers of a 32-bit little-endian ELF.
+fn sections(elf: &[u8]) -> Result<Vec<Section>, String> {
+    if elf.get(..6) != Some(&[0x7f, b'E', b'L', b'F', 1, 1][..]) {
+        return Err("not a 32-bit little-endian ELF".to_string());
+    }
+    let table = u32_at(elf, 0x20)? as usize;
+    let entry_size = usize::from(u16_at(elf, 0x2E)?);
+    let count = usize::from(u16_at(elf, 0x30)?);
+    let names = usize::from(u16_at(elf, 0x32)?);
+    let names_offset = u32_at(elf, table + names * entry_size + 0x10)? as usize;
+    (0..count)
+        .map(|index| {
+            let at = table + index * entry_size;
+            Ok(Section {
+                name: string_at(elf, names_offset + u32_at(elf, at)? as usize),
+                kind: u32_at(elf, at + 0x04)?,
+                address: u32_at(elf, at + 0x0C)?,
+                offset: u32_at(elf, at + 0x10)?,
+                size: u32_at(elf, at + 0x14)?,
+                link: u32_at(elf, at + 0x18)?,
+            })
+        })
+        .collect()
+}
+
+const SHT_SYMTAB: u32 = 2;
+
+/// The symbols of the ELF's symbol table.
+fn symbols(elf: &[u8], sections: &[Section]) -> Result<Vec<Symbol>, String> {
+    let table = sections
+        .iter()
+        .find(|section| section.kind == SHT_SYMTAB)
+        .ok_or("no symbol table")?;
+    let strings = sections
+        .get(table.link as usize)
+        .ok_or("the symbol table's string table is missing")?
+        .offset as usize;
+    (0..table.size as usize / 16)
+        .map(|index| {
+            let at = table.offset as usize + index * 16;
+            Ok(Symbol {
+                name: string_at(elf, strings + u32_at(elf, at)? as usize),
+                value: u32_at(elf, at + 4)?,
+                section: usize::from(u16_at(elf, at + 14)?),
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ARM `BL` at `from` to `to`.
+    fn arm_bl(from: u32, to: u32) -> [u8; 4] {
+        (0xEB00_0000 | (to.wrapping_sub(from + 8) >> 2 & 0x00FF_FFFF)).to_le_bytes()
+    }
+
+    /// Thumb `BL` pair at `from` to `to`.
+    fn thumb_bl(from: u32, to: u32) -> [u8; 4] {
+        let offset = to.wrapping_sub(from + 4);
+        let first = 0xF000 | (offset >> 12 & 0x7FF) as u16;
+        let second = 0xF800 | (offset >> 1 & 0x7FF) as u16;
+        let mut bytes = [0; 4];
+        bytes[..2].copy_from_slice(&first.to_le_bytes());
+        bytes[2..].copy_from_slice(&second.to_le_bytes());
+        bytes
+    }
+
+    const AT: Span = Span {
+        start: 0x0300_1000,
+        end: 0x0300_1010,
+    };
+
+    #[test]
+    fn decodes_arm_and_thumb_branches_and_skips_data() {
+        let mut code = Vec::new();
+        code.extend(arm_bl(0x0300_1000, 0x0300_0040)); // backwards, to .iwram
+        code.extend(0xEAFF_FFFEu32.to_le_bytes()); // B . (a loop on itself)
+        code.extend(thumb_bl(0x0300_1008, 0x0300_2000));
+        code.extend(arm_bl(0, 0)); // in a literal pool: not a branch
+        let modes = [
+            (0x0300_1000, Mode::Arm),
+            (0x0300_1008, Mode::Thumb),
+            (0x0300_100C, Mode::Data),
+        ];
+        assert_eq!(
+            branches(&code, AT, &modes),
+            vec![
+                (0x0300_1000, 0x0300_0040),
+                (0x0300_1004, 0x0300_1004),
+                (0x0300_1008, 0x0300_2000),
+            ]
+        );
+        // Thumb B and B<cond>, forwards and backwards.
+        let code = [0x02, 0xE0, 0xFC, 0xD1, 0x00, 0x00];
+        let at = Span {
+            start: 0x100,
+            end: 0x106,
+        };
+        assert_eq!(
+            branches(&code, at, &[(0x100, Mode::Thumb)]),
+            vec![(0x100, 0x108), (0x102, 0xFE)]
+        );
+    }
+
+    #[test]
+    fn refuses_branches_into_the_replaced_code_only() {
+        let overlay = Span {
+            start: 0x0300_4000,
+            end: 0x0300_5000,
+        };
+        let replaced = Span {
+            start: 0x0300_4000,
+            end: 0x0300_6000,
+        };
+        let symbols = [
+            (0x0300_4000, "draw_walls".to_string()),
+            (
+                0x0300_4800,
+                "__ARMv4ABSLongBXThunk___aeabi_idiv".to_string(),
+            ),
+            (0x0300_5F00, "__ARMv4ABSLongBXThunk_panic".to_string()),
+        ];
+        let fine = [
+            (0x0300_4100, 0x0300_4000), // inside the overlay, where the renderer had a function
+            (0x0300_4100, 0x0300_1000), // .iwram
+            (0x0300_4100, 0x0300_6010), // .bss: not code, but not the renderer's either
+        ];
+        assert!(stray_branches(&fine, overlay, replaced, &symbols).is_empty());
+        let stray = [
+            (0x0300_4100, 0x0300_4800), // a thunk under the overlay
+            (0x0300_4104, 0x0300_5F04), // past the overlay, inside a thunk
+        ];
+        let problems = stray_branches(&stray, overlay, replaced, &symbols);
+        assert_eq!(problems.len(), 2, "{problems:?}");
+        assert!(problems[0].contains("aeabi_idiv") && problems[0].contains("overwrites"));
+        assert!(problems[1].contains("Thunk_panic") && problems[1].contains("past the overlay"));
+    }
+}
