@@ -16,7 +16,7 @@ use crate::assets;
 use crate::frame::Resolution;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Perspective, Projection, Settings, TexturePlacement};
+use crate::render::view::{Perspective, Preprocessing, Projection, Settings, TexturePlacement};
 use crate::render::walk::FrameStats;
 
 /// Frames measured per setting along the [`crate::flight`] path.
@@ -66,12 +66,20 @@ pub fn knob_variants(resolution: Resolution) -> impl Iterator<Item = Settings> {
                 }),
         )
         .chain(
-            [Projection::Fx16_16, Projection::Fx24_8]
-                .into_iter()
-                .map(move |projection| Settings { projection, ..base }),
+            [
+                Projection::Fx16_16,
+                Projection::Fx24_8,
+                Projection::Thesis24_8,
+            ]
+            .into_iter()
+            .map(move |projection| Settings { projection, ..base }),
         )
         .chain(core::iter::once(Settings {
             textures: TexturePlacement::Rom,
+            ..base
+        }))
+        .chain(core::iter::once(Settings {
+            preprocessing: Preprocessing::On,
             ..base
         }))
 }
@@ -119,6 +127,7 @@ impl fmt::Display for SettingsLabel<'_> {
         write!(f, " persp={}", settings.perspective.label())?;
         write!(f, " proj={}", settings.projection.label())?;
         write!(f, " tex={}", settings.textures.label())?;
+        write!(f, " prep={}", settings.preprocessing.label())?;
         Ok(())
     }
 }
@@ -181,7 +190,7 @@ mod tests {
         assert_eq!(distinct.len(), labels.len(), "{labels:?}");
         assert_eq!(
             labels[0],
-            "map=bench res=120x80 lighting=depth persp=exact proj=exact tex=ewram"
+            "map=bench res=120x80 lighting=depth persp=exact proj=exact tex=ewram prep=off"
         );
         assert_eq!(guard_runs().count(), Resolution::ALL.len());
     }
@@ -195,6 +204,8 @@ mod tests {
             span_pixels: u32::MAX,
             depth_cutoffs: u32::MAX,
             repeat_visits: u32::MAX,
+            merged_visits: u32::MAX,
+            plan_overflows: u32::MAX,
             wall_ticks: u32::MAX,
             plane_ticks: u32::MAX,
         };

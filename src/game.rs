@@ -88,6 +88,7 @@ impl<'m> Game<'m> {
             perspective: self.settings.perspective,
             projection: self.settings.projection,
             textures: self.settings.textures,
+            preprocessing: self.settings.preprocessing,
         }
     }
 
@@ -176,6 +177,9 @@ impl<'m> Game<'m> {
                 for _ in 0..steps {
                     self.settings.projection = self.settings.projection.next();
                 }
+            }
+            Entry::Preprocessing => {
+                self.settings.preprocessing = self.settings.preprocessing.next();
             }
             Entry::Hud => self.hud = !self.hud,
             Entry::Textures => {

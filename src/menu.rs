@@ -14,7 +14,7 @@ use crate::raster::flat::{FlatTexture, PackedUv};
 use crate::raster::Canvas;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Perspective, Projection, TexturePlacement};
+use crate::render::view::{Perspective, Preprocessing, Projection, TexturePlacement};
 
 /// One line of the menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,16 +31,18 @@ pub enum Entry {
     Run,
     /// Wall perspective (exact, or exact every 8 or 16 columns).
     Perspective,
-    /// Fixed-point precision of the column splits (exact, 16.16 or 24.8).
+    /// Fixed-point precision of the column splits (exact, 16.16, 24.8, or the thesis' 24.8 slope).
     Projection,
     /// Where texels are read from (EWRAM or the cartridge).
     Textures,
+    /// The thesis' scene preprocessing (merged sector visits), on or off.
+    Preprocessing,
     /// The heads-up display: frame rate and cycles of the last frame.
     Hud,
 }
 
 /// The menu's entries, top to bottom.
-pub const ENTRIES: [Entry; 9] = [
+pub const ENTRIES: [Entry; 10] = [
     Entry::Resolution,
     Entry::Lighting,
     Entry::Map,
@@ -49,6 +51,7 @@ pub const ENTRIES: [Entry; 9] = [
     Entry::Perspective,
     Entry::Projection,
     Entry::Textures,
+    Entry::Preprocessing,
     Entry::Hud,
 ];
 
@@ -64,6 +67,7 @@ impl Entry {
             Entry::Perspective => "PERSP",
             Entry::Projection => "PROJ",
             Entry::Textures => "TEX",
+            Entry::Preprocessing => "PREP",
             Entry::Hud => "HUD",
         }
     }
@@ -90,6 +94,8 @@ pub struct Shown<'a> {
     pub projection: Projection,
     /// Texture placement.
     pub textures: TexturePlacement,
+    /// Scene preprocessing.
+    pub preprocessing: Preprocessing,
 }
 
 impl Entry {
@@ -105,6 +111,7 @@ impl Entry {
             Entry::Perspective => shown.perspective.label(),
             Entry::Projection => shown.projection.label(),
             Entry::Textures => shown.textures.label(),
+            Entry::Preprocessing => shown.preprocessing.label(),
             Entry::Hud => on_off(shown.hud),
         }
     }

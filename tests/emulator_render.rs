@@ -14,7 +14,9 @@ use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
-use portalcast::render::view::{Camera, Perspective, Projection, Settings, TexturePlacement, View};
+use portalcast::render::view::{
+    Camera, Perspective, Preprocessing, Projection, Settings, TexturePlacement, View,
+};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_harness::{Emulator, Keys};
@@ -28,6 +30,7 @@ struct Compared {
     perspective: Perspective,
     projection: Projection,
     textures: TexturePlacement,
+    preprocessing: Preprocessing,
     hud: bool,
     menu: bool,
     cycles: u64,
@@ -92,12 +95,14 @@ impl Checker {
         let perspective = Perspective::from_label(field(text, "persp").unwrap()).unwrap();
         let projection = Projection::from_label(field(text, "proj").unwrap()).unwrap();
         let textures = TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap();
+        let preprocessing = Preprocessing::from_label(field(text, "prep").unwrap()).unwrap();
         let settings = Settings {
             resolution,
             lighting,
             perspective,
             projection,
             textures,
+            preprocessing,
         };
         let mut page = HostPage::new();
         let mut canvas = HostCanvas {
@@ -126,6 +131,7 @@ impl Checker {
                 perspective,
                 projection,
                 textures,
+                preprocessing,
             };
             menu::draw(
                 &mut canvas,
@@ -177,6 +183,7 @@ impl Checker {
             perspective,
             projection,
             textures,
+            preprocessing,
             hud: player.hud,
             menu: menu_open,
             cycles: number(text, "cycles"),
@@ -249,12 +256,13 @@ fn rom_frames_are_identical_to_the_host_renderer() {
     }
     checker.hold_until_compared(right, 2, false);
     // The quality knobs at the end of the menu: perspective every 8, every 16, the column
-    // splits in 16.16, in 24.8, then the textures from the cartridge.
-    let knob_phases: [&[Keys]; 6] = [
+    // splits in 16.16, in 24.8, the textures from the cartridge, then the scene preprocessing.
+    let knob_phases: [&[Keys]; 7] = [
         &[start, down, down, down, right, start],
         &[start, right, start],
         &[start, down, right, start],
         &[start, right, start],
+        &[start, down, right, start],
         &[start, down, right, start],
         // The HUD on: its figures are this frame's cycles, which the host reads from the line.
         &[start, down, right, start],
@@ -289,6 +297,12 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         assert!(
             compared.iter().any(|c| c.projection == projection),
             "projection {projection:?} never compared"
+        );
+    }
+    for preprocessing in Preprocessing::ALL {
+        assert!(
+            compared.iter().any(|c| c.preprocessing == preprocessing),
+            "preprocessing {preprocessing:?} never compared"
         );
     }
     assert!(

@@ -1,6 +1,7 @@
 //! The renderer, in Doom's split: the sector walk (`walk`, Doom's r_bsp), wall projection
 //! (`walls`, r_segs), floors and ceilings (`planes`, r_plane) and the texture and light rules
-//! they share (`surface`, `light`). Rasterizing goes through [`crate::raster::Canvas`].
+//! they share (`surface`, `light`), and the thesis' scene preprocessing (`visits`). Rasterizing
+//! goes through [`crate::raster::Canvas`].
 
 pub mod demo;
 pub mod light;
@@ -9,6 +10,7 @@ pub mod ratio;
 pub mod spans;
 pub mod surface;
 pub mod view;
+pub mod visits;
 pub mod walk;
 pub mod walls;
 

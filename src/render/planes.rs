@@ -158,9 +158,12 @@ impl Plane<'_> {
         let inverse_twice_focal =
             i64::from(recip_small(2 * view.viewport.focal_x as u32).to_bits());
         let w = (depth_bits * inverse_twice_focal) >> 21;
-        // Lateral offset of the first pixel centre, (start + ½ − cx)·w, in 16.16.
-        let twice_offset = 2 * start as i64 + 1 - 2 * i64::from(view.viewport.centre_x());
-        let lateral = (twice_offset * w) >> 1;
+        // Lateral offset of the centre column's pixel centre, ½·w, in 16.16. The span's first
+        // pixel is `start − cx` packed steps from it, as the kernel steps: every pixel of a row
+        // gets the same coordinates whichever span it falls in, so how the walk splits a plane
+        // into visits (the scene preprocessing merges them) changes no texel. From the centre,
+        // the packed step's rounding drifts over at most half the row.
+        let lateral = w >> 1;
         // Map position in 16.16: e + z'·f + lateral·r, with r = (−sin, cos), f = (cos, sin).
         let x = (i64::from(view.eye.position.x.to_bits()) << 8) + ((depth_bits * cos) >> 8)
             - ((lateral * sin) >> 16);
@@ -172,13 +175,21 @@ impl Plane<'_> {
         let step_y = (w * cos) >> 16;
         // Texture coordinates wrap, so keeping the low 32 bits of each is exact.
         let at_level = |value: i64| (value >> level) as i32;
+
         let colormap = light_row(self.sector.light, depth.to_int_floor(), view.lighting)
             .map(|row| &self.assets.colormap[row]);
+        let centre = PackedUv::pack(at_level(x), at_level(y), side_log2);
+        let step = PackedUv::pack(at_level(step_x), at_level(step_y), side_log2);
+        let steps_from_centre = (start as u32).wrapping_sub(view.viewport.centre_x() as u32);
         let flat = FlatTexture {
             texels,
             log2_side: side_log2,
-            pos: PackedUv::pack(at_level(x), at_level(y), side_log2),
-            step: PackedUv::pack(at_level(step_x), at_level(step_y), side_log2),
+            pos: PackedUv(
+                centre
+                    .0
+                    .wrapping_add(step.0.wrapping_mul(steps_from_centre)),
+            ),
+            step,
             colormap,
         };
         canvas.flat(row, start, end - start, &flat);

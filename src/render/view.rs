@@ -40,6 +40,50 @@ pub struct Settings {
     /// Where the ROM reads texels from. The renderer draws whatever textures it is handed; the
     /// ROM picks them by this knob ([`crate::render::demo::assets_for`]).
     pub textures: TexturePlacement,
+    /// Whether the visits of a sector seen through neighbouring portals are merged first.
+    pub preprocessing: Preprocessing,
+}
+
+/// The thesis' scene preprocessing knob (its §3.4, ×1.7 on its scenes): a first pass over the
+/// portals that merges the visits of a sector seen through neighbouring portals, so that each
+/// run of its columns is drawn once ([`crate::render::visits`]). Off, the walk draws each visit as
+/// it reaches it. Either way each column's pixels are drawn once: merging saves the per-visit
+/// work (the ownership tests of the sector's walls, the span set-up of its planes) and costs the
+/// first pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Preprocessing {
+    /// One pass: each visit drawn as the walk reaches it.
+    Off,
+    /// Two passes: plan and merge the visits, then draw each group once.
+    On,
+}
+
+impl Preprocessing {
+    /// Both settings, off first.
+    pub const ALL: [Preprocessing; 2] = [Preprocessing::Off, Preprocessing::On];
+
+    /// The label the ROM prints and the benchmarks read.
+    pub const fn label(self) -> &'static str {
+        match self {
+            Preprocessing::Off => "off",
+            Preprocessing::On => "on",
+        }
+    }
+
+    /// Parses [`Preprocessing::label`].
+    pub fn from_label(label: &str) -> Option<Preprocessing> {
+        Preprocessing::ALL
+            .into_iter()
+            .find(|setting| setting.label() == label)
+    }
+
+    /// The other setting (the menu toggles it).
+    pub const fn next(self) -> Preprocessing {
+        match self {
+            Preprocessing::Off => Preprocessing::On,
+            Preprocessing::On => Preprocessing::Off,
+        }
+    }
 }
 
 /// The texture placement knob: which memory the kernels read texels from.
@@ -77,6 +121,7 @@ impl Settings {
         perspective: Perspective::Exact,
         projection: Projection::Exact,
         textures: TexturePlacement::Ewram,
+        preprocessing: Preprocessing::Off,
     };
 }
 
@@ -158,11 +203,20 @@ pub enum Projection {
     Fx16_16,
     /// The same, rounded to 24.8 (1/256 pixel): the thesis' format.
     Fx24_8,
+    /// The thesis' own order of operations: the ray's slope `x'/z'` truncated to 24.8, then
+    /// `x = cx + d·(x'/z')`, so `x` keeps only `d/256` of a pixel (about a quarter of a pixel at
+    /// 120 columns, half at 240). The thesis lost portals this way (its Fig 5.18).
+    Thesis24_8,
 }
 
 impl Projection {
     /// Every value, exact first.
-    pub const ALL: [Projection; 3] = [Projection::Exact, Projection::Fx16_16, Projection::Fx24_8];
+    pub const ALL: [Projection; 4] = [
+        Projection::Exact,
+        Projection::Fx16_16,
+        Projection::Fx24_8,
+        Projection::Thesis24_8,
+    ];
 
     /// The label the ROM prints and the benchmarks read.
     pub const fn label(self) -> &'static str {
@@ -170,6 +224,7 @@ impl Projection {
             Projection::Exact => "exact",
             Projection::Fx16_16 => "fx16_16",
             Projection::Fx24_8 => "fx24_8",
+            Projection::Thesis24_8 => "thesis",
         }
     }
 
@@ -185,7 +240,8 @@ impl Projection {
         match self {
             Projection::Exact => Projection::Fx16_16,
             Projection::Fx16_16 => Projection::Fx24_8,
-            Projection::Fx24_8 => Projection::Exact,
+            Projection::Fx24_8 => Projection::Thesis24_8,
+            Projection::Thesis24_8 => Projection::Exact,
         }
     }
 
@@ -205,6 +261,9 @@ impl Projection {
             }
             Projection::Fx24_8 => {
                 viewport.first_column_at_or_after_x_fx24_8(viewport.projected_x_fx24_8(p))
+            }
+            Projection::Thesis24_8 => {
+                viewport.first_column_at_or_after_x_fx24_8(viewport.projected_x_thesis_fx24_8(p))
             }
         };
         VertexSplit::from_first_column(first_column, first, end)
@@ -228,6 +287,8 @@ pub struct View {
     pub perspective: Perspective,
     /// How vertices split the columns.
     pub projection: Projection,
+    /// Whether sector visits are planned and merged before drawing.
+    pub preprocessing: Preprocessing,
 }
 
 impl View {
@@ -245,6 +306,7 @@ impl View {
             lighting: settings.lighting,
             perspective: settings.perspective,
             projection: settings.projection,
+            preprocessing: settings.preprocessing,
         }
     }
 }

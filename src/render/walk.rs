@@ -10,7 +10,8 @@ use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, SKY};
 use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
-use super::view::{Projection, View};
+use super::view::{Preprocessing, Projection, View};
+use super::visits::{VisitId, VisitPlan};
 use super::walls::{
     owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector, WallStepper,
 };
@@ -40,10 +41,16 @@ pub struct FrameStats {
     pub span_pixels: u32,
     /// Portal chains cut at [`MAX_PORTAL_DEPTH`].
     pub depth_cutoffs: u32,
-    /// Visits of a sector already visited this frame (through another portal): what the
-    /// thesis' scene preprocessing would merge. Counted for sectors below
-    /// [`VISITS_TRACKED`].
+    /// Draws of a sector already drawn this frame (seen through another portal): what the
+    /// scene preprocessing ([`Preprocessing::On`]) merges where their columns touch. Counted
+    /// for sectors below [`VISITS_TRACKED`].
     pub repeat_visits: u32,
+    /// Visits the thesis' scene preprocessing merged into another visit of the same sector
+    /// (each saves a draw): `sector_visits` counts the draws.
+    pub merged_visits: u32,
+    /// Frames whose visits overflowed the preprocessing's plan and were drawn by the plain
+    /// walk (0 or 1 per frame).
+    pub plan_overflows: u32,
     /// Clock ticks in the wall stage (ownership, projection, wall and strip columns), when the
     /// renderer has a clock (the ROM's cycle meter); 0 otherwise.
     pub wall_ticks: u32,
@@ -64,6 +71,8 @@ pub struct Renderer {
     /// The portal walk's levels: level `d` is the sector visited at depth `d` (see
     /// [`Renderer::walk`]).
     levels: [WalkLevel; MAX_PORTAL_DEPTH as usize + 1],
+    /// The scene preprocessing's visits ([`Preprocessing::On`]).
+    plan: VisitPlan,
 }
 
 /// One level of the portal walk: the sector visited, the next of its walls to look at, and the
@@ -73,6 +82,8 @@ struct WalkLevel {
     sector: u16,
     next_wall: u16,
     ownership: Ownership,
+    /// The visit in the preprocessing's plan (its first pass only).
+    visit: Option<VisitId>,
 }
 
 impl WalkLevel {
@@ -81,6 +92,7 @@ impl WalkLevel {
             sector,
             next_wall: 0,
             ownership: Ownership::new(first, end),
+            visit: None,
         }
     }
 }
@@ -91,7 +103,8 @@ const UNSET: Window = Window {
     bottom: i16::MIN,
 };
 
-/// Sectors (by index) a frame tracks for [`FrameStats::repeat_visits`]: a bit each.
+/// Sectors (by index) a frame tracks for [`FrameStats::repeat_visits`] (a bit each) and the
+/// scene preprocessing merges (higher ones are never merged).
 pub const VISITS_TRACKED: usize = 2048;
 
 fn no_clock() -> u32 {
@@ -132,6 +145,7 @@ impl Renderer {
             visited: [0; VISITS_TRACKED / 32],
             clock: no_clock,
             levels: [WalkLevel::new(0, 0, 0); MAX_PORTAL_DEPTH as usize + 1],
+            plan: VisitPlan::new(),
         }
     }
 
@@ -171,8 +185,75 @@ impl Renderer {
             view,
             inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
         };
-        self.walk(&scene, canvas, &mut stats, view.sector, 0, width as i32);
+        let planned = view.preprocessing == Preprocessing::On
+            && self.plan_visits(&scene, &mut stats, view.sector, 0, width as i32);
+        if planned {
+            self.draw_plan(&scene, canvas, &mut stats);
+        } else {
+            stats.plan_overflows = u32::from(view.preprocessing == Preprocessing::On);
+            self.walk(&scene, canvas, &mut stats, view.sector, 0, width as i32);
+        }
         stats
+    }
+
+    /// The scene preprocessing's first pass: the walk of [`Renderer::walk`], in the same order,
+    /// drawing nothing, recording each visit in [`Renderer::plan`]. False if the plan
+    /// overflowed ([`crate::render::visits::MAX_VISITS`]).
+    #[inline(never)]
+    fn plan_visits(
+        &mut self,
+        scene: &Scene,
+        stats: &mut FrameStats,
+        sector_index: u16,
+        first: i32,
+        end: i32,
+    ) -> bool {
+        self.plan.clear();
+        self.levels[0] = WalkLevel::new(sector_index, first, end);
+        self.levels[0].visit = self.plan.record(sector_index, first, end, None);
+        let mut depth = 0;
+        loop {
+            let mut level = self.levels[depth];
+            let walls = scene
+                .map
+                .sector_walls(&scene.map.sectors[usize::from(level.sector)]);
+            let mut seen = None;
+            while let Some(wall) = walls.get(usize::from(level.next_wall)) {
+                level.next_wall += 1;
+                if wall.portal == NO_PORTAL {
+                    continue;
+                }
+                if let Some((_, _, start, stop)) = level.ownership.wall(scene, wall) {
+                    seen = Some((wall.portal, start, stop));
+                    break;
+                }
+            }
+            self.levels[depth] = level;
+            match seen {
+                Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
+                Some((neighbour, start, stop)) => {
+                    let Some(visit) = self.plan.record(neighbour, start, stop, level.visit) else {
+                        stats.depth_cutoffs = 0;
+                        return false;
+                    };
+                    depth += 1;
+                    self.levels[depth] = WalkLevel::new(neighbour, start, stop);
+                    self.levels[depth].visit = Some(visit);
+                }
+                None if depth == 0 => return true,
+                None => depth -= 1,
+            }
+        }
+    }
+
+    /// The scene preprocessing's second pass: each group of merged visits drawn once, every
+    /// sector after the sectors in front of it.
+    #[inline(never)]
+    fn draw_plan(&mut self, scene: &Scene, canvas: &mut impl Canvas, stats: &mut FrameStats) {
+        while let Some((sector_index, first, end)) = self.plan.next_draw() {
+            self.draw_sector(scene, canvas, stats, sector_index, first, end);
+        }
+        stats.merged_visits = self.plan.visit_count() - stats.sector_visits;
     }
 
     /// The portal walk: draws `sector_index` in columns `first..end`, then, depth first and

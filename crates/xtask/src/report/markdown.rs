@@ -408,7 +408,21 @@ fn knobs(doc: &mut String, measurements: &Measurements) {
         "## Knobs on the bench map\n\n\
          One knob at a time from the defaults ({}), at every resolution, each along the same \
          fly-through. Cycles per frame; stage columns are means; the last four columns are the \
-         accuracy against the oracle (see [Accuracy](#accuracy-against-the-f64-oracle)).\n\n",
+         accuracy against the oracle (see [Accuracy](#accuracy-against-the-f64-oracle)). The \
+         knobs (`src/render/view.rs`; the Start menu changes each live):\n\n\
+         - `lighting`: `off`, `sector` (each sector's light level), `depth` (sector light \
+           darkened with distance, through the colormap);\n\
+         - `persp`: a wall's depth and texture column from the exact reciprocal at every column \
+           (`exact`), or every 8 or 16 columns with linear steps between (`every8`, `every16`, \
+           the thesis' choice);\n\
+         - `proj`: which wall owns a column, decided exactly from cross products (`exact`), or \
+           from the vertex's screen `x` rounded to 16.16 or 24.8 (`fx16_16`, `fx24_8`), or the \
+           thesis' way (`thesis`: the ray's slope `x'/z'` truncated to 24.8, then times the focal \
+           length, so `x` keeps a quarter of a pixel at 120 columns, half at 240);\n\
+         - `tex`: texels read from the EWRAM copy (`ewram`) or the cartridge (`rom`);\n\
+         - `prep`: the thesis' scene preprocessing: `on` plans the portal walk first and draws \
+           each sector once over the touching columns of its visits (`src/render/visits.rs`), \
+           `off` draws each visit as the walk reaches it.\n\n",
         label_without_resolution(first)
     );
     for base in measurements.guard() {
