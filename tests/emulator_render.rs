@@ -256,11 +256,13 @@ fn rom_frames_are_identical_to_the_host_renderer() {
     }
     checker.hold_until_compared(right, 2, false);
     // The quality knobs at the end of the menu: perspective every 8, every 16, the column
-    // splits in 16.16, in 24.8, the textures from the cartridge, then the scene preprocessing.
-    let knob_phases: [&[Keys]; 7] = [
+    // splits in 16.16, in 24.8, the thesis' way, the textures from the cartridge, then the scene
+    // preprocessing.
+    let knob_phases: [&[Keys]; 8] = [
         &[start, down, down, down, right, start],
         &[start, right, start],
         &[start, down, right, start],
+        &[start, right, start],
         &[start, right, start],
         &[start, down, right, start],
         &[start, down, right, start],
