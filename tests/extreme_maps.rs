@@ -3,6 +3,9 @@
 //! chain, 128 sectors on one vertex, a 16,384-unit corridor) rendered by the engine against the
 //! f64 oracle at every resolution, at extreme camera poses and a few sampled ones.
 //!
+//! Each frame is drawn with the scene preprocessing off (the default) and on, and the worse of
+//! the two counts.
+//!
 //! Host tests run in the dev profile, where integer overflow panics: a pose that overflows fails
 //! here with the panic's message. Bounds, as `tests/render_oracle.rs`: at most 0.5 % of pixels on
 //! a different surface, no hole, no sector the oracle shows and the engine misses, and every
@@ -29,7 +32,7 @@ use std::path::PathBuf;
 use portalcast::flight::{eye_z, strictly_inside};
 use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
-use portalcast::render::view::{Camera, Settings, MAX_LOOK_LINES};
+use portalcast::render::view::{Camera, Preprocessing, Settings, MAX_LOOK_LINES};
 use portalcast::render::walk::{Renderer, MAX_PORTAL_DEPTH};
 use portalcast::render::RenderAssets;
 use portalcast_format::{MapTables, Texture, NO_PORTAL};
@@ -407,7 +410,8 @@ fn quiet_panics_install() {
     });
 }
 
-/// Renders `pose` with the engine (catching a panic, such as an overflow) and the oracle.
+/// Renders `pose` with the engine (catching a panic, such as an overflow) and the oracle, with
+/// the scene preprocessing off (the default) and on: the worse of the two.
 fn outcome(
     renderer: &mut Renderer,
     map: &MapTables,
@@ -415,25 +419,47 @@ fn outcome(
     pose: &Pose,
     resolution: Resolution,
 ) -> Outcome {
-    let settings = Settings {
-        resolution,
-        ..Settings::DEFAULT
-    };
     quiet_panics_install();
     QUIET_PANICS.with(|quiet| quiet.set(true));
     let result = catch_unwind(AssertUnwindSafe(|| {
-        compare_with_engine(renderer, map, assets, &pose.camera, &settings)
+        Preprocessing::ALL.map(|preprocessing| {
+            let settings = Settings {
+                resolution,
+                preprocessing,
+                ..Settings::DEFAULT
+            };
+            compare_with_engine(renderer, map, assets, &pose.camera, &settings)
+        })
     }));
     QUIET_PANICS.with(|quiet| quiet.set(false));
     match result {
-        Ok(run) => Outcome {
-            surface_percent: run.comparison.surface_mismatch_percent(),
-            holes: run.comparison.holes,
-            missed: run.comparison.missed_sectors.clone(),
-            coverage_faults: run.engine.coverage_faults().len(),
-            depth_cutoffs: run.stats.depth_cutoffs,
-            panic: None,
-        },
+        Ok(runs) => {
+            let mut missed: Vec<u16> = runs
+                .iter()
+                .flat_map(|run| run.comparison.missed_sectors.iter().copied())
+                .collect();
+            missed.sort_unstable();
+            missed.dedup();
+            Outcome {
+                surface_percent: runs
+                    .iter()
+                    .map(|run| run.comparison.surface_mismatch_percent())
+                    .fold(0.0, f64::max),
+                holes: runs
+                    .iter()
+                    .map(|run| run.comparison.holes)
+                    .max()
+                    .unwrap_or(0),
+                missed,
+                coverage_faults: runs
+                    .iter()
+                    .map(|run| run.engine.coverage_faults().len())
+                    .max()
+                    .unwrap_or(0),
+                depth_cutoffs: runs[0].stats.depth_cutoffs,
+                panic: None,
+            }
+        }
         Err(panic) => {
             // The renderer's working memory may be half-updated: start afresh.
             *renderer = Renderer::new();
