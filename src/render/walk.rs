@@ -199,7 +199,12 @@ impl Renderer {
     /// The scene preprocessing's first pass: the walk of [`Renderer::walk`], in the same order,
     /// drawing nothing, recording each visit in [`Renderer::plan`]. False if the plan
     /// overflowed ([`crate::render::visits::MAX_VISITS`]).
+    ///
+    /// Run from ROM (its own section, outside linker.ld's IWRAM patterns), like
+    /// [`Renderer::draw_plan`]: in IWRAM the two took 2.6 KB of the stack's room, which the
+    /// kernel check scene's 4 KB texture on the stack needs.
     #[inline(never)]
+    #[link_section = ".text.rom.render_plan_visits"]
     fn plan_visits(
         &mut self,
         scene: &Scene,
@@ -249,6 +254,7 @@ impl Renderer {
     /// The scene preprocessing's second pass: each group of merged visits drawn once, every
     /// sector after the sectors in front of it.
     #[inline(never)]
+    #[link_section = ".text.rom.render_draw_plan"]
     fn draw_plan(&mut self, scene: &Scene, canvas: &mut impl Canvas, stats: &mut FrameStats) {
         while let Some((sector_index, first, end)) = self.plan.next_draw() {
             self.draw_sector(scene, canvas, stats, sector_index, first, end);
