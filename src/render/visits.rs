@@ -376,6 +376,19 @@ mod tests {
             .collect()
     }
 
+    /// A walk written as `(sector, first, end, parent)` tuples, in walk order.
+    fn walk_of(visits: &[(u16, i32, i32, Option<usize>)]) -> Vec<Walked> {
+        visits
+            .iter()
+            .map(|&(sector, first, end, parent)| Walked {
+                sector,
+                first,
+                end,
+                parent,
+            })
+            .collect()
+    }
+
     fn plan_of(walked: &[Walked]) -> Box<VisitPlan> {
         let mut plan = Box::new(VisitPlan::new());
         let mut ids = Vec::new();
@@ -431,19 +444,13 @@ mod tests {
     fn touching_visits_of_a_sector_merge_into_one_draw() {
         // The eye's sector 0 sees sector 1 through two neighbouring portals, and sector 2
         // behind each of those.
-        let walked = [
+        let walked = walk_of(&[
             (0, 0, 100, None),
             (1, 0, 40, Some(0)),
             (2, 10, 40, Some(1)),
             (1, 40, 70, Some(0)),
             (2, 40, 60, Some(3)),
-        ]
-        .map(|(sector, first, end, parent)| Walked {
-            sector,
-            first,
-            end,
-            parent,
-        });
+        ]);
         let mut plan = plan_of(&walked);
         assert_eq!(plan.group_count(), 3);
         assert_eq!(draws(&mut plan), [(0, 0, 100), (1, 0, 70), (2, 10, 60)]);
@@ -479,7 +486,7 @@ mod tests {
         // list puts sector 4 (inserted after 3) before sector 1 (inserted earlier, after 0, and
         // pushed back by 3's insertion), so it would draw 4 in columns 60..65 before the sector
         // in front of it there.
-        let walked = [
+        let walked = walk_of(&[
             (0, 0, 100, None),
             (1, 0, 20, Some(0)),
             (2, 5, 15, Some(1)),
@@ -488,13 +495,7 @@ mod tests {
             (5, 60, 80, Some(0)),
             (1, 60, 70, Some(5)),
             (4, 60, 65, Some(6)),
-        ]
-        .map(|(sector, first, end, parent)| Walked {
-            sector,
-            first,
-            end,
-            parent,
-        });
+        ]);
         let thesis = thesis_order(&walked);
         let thesis_result =
             std::panic::catch_unwind(|| assert_front_to_back(&walked, &thesis, 100));
@@ -511,19 +512,13 @@ mod tests {
         // Sector 1 behind sector 2 in 0..10, sector 2 behind sector 1 in 10..20 (possible only
         // for non-convex arrangements, but the plan must not lose a column if it happens): each
         // merged group would wait on the other.
-        let walked = [
+        let walked = walk_of(&[
             (0, 0, 20, None),
             (2, 0, 10, Some(0)),
             (1, 0, 10, Some(1)),
             (1, 10, 20, Some(0)),
             (2, 10, 20, Some(3)),
-        ]
-        .map(|(sector, first, end, parent)| Walked {
-            sector,
-            first,
-            end,
-            parent,
-        });
+        ]);
         let mut plan = plan_of(&walked);
         assert_eq!(plan.group_count(), 3);
         let drawn = draws(&mut plan);

@@ -95,6 +95,25 @@ impl WalkLevel {
             visit: None,
         }
     }
+
+    /// The next of the sector's portals that owns some of the level's columns: the sector
+    /// behind it and those columns. Moves past it, so the next call finds the one after.
+    #[inline(always)]
+    fn next_portal(&mut self, scene: &Scene) -> Option<(u16, i32, i32)> {
+        let walls = scene
+            .map
+            .sector_walls(&scene.map.sectors[usize::from(self.sector)]);
+        while let Some(wall) = walls.get(usize::from(self.next_wall)) {
+            self.next_wall += 1;
+            if wall.portal == NO_PORTAL {
+                continue;
+            }
+            if let Some((_, _, start, stop)) = self.ownership.wall(scene, wall) {
+                return Some((wall.portal, start, stop));
+            }
+        }
+        None
+    }
 }
 
 /// A plane window no wall column has set yet (debug builds only).
@@ -218,21 +237,9 @@ impl Renderer {
         self.levels[0].visit = self.plan.record(sector_index, first, end, None);
         let mut depth = 0;
         loop {
+            // A copy in registers while its walls are tested; the levels live in EWRAM.
             let mut level = self.levels[depth];
-            let walls = scene
-                .map
-                .sector_walls(&scene.map.sectors[usize::from(level.sector)]);
-            let mut seen = None;
-            while let Some(wall) = walls.get(usize::from(level.next_wall)) {
-                level.next_wall += 1;
-                if wall.portal == NO_PORTAL {
-                    continue;
-                }
-                if let Some((_, _, start, stop)) = level.ownership.wall(scene, wall) {
-                    seen = Some((wall.portal, start, stop));
-                    break;
-                }
-            }
+            let seen = level.next_portal(scene);
             self.levels[depth] = level;
             match seen {
                 Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
@@ -288,21 +295,9 @@ impl Renderer {
         self.levels[0] = WalkLevel::new(sector_index, first, end);
         let mut depth = 0;
         loop {
+            // A copy in registers while its walls are tested; the levels live in EWRAM.
             let mut level = self.levels[depth];
-            let walls = scene
-                .map
-                .sector_walls(&scene.map.sectors[usize::from(level.sector)]);
-            let mut seen = None;
-            while let Some(wall) = walls.get(usize::from(level.next_wall)) {
-                level.next_wall += 1;
-                if wall.portal == NO_PORTAL {
-                    continue;
-                }
-                if let Some((_, _, start, stop)) = level.ownership.wall(scene, wall) {
-                    seen = Some((wall.portal, start, stop));
-                    break;
-                }
-            }
+            let seen = level.next_portal(scene);
             self.levels[depth] = level;
             match seen {
                 Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
