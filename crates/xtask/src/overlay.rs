@@ -16,6 +16,8 @@
 //! Indirect jumps (`BX`, loads into `pc`) are not followed: the overlay's are returns, its jump
 //! table and its own thunks, whose targets are in the ROM.
 
+use object::{Object, ObjectSection, ObjectSymbol};
+
 /// The section names of linker.ld.
 const OVERLAY: &str = ".bench_iwram";
 const REPLACED: &str = ".iwram_render";
@@ -139,43 +141,44 @@ pub fn stray_branches(
 /// Checks a linked ROM ELF (see the module's documentation). A ROM without the two sections
 /// passes.
 pub fn check(elf: &[u8]) -> Result<(), String> {
-    let sections = sections(elf)?;
-    let find = |name: &str| sections.iter().position(|section| section.name == name);
-    let (Some(overlay_index), Some(replaced_index)) = (find(OVERLAY), find(REPLACED)) else {
+    let file = object::File::parse(elf).map_err(|error| format!("not an ELF: {error}"))?;
+    let (Some(overlay), Some(replaced)) = (
+        file.section_by_name(OVERLAY),
+        file.section_by_name(REPLACED),
+    ) else {
         return Ok(());
     };
-    let (overlay, replaced) = (&sections[overlay_index], &sections[replaced_index]);
-    let code = elf
-        .get(overlay.offset as usize..(overlay.offset + overlay.size) as usize)
-        .ok_or("the overlay's bytes are past the end of the file")?;
+    let code = overlay
+        .data()
+        .map_err(|error| format!("the overlay's bytes: {error}"))?;
     let mut modes = Vec::new();
     let mut replaced_symbols = Vec::new();
-    for symbol in symbols(elf, &sections)? {
-        let mode = match symbol.name.split('.').next() {
+    for symbol in file.symbols() {
+        let name = symbol.name().unwrap_or("");
+        let section = symbol.section_index();
+        let value = symbol.address() as u32;
+        let mode = match name.split('.').next() {
             Some("$a") => Mode::Arm,
             Some("$t") => Mode::Thumb,
             Some("$d") => Mode::Data,
             _ => {
-                if symbol.section == replaced_index && !symbol.name.is_empty() {
-                    replaced_symbols.push((symbol.value & !1, symbol.name));
+                if section == Some(replaced.index()) && !name.is_empty() {
+                    replaced_symbols.push((value & !1, name.to_owned()));
                 }
                 continue;
             }
         };
-        if symbol.section == overlay_index {
-            modes.push((symbol.value, mode));
+        if section == Some(overlay.index()) {
+            modes.push((value, mode));
         }
     }
     modes.sort_by_key(|&(address, _)| address);
     replaced_symbols.sort();
-    let overlay_span = Span {
-        start: overlay.address,
-        end: overlay.address + overlay.size,
+    let span = |section: &object::Section| Span {
+        start: section.address() as u32,
+        end: (section.address() + section.size()) as u32,
     };
-    let replaced_span = Span {
-        start: replaced.address,
-        end: replaced.address + replaced.size,
-    };
+    let (overlay_span, replaced_span) = (span(&overlay), span(&replaced));
     let problems = stray_branches(
         &branches(code, overlay_span, &modes),
         overlay_span,
@@ -192,91 +195,6 @@ pub fn check(elf: &[u8]) -> Result<(), String> {
          .iwram, so that the thunk is made there (as render::planes is, for __aeabi_idiv).",
         problems.join("\n  ")
     ))
-}
-
-struct Section {
-    name: String,
-    kind: u32,
-    address: u32,
-    offset: u32,
-    size: u32,
-    link: u32,
-}
-
-struct Symbol {
-    name: String,
-    value: u32,
-    section: usize,
-}
-
-fn u16_at(elf: &[u8], at: usize) -> Result<u16, String> {
-    elf.get(at..at + 2)
-        .map(|bytes| u16::from_le_bytes([bytes[0], bytes[1]]))
-        .ok_or_else(|| format!("truncated ELF at {at}"))
-}
-
-fn u32_at(elf: &[u8], at: usize) -> Result<u32, String> {
-    elf.get(at..at + 4)
-        .map(|bytes| u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
-        .ok_or_else(|| format!("truncated ELF at {at}"))
-}
-
-fn string_at(elf: &[u8], at: usize) -> String {
-    let tail = elf.get(at..).unwrap_or(&[]);
-    let end = tail
-        .iter()
-        .position(|&byte| byte == 0)
-        .unwrap_or(tail.len());
-    String::from_utf8_lossy(&tail[..end]).into_owned()
-}
-
-/// The section headers of a 32-bit little-endian ELF.
-fn sections(elf: &[u8]) -> Result<Vec<Section>, String> {
-    if elf.get(..6) != Some(&[0x7f, b'E', b'L', b'F', 1, 1][..]) {
-        return Err("not a 32-bit little-endian ELF".to_string());
-    }
-    let table = u32_at(elf, 0x20)? as usize;
-    let entry_size = usize::from(u16_at(elf, 0x2E)?);
-    let count = usize::from(u16_at(elf, 0x30)?);
-    let names = usize::from(u16_at(elf, 0x32)?);
-    let names_offset = u32_at(elf, table + names * entry_size + 0x10)? as usize;
-    (0..count)
-        .map(|index| {
-            let at = table + index * entry_size;
-            Ok(Section {
-                name: string_at(elf, names_offset + u32_at(elf, at)? as usize),
-                kind: u32_at(elf, at + 0x04)?,
-                address: u32_at(elf, at + 0x0C)?,
-                offset: u32_at(elf, at + 0x10)?,
-                size: u32_at(elf, at + 0x14)?,
-                link: u32_at(elf, at + 0x18)?,
-            })
-        })
-        .collect()
-}
-
-const SHT_SYMTAB: u32 = 2;
-
-/// The symbols of the ELF's symbol table.
-fn symbols(elf: &[u8], sections: &[Section]) -> Result<Vec<Symbol>, String> {
-    let table = sections
-        .iter()
-        .find(|section| section.kind == SHT_SYMTAB)
-        .ok_or("no symbol table")?;
-    let strings = sections
-        .get(table.link as usize)
-        .ok_or("the symbol table's string table is missing")?
-        .offset as usize;
-    (0..table.size as usize / 16)
-        .map(|index| {
-            let at = table.offset as usize + index * 16;
-            Ok(Symbol {
-                name: string_at(elf, strings + u32_at(elf, at)? as usize),
-                value: u32_at(elf, at + 4)?,
-                section: usize::from(u16_at(elf, at + 14)?),
-            })
-        })
-        .collect()
 }
 
 #[cfg(test)]
