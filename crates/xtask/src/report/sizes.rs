@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use object::{Object, ObjectSection};
 use portalcast_xtask::{TaskError, TaskResult};
 
 /// A memory region of the GBA's address map.
@@ -90,52 +91,22 @@ pub fn measure(elf: &Path, gba: &Path) -> TaskResult<Sizes> {
     Ok(Sizes { rom_file, sections })
 }
 
-const SHF_ALLOC: u32 = 0x2;
-const SHT_NOBITS: u32 = 8;
-
-/// The allocated sections (`SHF_ALLOC`) of a 32-bit little-endian ELF, with a size above 0.
+/// The allocated sections (`SHF_ALLOC`) of an ELF, with a size above 0, in header order.
 pub fn allocated_sections(elf: &[u8]) -> Result<Vec<Section>, String> {
-    if elf.get(..6) != Some(&[0x7f, b'E', b'L', b'F', 1, 1][..]) {
-        return Err("not a 32-bit little-endian ELF".to_string());
-    }
-    let u16_at = |at: usize| -> Result<u16, String> {
-        elf.get(at..at + 2)
-            .map(|b| u16::from_le_bytes([b[0], b[1]]))
-            .ok_or_else(|| format!("truncated ELF at {at}"))
-    };
-    let u32_at = |at: usize| -> Result<u32, String> {
-        elf.get(at..at + 4)
-            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-            .ok_or_else(|| format!("truncated ELF at {at}"))
-    };
-    let table = u32_at(0x20)? as usize;
-    let entry_size = usize::from(u16_at(0x2E)?);
-    let count = usize::from(u16_at(0x30)?);
-    let names_index = usize::from(u16_at(0x32)?);
-    let header = |index: usize| table + index * entry_size;
-    let names_offset = u32_at(header(names_index) + 0x10)? as usize;
-    let name_at = |offset: usize| -> String {
-        let start = names_offset + offset;
-        let end = elf[start.min(elf.len())..]
-            .iter()
-            .position(|&b| b == 0)
-            .map_or(elf.len(), |len| start + len);
-        String::from_utf8_lossy(&elf[start.min(elf.len())..end]).into_owned()
-    };
+    let file = object::File::parse(elf).map_err(|error| format!("not an ELF: {error}"))?;
     let mut sections = Vec::new();
-    for index in 0..count {
-        let at = header(index);
-        let kind = u32_at(at + 0x04)?;
-        let flags = u32_at(at + 0x08)?;
-        let size = u32_at(at + 0x14)?;
-        if flags & SHF_ALLOC == 0 || size == 0 {
+    for section in file.sections() {
+        let object::SectionFlags::Elf { sh_flags } = section.flags() else {
+            continue;
+        };
+        if sh_flags & u64::from(object::elf::SHF_ALLOC) == 0 || section.size() == 0 {
             continue;
         }
         sections.push(Section {
-            name: name_at(u32_at(at)? as usize),
-            address: u32_at(at + 0x0C)?,
-            size,
-            in_file: kind != SHT_NOBITS,
+            name: section.name().unwrap_or("").to_owned(),
+            address: section.address() as u32,
+            size: section.size() as u32,
+            in_file: section.kind() != object::SectionKind::UninitializedData,
         });
     }
     Ok(sections)
