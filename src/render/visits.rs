@@ -101,6 +101,10 @@ pub struct VisitPlan {
     cycles: u16,
 }
 
+/// A plan with no room for another visit ([`MAX_VISITS`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlanFull;
+
 /// A visit of the plan, for [`VisitPlan::record`]'s `parent`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct VisitId(u16);
@@ -153,17 +157,17 @@ impl VisitPlan {
 
     /// Records a visit of `sector` in columns `[first, end)`, led to by `parent`'s portal
     /// (`None` for the eye's sector), merging it into the sector's latest group if their
-    /// columns touch. `None` when the plan is full.
+    /// columns touch. [`PlanFull`] when the plan is full.
     pub fn record(
         &mut self,
         sector: u16,
         first: i32,
         end: i32,
         parent: Option<VisitId>,
-    ) -> Option<VisitId> {
+    ) -> Result<VisitId, PlanFull> {
         let index = self.visit_count;
         if usize::from(index) == MAX_VISITS {
-            return None;
+            return Err(PlanFull);
         }
         let (first, end) = (first as i16, end as i16);
         let parent = parent.map_or(NONE, |VisitId(parent)| parent);
@@ -213,7 +217,7 @@ impl VisitPlan {
         }
         self.visits[usize::from(index)] = visit;
         self.visit_count += 1;
-        Some(VisitId(index))
+        Ok(VisitId(index))
     }
 
     /// The second pass's next draw: a sector and its columns `[first, end)`, each returned only
@@ -530,16 +534,16 @@ mod tests {
     #[test]
     fn a_full_plan_refuses_the_next_visit() {
         let mut plan = Box::new(VisitPlan::new());
-        let root = plan.record(0, 0, 240, None);
+        let root = plan.record(0, 0, 240, None).ok();
         for index in 1..MAX_VISITS {
             let column = (index % 240) as i32;
             assert!(plan
                 .record(1 + index as u16, column, column + 1, root)
-                .is_some());
+                .is_ok());
         }
-        assert_eq!(plan.record(9, 0, 1, root), None);
+        assert_eq!(plan.record(9, 0, 1, root), Err(PlanFull));
         plan.clear();
         assert_eq!(plan.visit_count(), 0);
-        assert!(plan.record(0, 0, 240, None).is_some());
+        assert!(plan.record(0, 0, 240, None).is_ok());
     }
 }

@@ -20,6 +20,7 @@ use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
 use crate::raster::column::ColumnTexture;
 use crate::raster::Canvas;
 use crate::render::light::light_row;
+use core::convert::Infallible;
 
 /// Widest screen, in columns.
 pub const MAX_COLUMNS: usize = 240;
@@ -233,29 +234,22 @@ impl Renderer {
         end: i32,
     ) -> bool {
         self.plan.clear();
-        self.levels[0] = WalkLevel::new(sector_index, first, end);
-        self.levels[0].visit = self.plan.record(sector_index, first, end, None);
-        let mut depth = 0;
-        loop {
-            // A copy in registers while its walls are tested; the levels live in EWRAM.
-            let mut level = self.levels[depth];
-            let seen = level.next_portal(scene);
-            self.levels[depth] = level;
-            match seen {
-                Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
-                Some((neighbour, start, stop)) => {
-                    let Some(visit) = self.plan.record(neighbour, start, stop, level.visit) else {
-                        stats.depth_cutoffs = 0;
-                        return false;
-                    };
-                    depth += 1;
-                    self.levels[depth] = WalkLevel::new(neighbour, start, stop);
-                    self.levels[depth].visit = Some(visit);
+        let planned = self.walk_portals(
+            scene,
+            stats,
+            sector_index,
+            first,
+            end,
+            |renderer, stats, sector, first, end, parent| {
+                let visit = renderer.plan.record(sector, first, end, parent);
+                if visit.is_err() {
+                    // The plain walk draws the frame and counts again.
+                    stats.depth_cutoffs = 0;
                 }
-                None if depth == 0 => return true,
-                None => depth -= 1,
-            }
-        }
+                visit.map(Some)
+            },
+        );
+        planned.is_ok()
     }
 
     /// The scene preprocessing's second pass: each group of merged visits drawn once, every
@@ -291,8 +285,43 @@ impl Renderer {
         first: i32,
         end: i32,
     ) {
-        self.draw_sector(scene, canvas, stats, sector_index, first, end);
+        let Ok(()) = self.walk_portals(
+            scene,
+            stats,
+            sector_index,
+            first,
+            end,
+            |renderer, stats, sector, first, end, _| -> Result<_, Infallible> {
+                renderer.draw_sector(scene, canvas, stats, sector, first, end);
+                Ok(None)
+            },
+        );
+    }
+
+    /// The portal walk's order, shared by the drawing walk and the preprocessing's plan:
+    /// `enter` is called for `sector_index` in columns `first..end`, then, depth first and front
+    /// to back, for every sector seen through its portals with the columns its portal owns and
+    /// what `enter` returned for the sector in front. An error from `enter` ends the walk.
+    #[inline(always)]
+    fn walk_portals<E>(
+        &mut self,
+        scene: &Scene,
+        stats: &mut FrameStats,
+        sector_index: u16,
+        first: i32,
+        end: i32,
+        mut enter: impl FnMut(
+            &mut Self,
+            &mut FrameStats,
+            u16,
+            i32,
+            i32,
+            Option<VisitId>,
+        ) -> Result<Option<VisitId>, E>,
+    ) -> Result<(), E> {
+        let root = enter(self, stats, sector_index, first, end, None)?;
         self.levels[0] = WalkLevel::new(sector_index, first, end);
+        self.levels[0].visit = root;
         let mut depth = 0;
         loop {
             // A copy in registers while its walls are tested; the levels live in EWRAM.
@@ -302,11 +331,12 @@ impl Renderer {
             match seen {
                 Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
                 Some((neighbour, start, stop)) => {
-                    self.draw_sector(scene, canvas, stats, neighbour, start, stop);
+                    let visit = enter(self, stats, neighbour, start, stop, level.visit)?;
                     depth += 1;
                     self.levels[depth] = WalkLevel::new(neighbour, start, stop);
+                    self.levels[depth].visit = visit;
                 }
-                None if depth == 0 => return,
+                None if depth == 0 => return Ok(()),
                 None => depth -= 1,
             }
         }
