@@ -344,7 +344,8 @@ impl Renderer {
 
     /// One visit of `sector_index` in columns `first..end`: its walls and strips, then its
     /// ceiling and floor, narrowing the clip windows of the columns its portals own. Out of
-    /// line: [`Renderer::walk`] calls it from two places.
+    /// line: [`Renderer::walk`] calls it for every sector it enters, and the preprocessing's
+    /// [`Renderer::draw_plan`] for every group.
     #[inline(never)]
     fn draw_sector(
         &mut self,
