@@ -46,6 +46,9 @@ mod rom {
         // stack's high-water mark is read from. After the sampler starts: the paint takes a
         // while, and the sampler's VBlank count must start on the emulator's first frame.
         memory::paint_stack();
+        // Before the game starts: the soak test's guard over OBJ VRAM reads the copy as it is
+        // then, and nothing may write there afterwards.
+        memory::colormap_in_vram();
         // After the sampler starts, so its VBlank count is the emulator's frame count whatever
         // the boot checks cost (the player's emulator tests rely on it).
         log::info(format_args!(
@@ -135,7 +138,7 @@ mod rom {
             let address = page.address();
             let mut canvas = VramCanvas::new(page, settings.resolution);
             let started = meter::now();
-            let render_assets = demo::assets_for(settings.textures, textures_in_ewram);
+            let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
             let stats = renderer.render(game.map(), &render_assets, &view, &mut canvas);
             let cycles = meter::cycles_since(started);
             if game.hud {
@@ -195,13 +198,13 @@ mod rom {
     fn bench_scene(display: &mut Display, guard_only: bool) -> ! {
         let renderer = memory::renderer_in_ewram(meter::now);
         for (map, settings) in bench::guard_runs() {
-            let render_assets = demo::assets_for(settings.textures, textures_in_ewram);
+            let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
             bench_run(display, renderer, &render_assets, map, &settings);
         }
         log::info(format_args!("{}", bench::GUARD_DONE));
         if !guard_only {
             for (map, settings) in bench::report_runs() {
-                let render_assets = demo::assets_for(settings.textures, textures_in_ewram);
+                let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
                 bench_run(display, renderer, &render_assets, map, &settings);
             }
         }
@@ -249,9 +252,13 @@ mod rom {
         }
     }
 
-    /// The textures copied to EWRAM (once), for [`demo::assets_for`].
-    fn textures_in_ewram() -> &'static [portalcast_format::Texture<'static>] {
-        memory::textures_in_ewram()
+    /// The textures copied to EWRAM and the colormap to OBJ VRAM (once), for
+    /// [`demo::assets_for`].
+    fn assets_in_fast_memory() -> (
+        &'static [portalcast_format::Texture<'static>],
+        &'static portalcast_format::Colormap,
+    ) {
+        (memory::textures_in_ewram(), memory::colormap_in_vram())
     }
 
     /// B held at boot: the foundation's test picture. Select cycles the resolution, left/right

@@ -153,3 +153,39 @@ pub fn textures_in_ewram() -> &'static [Texture<'static>] {
         &*table
     }
 }
+
+/// The first byte of the OBJ tile VRAM that Mode 4 leaves free: its two bitmap pages take
+/// 0x0600_0000..0x0601_4000, and no sprite is ever shown.
+const FREE_OBJ_VRAM: usize = 0x0601_4000;
+/// Bytes of OBJ VRAM free in Mode 4.
+const FREE_OBJ_VRAM_BYTES: usize = 0x4000;
+static mut COLORMAP_COPIED: bool = false;
+
+/// The light colormap, copied once from the cartridge to the OBJ VRAM that Mode 4 leaves free
+/// (8 KB of its 16). The lit kernels read one colormap byte per pixel: VRAM answers a byte
+/// read in 1 cycle, EWRAM in 3 and the cartridge in 5 (WAITCNT 0x4317), and IWRAM has no room
+/// for it. The copy uses word stores (VRAM ignores byte stores to OBJ tiles); afterwards the
+/// colormap is only read. Call it at boot, before the soak's guard regions are read.
+pub fn colormap_in_vram() -> &'static portalcast_format::Colormap {
+    use portalcast_format::Colormap;
+    const WORDS: usize = core::mem::size_of::<Colormap>() / 4;
+    const { assert!(core::mem::size_of::<Colormap>() <= FREE_OBJ_VRAM_BYTES) };
+    // SAFETY: single-threaded; the flag makes the copy happen once, before any shared
+    // reference to the copy is made. The words written lie in the free OBJ VRAM (asserted
+    // above), which nothing else in the ROM uses; the source is the cartridge's word-aligned
+    // colormap (`Align4`). VRAM is readable with byte loads, which is all the renderer does.
+    unsafe {
+        let copied = &raw mut COLORMAP_COPIED;
+        if !*copied {
+            *copied = true;
+            let source = assets::COLORMAP.0.as_ptr().cast::<u32>();
+            let destination = FREE_OBJ_VRAM as *mut u32;
+            for word in 0..WORDS {
+                destination
+                    .add(word)
+                    .write_volatile(source.add(word).read());
+            }
+        }
+        &*(FREE_OBJ_VRAM as *const Colormap)
+    }
+}

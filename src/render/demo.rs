@@ -2,7 +2,7 @@
 //! a map seen from its player start, turning a full circle every 256 frames (the ROM's bench
 //! scene, R at power-on, renders it; the game itself starts on the same map, `DEMO_MAP`).
 
-use portalcast_format::{MapTables, Sky, Texture};
+use portalcast_format::{Colormap, MapTables, Sky, Texture};
 
 use super::light::Lighting;
 use super::view::{Camera, TexturePlacement};
@@ -52,18 +52,21 @@ pub fn render_assets() -> RenderAssets<'static> {
     }
 }
 
-/// The compiled assets with the textures `placement` asks for: `in_ewram` hands out the EWRAM
-/// copy (the ROM's `hw::memory`; the host has no such memory and passes the cartridge's own).
+/// The compiled assets with the textures and colormap `placement` asks for: `in_fast_memory`
+/// hands out the copies in fast memory (the ROM's `hw::memory`: texels in EWRAM, the colormap in
+/// the OBJ VRAM that Mode 4 leaves free; the host has no such memory and passes the cartridge's
+/// own).
 pub fn assets_for(
     placement: TexturePlacement,
-    in_ewram: fn() -> &'static [Texture<'static>],
+    in_fast_memory: fn() -> (&'static [Texture<'static>], &'static Colormap),
 ) -> RenderAssets<'static> {
-    let textures = match placement {
-        TexturePlacement::Rom => assets::TEXTURES,
-        TexturePlacement::Ewram => in_ewram(),
+    let (textures, colormap) = match placement {
+        TexturePlacement::Rom => (assets::TEXTURES, &assets::COLORMAP.0),
+        TexturePlacement::Ewram => in_fast_memory(),
     };
     RenderAssets {
         textures,
+        colormap,
         ..render_assets()
     }
 }
