@@ -11,11 +11,11 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use object::{Object, ObjectSymbol, SymbolKind};
+use object::{Object, ObjectSection, ObjectSymbol, SymbolKind};
 use portalcast_harness::{Emulator, KeyScript};
 
 const USAGE: &str =
-    "usage: pc-profile ELF [--keys SCRIPTFILE] [--skip N] [--frames N] [--period CYCLES] [--top K]";
+    "usage: pc-profile ELF [--keys SCRIPTFILE] [--skip N] [--frames N] [--period CYCLES] [--top K] [--math-overlay]";
 
 const HELP: &str = "\
 Profiles a GBA ELF (it needs the symbols; the .gba has none) headless in mGBA.
@@ -25,7 +25,9 @@ Profiles a GBA ELF (it needs the symbols; the .gba has none) headless in mGBA.
   --frames N        frames to sample (default 120)
   --period CYCLES   cycles between samples (default 97, a prime)
   --top K           rows to print (default 40)
-  --addresses K     also print the K most sampled instruction addresses (for llvm-addr2line)";
+  --addresses K     also print the K most sampled instruction addresses (for llvm-addr2line)
+  --math-overlay    name IWRAM addresses by the math benchmark's overlay (the L scene), whose
+                    code shares its addresses with the renderer's: without it, by the renderer's";
 
 struct Options {
     elf: PathBuf,
@@ -35,6 +37,7 @@ struct Options {
     period: u32,
     top: usize,
     addresses: usize,
+    math_overlay: bool,
 }
 
 fn main() -> ExitCode {
@@ -68,6 +71,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         period: 97,
         top: 40,
         addresses: 0,
+        math_overlay: false,
     };
     let mut elf = None;
     let mut args = args.iter();
@@ -90,6 +94,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
             "--addresses" => {
                 options.addresses = number("--addresses", value("--addresses")?)? as usize
             }
+            "--math-overlay" => options.math_overlay = true,
             flag if flag.starts_with("--") => return Err(format!("unknown option {flag}")),
             path if elf.is_none() => elf = Some(PathBuf::from(path)),
             extra => return Err(format!("unexpected argument `{extra}`")),
@@ -99,8 +104,16 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
     Ok(options)
 }
 
-/// Function symbols sorted by address: (start, end, name).
-fn function_symbols(elf: &Path) -> Result<Vec<(u32, u32, String)>, String> {
+/// The linker script's section holding the math benchmark's IWRAM overlay: it runs at the same
+/// addresses as `.iwram_render` (the renderer's hot code), so only one of the two may name them.
+const MATH_OVERLAY_SECTION: &str = ".bench_iwram";
+/// The overlaid section: the renderer's IWRAM code.
+const RENDER_OVERLAY_SECTION: &str = ".iwram_render";
+
+/// Function symbols sorted by address: (start, end, name). Of the two sections sharing the
+/// IWRAM overlay's addresses, only one names them: the math benchmark's with `math_overlay`,
+/// the renderer's otherwise (what every scene but the math one runs).
+fn function_symbols(elf: &Path, math_overlay: bool) -> Result<Vec<(u32, u32, String)>, String> {
     let data =
         std::fs::read(elf).map_err(|error| format!("{}: cannot read: {error}", elf.display()))?;
     let file = object::File::parse(&*data).map_err(|error| {
@@ -112,6 +125,18 @@ fn function_symbols(elf: &Path) -> Result<Vec<(u32, u32, String)>, String> {
     let mut symbols: Vec<(u32, u32, String)> = file
         .symbols()
         .filter(|symbol| symbol.kind() == SymbolKind::Text && symbol.size() > 0)
+        .filter(|symbol| {
+            let section = symbol
+                .section_index()
+                .and_then(|index| file.section_by_index(index).ok())
+                .and_then(|section| section.name().ok().map(str::to_owned));
+            let hidden = if math_overlay {
+                RENDER_OVERLAY_SECTION
+            } else {
+                MATH_OVERLAY_SECTION
+            };
+            section.as_deref() != Some(hidden)
+        })
         .filter_map(|symbol| {
             let start = (symbol.address() as u32) & !1;
             let name = symbol.name().ok()?;
@@ -141,7 +166,7 @@ fn lookup(symbols: &[(u32, u32, String)], address: u32) -> Option<&str> {
 }
 
 fn run(options: &Options) -> Result<(), String> {
-    let symbols = function_symbols(&options.elf)?;
+    let symbols = function_symbols(&options.elf, options.math_overlay)?;
     let script = match &options.keys {
         Some(path) => KeyScript::load(path).map_err(|error| error.to_string())?,
         None => KeyScript::new(),
