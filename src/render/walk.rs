@@ -13,7 +13,8 @@ use super::surface::Surface;
 use super::view::{Preprocessing, Projection, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
-    owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector, WallStepper,
+    owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector, WallRows, WallStepper,
+    ROW_HEIGHTS,
 };
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
@@ -412,11 +413,14 @@ impl Renderer {
             let projector = WallProjector::new(&scene.view.viewport, a, b);
             let job = WallJob::new(scene, sector, wall, wall_index);
             let mut stepper = projector.stepper(start);
+            let mut rows =
+                WallRows::new(&scene.view.viewport, job.heights(), &stepper, stop - start);
             let interval = scene.view.perspective.interval();
             if interval == 1 {
                 for column in start..stop {
                     let at = ColumnAt::Stepper(&stepper);
-                    self.wall_column(scene, canvas, stats, &job, &at, column);
+                    let column_rows = rows.next_column();
+                    self.wall_column(scene, canvas, stats, &job, &at, column_rows, column);
                     stepper.step();
                 }
                 continue;
@@ -428,7 +432,9 @@ impl Renderer {
                 let last = (column + interval).min(stop - 1);
                 let left = stepper.ahead(0);
                 if last == column {
-                    self.wall_column(scene, canvas, stats, &job, &ColumnAt::Known(left), column);
+                    let at = ColumnAt::Known(left);
+                    let column_rows = rows.next_column();
+                    self.wall_column(scene, canvas, stats, &job, &at, column_rows, column);
                     break;
                 }
                 let span = last - column;
@@ -436,7 +442,8 @@ impl Renderer {
                 for offset in 0..span {
                     let at = lerp.at(offset, stepper.near_inverse_depth_ahead(offset));
                     let at = ColumnAt::Known(at);
-                    self.wall_column(scene, canvas, stats, &job, &at, column + offset);
+                    let column_rows = rows.next_column();
+                    self.wall_column(scene, canvas, stats, &job, &at, column_rows, column + offset);
                 }
                 stepper.advance(span);
                 column = last;
@@ -467,6 +474,9 @@ impl Renderer {
         }
     }
 
+    /// One column of a wall: its plane windows, the clip window it leaves, its strips.
+    /// `rows` are the column's rows of the wall's heights ([`WallJob::heights`]).
+    #[allow(clippy::too_many_arguments)]
     fn wall_column(
         &mut self,
         scene: &Scene,
@@ -474,23 +484,15 @@ impl Renderer {
         stats: &mut FrameStats,
         job: &WallJob,
         at: &ColumnAt,
+        rows: [i16; ROW_HEIGHTS],
         column: i32,
     ) {
         stats.wall_columns += 1;
         let x = column as usize;
-        let view = scene.view;
-        let (inverse_depth, near_inverse_depth) = at.rows();
-        let row_of = |above_eye: Fx24_8| {
-            let y = if near_inverse_depth <= 1 << 30 {
-                view.viewport.projected_y(above_eye, inverse_depth)
-            } else {
-                projected_y_closer_than_near(&view.viewport, above_eye, near_inverse_depth)
-            };
-            view.viewport.first_row_at_or_after(y) as i16
-        };
+        let [ceiling, floor, neighbour_ceiling, neighbour_floor] = rows;
         let clip = self.clip[x];
-        let ceiling_row = row_of(job.ceiling_above_eye).max(clip.top);
-        let floor_row = row_of(job.floor_above_eye).min(clip.bottom);
+        let ceiling_row = ceiling.max(clip.top);
+        let floor_row = floor.min(clip.bottom);
         self.ceiling[x] = Window {
             top: clip.top,
             bottom: ceiling_row.min(clip.bottom),
@@ -508,9 +510,9 @@ impl Renderer {
             }
             Some(portal) => {
                 let neighbour_ceiling_row =
-                    row_of(portal.ceiling_above_eye).clamp(ceiling_row, floor_row.max(ceiling_row));
-                let neighbour_floor_row = row_of(portal.floor_above_eye)
-                    .clamp(neighbour_ceiling_row.min(floor_row), floor_row);
+                    neighbour_ceiling.clamp(ceiling_row, floor_row.max(ceiling_row));
+                let neighbour_floor_row =
+                    neighbour_floor.clamp(neighbour_ceiling_row.min(floor_row), floor_row);
                 // Where no upper strip is drawn (the neighbour's ceiling is not lower, or both
                 // show the sky), the neighbour gets the rows down from this sector's ceiling
                 // line: its own ceiling (sky) fills them, and no row between the two ceiling
@@ -564,7 +566,7 @@ impl Renderer {
             depth_over_focal,
             // The same product as `depth_over_focal`: `mip_ratio` is its top bits.
             mip_ratio: (depth_over_focal >> 38) as i32,
-            colormap: light_row(job.sector.light, depth.to_int_floor(), view.lighting)
+            colormap: light_row(job.sector.light, depth.to_int_floor(), scene.view.lighting)
                 .map(|row| &scene.assets.colormap[row]),
         };
         for (texture, (top, bottom)) in job.strips.iter().zip(rows) {
@@ -687,15 +689,6 @@ enum ColumnAt<'s> {
 }
 
 impl ColumnAt<'_> {
-    /// `1/z'`, clamped and unclamped: see [`WallStepper::rows`].
-    #[inline]
-    fn rows(&self) -> (Fx2_30, i64) {
-        match self {
-            ColumnAt::Stepper(stepper) => stepper.rows(),
-            ColumnAt::Known(at) => (at.inverse_depth, at.near_inverse_depth),
-        }
-    }
-
     /// Depth and position along the wall: see [`WallStepper::texturing`].
     #[inline]
     fn texturing(&self) -> (Fx24_8, Fx2_30) {
@@ -717,6 +710,24 @@ struct WallJob<'s> {
     /// The wall's texture (solid) or its upper and lower strips' (portal).
     strips: [StripTexture<'s>; 2],
     portal: Option<PortalJob>,
+}
+
+impl WallJob<'_> {
+    /// The heights above the eye whose rows each column needs, in the order of
+    /// [`WallRows::next_column`]'s rows: the sector's ceiling and floor, then the neighbour's
+    /// (a solid wall repeats its own: the rows are computed and not read).
+    fn heights(&self) -> [Fx24_8; ROW_HEIGHTS] {
+        let (neighbour_ceiling, neighbour_floor) = match &self.portal {
+            Some(portal) => (portal.ceiling_above_eye, portal.floor_above_eye),
+            None => (self.ceiling_above_eye, self.floor_above_eye),
+        };
+        [
+            self.ceiling_above_eye,
+            self.floor_above_eye,
+            neighbour_ceiling,
+            neighbour_floor,
+        ]
+    }
 }
 
 /// A portal's neighbour, as its columns need it.
@@ -805,33 +816,6 @@ struct StripColumn<'s> {
 
 /// Texels for a surface whose texture is missing: palette index 0, as the oracle draws it.
 static BLANK_COLUMN: [u8; 8] = [0; 8];
-
-/// Largest `1/z'` (units of 2^-30) [`projected_y_closer_than_near`] multiplies by: `z'` of
-/// 2^-12 unit. An eye a few 1/65536 of a unit from a wall's line sees `1/z'` far beyond it, and
-/// `h · d_y · 1/z'` would overflow i64 (`|h| ≤ 2^22` in 24.8 bits, `d_y < 2^7`). The cut
-/// changes no row: at `1/z' = 2^42` even the smallest height, 1/256 unit, lies
-/// `60 · 2^12 / 2^8 = 960` rows or more from the horizon, off every screen, like the true row.
-const NEAR_INVERSE_DEPTH_MAX: i64 = 1 << 42;
-
-/// Screen `y` of a height `height_above_eye` on a wall closer than the near plane, where `1/z'`
-/// (`near_inverse_depth`, units of 2^-30) exceeds 2.30's range: the same `cy − d_y·h/z'`, with
-/// `1/z'` cut to 2^-22 units (and at [`NEAR_INVERSE_DEPTH_MAX`]) so the product stays in 64
-/// bits, saturated to ±2^22 rows (any such row is off screen and clamps to an edge).
-fn projected_y_closer_than_near(
-    viewport: &crate::math::Viewport,
-    height_above_eye: Fx24_8,
-    near_inverse_depth: i64,
-) -> Fx24_8 {
-    // |h| ≤ 2^22 bits (HEIGHT_DIFF_MAX), d_y ≤ 120, 1/z' >> 8 ≤ 2^34: |product| ≤ 120 · 2^56,
-    // below 2^63.
-    // 24.8 × int × 2^-22 units → 24.8 after >> 22.
-    let offset = (i64::from(height_above_eye.to_bits())
-        * i64::from(viewport.focal_y)
-        * (near_inverse_depth.min(NEAR_INVERSE_DEPTH_MAX) >> 8))
-        >> 22;
-    let y = (i64::from(viewport.horizon_y) << 8) - offset;
-    Fx24_8::from_bits(y.clamp(-(1 << 30), 1 << 30) as i32)
-}
 
 fn vertex(map: &MapTables, index: u16) -> WorldPoint {
     let v = map.vertices[usize::from(index)];

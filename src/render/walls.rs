@@ -339,6 +339,153 @@ impl WallStepper {
     }
 }
 
+/// Heights whose rows a wall column needs: its sector's ceiling and floor, and a portal's
+/// neighbour's ceiling and floor (unused for a solid wall).
+pub const ROW_HEIGHTS: usize = 4;
+
+/// The screen rows of a wall's [`ROW_HEIGHTS`] heights, column after column (Doom's
+/// `R_RenderSegLoop` steps `topfrac`/`bottomfrac` the same way).
+///
+/// A height `h` (24.8, above the eye) lands on row `first_row_at_or_after(cy − round(d_y·h·(1/z')))`
+/// ([`Viewport::projected_y`]). Where `1/z'` needs no clamp, it is the stepper's accumulator,
+/// affine in the column, so `d_y·h·(1/z') + ½` is affine too: [`WallRows::Stepped`] keeps it in
+/// a 64-bit accumulator per height and adds its step per column. Integer sums are exact, so
+/// every row is bit-identical to the projection computed afresh, for two adds, a shift and a
+/// clamp a height instead of a 64-bit multiply and a rounding. Walls where `1/z'` reaches the
+/// near or the far clamp somewhere in their columns take [`WallRows::Exact`], which evaluates
+/// each column as before.
+#[derive(Clone, Copy, Debug)]
+pub enum WallRows {
+    /// `1/z'` within `[SMALLEST_INVERSE_DEPTH, 2^30]` over every column of the wall.
+    Stepped {
+        /// `d_y·h·(1/z') + 2^29` per height, in 24.8 × 2^30 (the 2^29 rounds the `>> 30`).
+        offsets: [i64; ROW_HEIGHTS],
+        /// What each offset grows by per column.
+        steps: [i64; ROW_HEIGHTS],
+        /// `cy` in 24.8 plus the 127 of [`Fx24_8::first_pixel_at_or_after`]'s rounding.
+        horizon: i32,
+        /// The viewport's height: rows are clamped to `[0, height]`.
+        height: i32,
+    },
+    /// Each column's rows from its clamped `1/z'`.
+    Exact {
+        /// `1/z'` of the current column, unclamped (units of 2^-30).
+        inverse_depth: i64,
+        /// Its step per column.
+        inverse_depth_step: i64,
+        /// The heights above the eye.
+        heights: [Fx24_8; ROW_HEIGHTS],
+        /// The screen they project to.
+        viewport: Viewport,
+    },
+}
+
+impl WallRows {
+    /// The rows of `heights` (above the eye) on the `columns ≥ 1` columns the stepper starts at.
+    pub fn new(
+        viewport: &Viewport,
+        heights: [Fx24_8; ROW_HEIGHTS],
+        stepper: &WallStepper,
+        columns: i32,
+    ) -> WallRows {
+        let first = stepper.inverse_depth;
+        // One column steps nowhere: its step (unbounded where the wall is seen edge on) is
+        // never used, and is kept out of the products.
+        let step = if columns > 1 {
+            stepper.inverse_depth_step
+        } else {
+            0
+        };
+        let last = first + step * i64::from(columns - 1);
+        let range = i64::from(SMALLEST_INVERSE_DEPTH)..=1 << 30;
+        if !(range.contains(&first) && range.contains(&last)) {
+            return WallRows::Exact {
+                inverse_depth: first,
+                inverse_depth_step: step,
+                heights,
+                viewport: *viewport,
+            };
+        }
+        // |d_y·h| < 2^29 (24.8 heights within HEIGHT_DIFF_MAX, d_y ≤ 120) and 1/z' ≤ 2^30, and
+        // one step past the last column stays below 2^31: every product and sum below 2^61.
+        let scale = |height: Fx24_8| i64::from(height.mul_int(viewport.focal_y).to_bits());
+        WallRows::Stepped {
+            offsets: heights.map(|height| scale(height) * first + (1 << 29)),
+            steps: heights.map(|height| scale(height) * step),
+            horizon: (viewport.horizon_y << 8) + 127,
+            height: viewport.height,
+        }
+    }
+
+    /// The current column's rows, unclipped (in `[0, height]`); then steps to the next column.
+    #[inline(always)]
+    pub fn next_column(&mut self) -> [i16; ROW_HEIGHTS] {
+        match self {
+            WallRows::Stepped {
+                offsets,
+                steps,
+                horizon,
+                height,
+            } => {
+                let mut rows = [0; ROW_HEIGHTS];
+                for ((row, offset), step) in rows.iter_mut().zip(offsets).zip(steps) {
+                    // The offset in 24.8 is below 2^29 in magnitude.
+                    let y = *horizon - (*offset >> 30) as i32;
+                    // max then min: `clamp` would carry a panic path for a bound it cannot miss.
+                    *row = (y >> 8).max(0).min(*height) as i16;
+                    *offset += *step;
+                }
+                rows
+            }
+            WallRows::Exact {
+                inverse_depth,
+                inverse_depth_step,
+                heights,
+                viewport,
+            } => {
+                let near_inverse_depth = (*inverse_depth).max(i64::from(SMALLEST_INVERSE_DEPTH));
+                let clamped = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
+                *inverse_depth += *inverse_depth_step;
+                heights.map(|height| {
+                    let y = if near_inverse_depth <= 1 << 30 {
+                        viewport.projected_y(height, clamped)
+                    } else {
+                        projected_y_closer_than_near(viewport, height, near_inverse_depth)
+                    };
+                    viewport.first_row_at_or_after(y) as i16
+                })
+            }
+        }
+    }
+}
+
+/// Largest `1/z'` (units of 2^-30) [`projected_y_closer_than_near`] multiplies by: `z'` of
+/// 2^-12 unit. An eye a few 1/65536 of a unit from a wall's line sees `1/z'` far beyond it, and
+/// `h · d_y · 1/z'` would overflow i64 (`|h| ≤ 2^22` in 24.8 bits, `d_y < 2^7`). The cut
+/// changes no row: at `1/z' = 2^42` even the smallest height, 1/256 unit, lies
+/// `60 · 2^12 / 2^8 = 960` rows or more from the horizon, off every screen, like the true row.
+const NEAR_INVERSE_DEPTH_MAX: i64 = 1 << 42;
+
+/// Screen `y` of a height `height_above_eye` on a wall closer than the near plane, where `1/z'`
+/// (`near_inverse_depth`, units of 2^-30) exceeds 2.30's range: the same `cy − d_y·h/z'`, with
+/// `1/z'` cut to 2^-22 units (and at [`NEAR_INVERSE_DEPTH_MAX`]) so the product stays in 64
+/// bits, saturated to ±2^22 rows (any such row is off screen and clamps to an edge).
+fn projected_y_closer_than_near(
+    viewport: &Viewport,
+    height_above_eye: Fx24_8,
+    near_inverse_depth: i64,
+) -> Fx24_8 {
+    // |h| ≤ 2^22 bits (HEIGHT_DIFF_MAX), d_y ≤ 120, 1/z' >> 8 ≤ 2^34: |product| ≤ 120 · 2^56,
+    // below 2^63.
+    // 24.8 × int × 2^-22 units → 24.8 after >> 22.
+    let offset = (i64::from(height_above_eye.to_bits())
+        * i64::from(viewport.focal_y)
+        * (near_inverse_depth.min(NEAR_INVERSE_DEPTH_MAX) >> 8))
+        >> 22;
+    let y = (i64::from(viewport.horizon_y) << 8) - offset;
+    Fx24_8::from_bits(y.clamp(-(1 << 30), 1 << 30) as i32)
+}
+
 /// Fractional bits of the interpolation steps of [`WallLerp`].
 const LERP_FRACTION_BITS: u32 = 16;
 
@@ -476,6 +623,56 @@ mod tests {
         // Every column whose ray crosses either wall in front is owned exactly once.
         for column in 0..120 {
             assert!(owners(column) <= 1, "column {column}");
+        }
+    }
+}
+
+#[cfg(test)]
+mod row_tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+        /// The stepped rows are the rows computed afresh at every column, bit for bit, at every
+        /// height and horizon, including walls that reach the near or far clamp (which must
+        /// fall back to the exact evaluation).
+        #[test]
+        fn stepped_rows_are_the_exact_rows(
+            ax in -4000i32..4000, az in -4000i32..4000,
+            bx in -4000i32..4000, bz in -4000i32..4000,
+            scale in prop_oneof![Just(1i32), Just(37), Just(256), Just(2048)],
+            heights in proptest::array::uniform4(-(1i32 << 22)..(1 << 22)),
+            wide in any::<bool>(),
+            look in -40i32..=40,
+        ) {
+            let mut viewport = if wide { Viewport::new(240, 160) } else { Viewport::new(120, 80) };
+            viewport.horizon_y = (viewport.horizon_y + look).clamp(0, viewport.height);
+            let a = EyePoint::new(Fx24_8::from_bits(ax * scale), Fx24_8::from_bits(az * scale));
+            let b = EyePoint::new(Fx24_8::from_bits(bx * scale), Fx24_8::from_bits(bz * scale));
+            // A back-facing wall owns nothing; the same wall seen from its front does.
+            let (a, b) = if owned_columns(&viewport, a, b).0 < owned_columns(&viewport, a, b).1 {
+                (a, b)
+            } else {
+                (b, a)
+            };
+            let (start, stop) = owned_columns(&viewport, a, b);
+            if start >= stop {
+                return Ok(());
+            }
+            let projector = WallProjector::new(&viewport, a, b);
+            let stepper = projector.stepper(start);
+            let heights = heights.map(Fx24_8::from_bits);
+            let mut rows = WallRows::new(&viewport, heights, &stepper, stop - start);
+            let mut exact = WallRows::Exact {
+                inverse_depth: stepper.inverse_depth,
+                inverse_depth_step: stepper.inverse_depth_step,
+                heights,
+                viewport,
+            };
+            for column in start..stop {
+                prop_assert_eq!(rows.next_column(), exact.next_column(), "column {}", column);
+            }
         }
     }
 }
