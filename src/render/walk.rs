@@ -13,8 +13,7 @@ use super::surface::Surface;
 use super::view::{Preprocessing, Projection, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
-    owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector, WallRows, WallStepper,
-    ROW_HEIGHTS,
+    owned_columns_in, VertexSplit, WallLerp, WallProjector, WallRows, WallStepper, ROW_HEIGHTS,
 };
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
@@ -427,26 +426,36 @@ impl Renderer {
             }
             // Exact at `column` and at `last`, interpolated between; the wall's last column is
             // always exact.
+            // Each interval's right end is the next one's left: one exact column per interval.
             let mut column = start;
+            let mut left = stepper.ahead(0);
             while column < stop {
                 let last = (column + interval).min(stop - 1);
-                let left = stepper.ahead(0);
                 if last == column {
-                    let at = ColumnAt::Known(left);
+                    let at = ColumnAt::Known(left.depth, left.along);
                     let column_rows = rows.next_column();
                     self.wall_column(scene, canvas, stats, &job, &at, column_rows, column);
                     break;
                 }
                 let span = last - column;
-                let lerp = WallLerp::new(left, stepper.ahead(span), span);
+                let right = stepper.ahead(span);
+                let lerp = WallLerp::new(left, right, span);
                 for offset in 0..span {
-                    let at = lerp.at(offset, stepper.near_inverse_depth_ahead(offset));
-                    let at = ColumnAt::Known(at);
+                    let at = ColumnAt::Lerp(&lerp, offset);
                     let column_rows = rows.next_column();
-                    self.wall_column(scene, canvas, stats, &job, &at, column_rows, column + offset);
+                    self.wall_column(
+                        scene,
+                        canvas,
+                        stats,
+                        &job,
+                        &at,
+                        column_rows,
+                        column + offset,
+                    );
                 }
                 stepper.advance(span);
                 column = last;
+                left = right;
             }
         }
     }
@@ -680,12 +689,13 @@ impl Ownership {
     }
 }
 
-/// One wall column's projection: from the exact stepper, whose depth and position along the
-/// wall (a reciprocal) are only computed where a strip is drawn, or already known (the
-/// interpolating knobs).
+/// Where one wall column's depth and position along the wall come from: the exact stepper (a
+/// reciprocal) or the interpolating knobs' straight line between exact columns, evaluated only
+/// where a strip is drawn; or already known (an exact column of those knobs).
 enum ColumnAt<'s> {
     Stepper(&'s WallStepper),
-    Known(WallColumn),
+    Known(Fx24_8, Fx2_30),
+    Lerp(&'s WallLerp, i32),
 }
 
 impl ColumnAt<'_> {
@@ -694,7 +704,8 @@ impl ColumnAt<'_> {
     fn texturing(&self) -> (Fx24_8, Fx2_30) {
         match self {
             ColumnAt::Stepper(stepper) => stepper.texturing(),
-            ColumnAt::Known(at) => (at.depth, at.along),
+            ColumnAt::Known(depth, along) => (*depth, *along),
+            ColumnAt::Lerp(lerp, offset) => lerp.texturing(*offset),
         }
     }
 }

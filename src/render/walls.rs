@@ -517,19 +517,17 @@ impl WallLerp {
         }
     }
 
-    /// The column `offset` after the left one, with its exact `1/z'` (units of 2^-30, before
-    /// the near-plane clamp).
-    pub fn at(&self, offset: i32, near_inverse_depth: i64) -> WallColumn {
-        let inverse_depth = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
+    /// The depth and position along the wall of the column `offset` after the left one: what
+    /// its texture column needs. Only drawn columns ask (the rows come from [`WallRows`]).
+    #[inline]
+    pub fn texturing(&self, offset: i32) -> (Fx24_8, Fx2_30) {
         let offset = i64::from(offset);
         let depth = (self.depth + self.depth_step * offset) >> LERP_FRACTION_BITS;
         let along = (self.along + self.along_step * offset) >> LERP_FRACTION_BITS;
-        WallColumn {
-            depth: Fx24_8::from_bits(depth.max(i64::from(NEAR_DEPTH.to_bits())) as i32),
-            inverse_depth,
-            near_inverse_depth,
-            along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
-        }
+        (
+            Fx24_8::from_bits(depth.max(i64::from(NEAR_DEPTH.to_bits())) as i32),
+            Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
+        )
     }
 }
 
