@@ -437,25 +437,34 @@ impl WallRows {
                 }
                 rows
             }
-            WallRows::Exact {
-                inverse_depth,
-                inverse_depth_step,
-                heights,
-                viewport,
-            } => {
-                let near_inverse_depth = (*inverse_depth).max(i64::from(SMALLEST_INVERSE_DEPTH));
-                let clamped = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
-                *inverse_depth += *inverse_depth_step;
-                heights.map(|height| {
-                    let y = if near_inverse_depth <= 1 << 30 {
-                        viewport.projected_y(height, clamped)
-                    } else {
-                        projected_y_closer_than_near(viewport, height, near_inverse_depth)
-                    };
-                    viewport.first_row_at_or_after(y) as i16
-                })
-            }
+            WallRows::Exact { .. } => self.next_exact_column(),
         }
+    }
+
+    /// [`WallRows::next_column`] of [`WallRows::Exact`]: out of line, since the wall loops
+    /// inline the stepped path at each of their call sites and IWRAM is short.
+    #[inline(never)]
+    fn next_exact_column(&mut self) -> [i16; ROW_HEIGHTS] {
+        let WallRows::Exact {
+            inverse_depth,
+            inverse_depth_step,
+            heights,
+            viewport,
+        } = self
+        else {
+            return [0; ROW_HEIGHTS];
+        };
+        let near_inverse_depth = (*inverse_depth).max(i64::from(SMALLEST_INVERSE_DEPTH));
+        let clamped = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
+        *inverse_depth += *inverse_depth_step;
+        heights.map(|height| {
+            let y = if near_inverse_depth <= 1 << 30 {
+                viewport.projected_y(height, clamped)
+            } else {
+                projected_y_closer_than_near(viewport, height, near_inverse_depth)
+            };
+            viewport.first_row_at_or_after(y) as i16
+        })
     }
 }
 
