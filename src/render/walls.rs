@@ -442,8 +442,11 @@ impl WallRows {
     }
 
     /// [`WallRows::next_column`] of [`WallRows::Exact`]: out of line, since the wall loops
-    /// inline the stepped path at each of their call sites and IWRAM is short.
+    /// inline the stepped path at each of their call sites, and run from ROM (its own section,
+    /// outside linker.ld's IWRAM patterns): only walls within a unit of the eye or at the far
+    /// limit take it, and IWRAM is short.
     #[inline(never)]
+    #[link_section = ".text.rom.render_wall_rows_exact"]
     fn next_exact_column(&mut self) -> [i16; ROW_HEIGHTS] {
         let WallRows::Exact {
             inverse_depth,
