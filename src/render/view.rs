@@ -248,18 +248,17 @@ impl Projection {
         }
     }
 
-    /// The split of the columns `[first, end)` by the eye-space vertex `p` at this precision:
-    /// for a vertex beyond the near plane, from its screen `x` rounded to the format (16.16 or
-    /// 24.8) by the column rule of [`Viewport::first_column_at_or_after`]; at or behind it, and
-    /// for [`Projection::Exact`], the exact [`VertexSplit::new`] (a projection is undefined
-    /// there). Out of line, so that the default, exact path does not grow with it, and in
-    /// IWRAM by its section: it runs once per vertex a visit sees.
+    /// The first column of the eye-space vertex `p` at this precision: from its screen `x`
+    /// rounded to the format (16.16 or 24.8) by the column rule of
+    /// [`Viewport::first_column_at_or_after`]. `None` for [`Projection::Exact`] and for a vertex
+    /// at or behind the near plane (a projection is undefined there): the exact
+    /// [`VertexSplit::new`] splits the columns then. Computed once per vertex and frame (the
+    /// renderer caches it), so it stays out of line and in ROM.
     #[inline(never)]
-    #[link_section = ".iwram.render_projection_split"]
-    pub fn split(self, viewport: &Viewport, p: EyePoint, first: i32, end: i32) -> VertexSplit {
-        let first_column = match self {
-            _ if p.z <= NEAR_DEPTH => return VertexSplit::new(viewport, p, first, end),
-            Projection::Exact => return VertexSplit::new(viewport, p, first, end),
+    pub fn first_column(self, viewport: &Viewport, p: EyePoint) -> Option<i32> {
+        Some(match self {
+            _ if p.z <= NEAR_DEPTH => return None,
+            Projection::Exact => return None,
             Projection::Fx16_16 => {
                 viewport.first_column_at_or_after_x(viewport.projected_x_saturating(p))
             }
@@ -269,8 +268,16 @@ impl Projection {
             Projection::Thesis24_8 => {
                 viewport.first_column_at_or_after_x_fx24_8(viewport.projected_x_thesis_fx24_8(p))
             }
-        };
-        VertexSplit::from_first_column(first_column, first, end)
+        })
+    }
+
+    /// The split of the columns `[first, end)` by the eye-space vertex `p` at this precision:
+    /// from [`Projection::first_column`], or the exact [`VertexSplit::new`] where it has none.
+    pub fn split(self, viewport: &Viewport, p: EyePoint, first: i32, end: i32) -> VertexSplit {
+        match self.first_column(viewport, p) {
+            Some(column) => VertexSplit::from_first_column(column, first, end),
+            None => VertexSplit::new(viewport, p, first, end),
+        }
     }
 }
 

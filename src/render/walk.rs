@@ -20,6 +20,7 @@ use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
 use crate::raster::column::ColumnTexture;
 use crate::raster::Canvas;
 use crate::render::light::light_row;
+use core::cell::Cell;
 use core::convert::Infallible;
 
 /// Widest screen, in columns.
@@ -74,7 +75,34 @@ pub struct Renderer {
     levels: [WalkLevel; MAX_PORTAL_DEPTH as usize + 1],
     /// The scene preprocessing's visits ([`Preprocessing::On`]).
     plan: VisitPlan,
+    /// Each vertex's eye-space position (and the precision knob's column) this frame.
+    vertices: VertexCache,
+    /// The frame's number in [`Renderer::vertices`]: an entry with another is stale.
+    frame_stamp: u32,
 }
+
+/// Vertices (by index) whose eye-space position a frame keeps once computed; higher ones are
+/// transformed at every use.
+pub const VERTICES_CACHED: usize = 2048;
+
+/// A vertex's eye-space position this frame, and its first column: the exact one in front of
+/// the eye, or where the precision knob's rounded projection puts it
+/// ([`Projection::first_column`]); [`NO_COLUMN`] where the split is found by bisection.
+#[derive(Clone, Copy)]
+struct CachedVertex {
+    stamp: u32,
+    point: EyePoint,
+    first_column: i32,
+}
+
+/// [`CachedVertex::first_column`] where the split is the exact one.
+const NO_COLUMN: i32 = i32::MIN;
+
+/// The per-frame vertex cache: every visit of a sector (the portal walk's and the drawing's)
+/// asks for its walls' vertices, and neighbouring sectors share them, so each is transformed
+/// (and, with a rounded projection, projected) once a frame instead of at every use. Cells,
+/// so that the walk can fill it through the shared borrows it holds.
+struct VertexCache([Cell<CachedVertex>; VERTICES_CACHED]);
 
 /// One level of the portal walk: the sector visited, the next of its walls to look at, and the
 /// ownership state of its walls so far (each vertex is projected once per visit).
@@ -100,7 +128,7 @@ impl WalkLevel {
     /// The next of the sector's portals that owns some of the level's columns: the sector
     /// behind it and those columns. Moves past it, so the next call finds the one after.
     #[inline(always)]
-    fn next_portal(&mut self, scene: &Scene) -> Option<(u16, i32, i32)> {
+    fn next_portal(&mut self, scene: &Scene, vertices: &VertexCache) -> Option<(u16, i32, i32)> {
         let walls = scene
             .map
             .sector_walls(&scene.map.sectors[usize::from(self.sector)]);
@@ -109,7 +137,7 @@ impl WalkLevel {
             if wall.portal == NO_PORTAL {
                 continue;
             }
-            if let Some((_, _, start, stop)) = self.ownership.wall(scene, wall) {
+            if let Some((_, _, start, stop)) = self.ownership.wall(scene, vertices, wall) {
                 return Some((wall.portal, start, stop));
             }
         }
@@ -144,6 +172,43 @@ struct Scene<'s, 'a> {
     view: &'s View,
     /// The 2.30 reciprocal of `d_y` (its bits), for the wall columns' `z'/d_y`.
     inverse_focal_y: i64,
+    /// [`Renderer::frame_stamp`].
+    frame_stamp: u32,
+}
+
+impl VertexCache {
+    /// Vertex `index`'s eye-space position and its first column ([`NO_COLUMN`] where the split
+    /// takes a bisection): from the cache if this frame computed them already.
+    #[inline]
+    fn get(&self, scene: &Scene, index: u16) -> (EyePoint, i32) {
+        let entry = self.0.get(usize::from(index));
+        if let Some(entry) = entry {
+            let cached = entry.get();
+            if cached.stamp == scene.frame_stamp {
+                return (cached.point, cached.first_column);
+            }
+        }
+        let point = scene.view.eye.to_eye(vertex(scene.map, index));
+        let viewport = &scene.view.viewport;
+        let first_column = match scene.view.projection {
+            // In front of the eye the exact split of any range is the vertex's first column,
+            // clamped into it (`VertexSplit::from_first_column`): found once a frame by the
+            // exact bisection over the whole width instead of over each visit's columns.
+            Projection::Exact if point.z.to_bits() > 0 => viewport.first_column_at_or_after(point),
+            Projection::Exact => NO_COLUMN,
+            projection => projection
+                .first_column(viewport, point)
+                .unwrap_or(NO_COLUMN),
+        };
+        if let Some(entry) = entry {
+            entry.set(CachedVertex {
+                stamp: scene.frame_stamp,
+                point,
+                first_column,
+            });
+        }
+        (point, first_column)
+    }
 }
 
 impl Renderer {
@@ -166,6 +231,16 @@ impl Renderer {
             clock: no_clock,
             levels: [WalkLevel::new(0, 0, 0); MAX_PORTAL_DEPTH as usize + 1],
             plan: VisitPlan::new(),
+            vertices: VertexCache(
+                [const {
+                    Cell::new(CachedVertex {
+                        stamp: 0,
+                        point: EyePoint::new(Fx24_8::ZERO, Fx24_8::ZERO),
+                        first_column: NO_COLUMN,
+                    })
+                }; VERTICES_CACHED],
+            ),
+            frame_stamp: 0,
         }
     }
 
@@ -184,6 +259,17 @@ impl Renderer {
         // (EWRAM): the wall columns and strips count into them.
         let mut stats = FrameStats::default();
         self.visited = [0; VISITS_TRACKED / 32];
+        self.frame_stamp = self.frame_stamp.wrapping_add(1);
+        if self.frame_stamp == 0 {
+            // After 2^32 frames the stamps come round: forget every entry.
+            for entry in &self.vertices.0 {
+                entry.set(CachedVertex {
+                    stamp: 0,
+                    ..entry.get()
+                });
+            }
+            self.frame_stamp = 1;
+        }
         if self.column_angles_width != view.viewport.width {
             for (column, angle) in self.column_angles[..width].iter_mut().enumerate() {
                 *angle = column_angle(
@@ -204,6 +290,7 @@ impl Renderer {
             assets,
             view,
             inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
+            frame_stamp: self.frame_stamp,
         };
         let planned = view.preprocessing == Preprocessing::On
             && self.plan_visits(&scene, &mut stats, view.sector, 0, width as i32);
@@ -326,7 +413,7 @@ impl Renderer {
         loop {
             // A copy in registers while its walls are tested; the levels live in EWRAM.
             let mut level = self.levels[depth];
-            let seen = level.next_portal(scene);
+            let seen = level.next_portal(scene, &self.vertices);
             self.levels[depth] = level;
             match seen {
                 Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
@@ -406,7 +493,7 @@ impl Renderer {
         let mut ownership = Ownership::new(first, end);
         for (offset, wall) in walls.iter().enumerate() {
             let wall_index = sector.first_wall + offset as u16;
-            let Some((a, b, start, stop)) = ownership.wall(scene, wall) else {
+            let Some((a, b, start, stop)) = ownership.wall(scene, &self.vertices, wall) else {
                 continue;
             };
             let projector = WallProjector::new(&scene.view.viewport, a, b);
@@ -664,25 +751,28 @@ impl Ownership {
         }
     }
 
-    fn vertex(&self, scene: &Scene, index: u16) -> (EyePoint, VertexSplit) {
-        let point = scene.view.eye.to_eye(vertex(scene.map, index));
-        let viewport = &scene.view.viewport;
-        // The precision knob's rounded projection is out of line: the default, exact split
-        // stays as small and fast as before.
-        let split = match scene.view.projection {
-            Projection::Exact => VertexSplit::new(viewport, point, self.first, self.end),
-            projection => projection.split(viewport, point, self.first, self.end),
+    fn vertex(&self, scene: &Scene, vertices: &VertexCache, index: u16) -> (EyePoint, VertexSplit) {
+        let (point, first_column) = vertices.get(scene, index);
+        let split = if first_column == NO_COLUMN {
+            VertexSplit::new(&scene.view.viewport, point, self.first, self.end)
+        } else {
+            VertexSplit::from_first_column(first_column, self.first, self.end)
         };
         (point, split)
     }
 
     /// The eye-space ends of `wall` and the columns of `[first, end)` it owns, if any.
-    fn wall(&mut self, scene: &Scene, wall: &Wall) -> Option<(EyePoint, EyePoint, i32, i32)> {
+    fn wall(
+        &mut self,
+        scene: &Scene,
+        vertices: &VertexCache,
+        wall: &Wall,
+    ) -> Option<(EyePoint, EyePoint, i32, i32)> {
         let (a, a_split) = match self.last {
             Some((index, point, split)) if index == wall.start => (point, split),
-            _ => self.vertex(scene, wall.start),
+            _ => self.vertex(scene, vertices, wall.start),
         };
-        let (b, b_split) = self.vertex(scene, wall.end);
+        let (b, b_split) = self.vertex(scene, vertices, wall.end);
         self.last = Some((wall.end, b, b_split));
         let (start, stop) = owned_columns_in(a_split, b_split, self.first, self.end);
         (start < stop).then_some((a, b, start, stop))
