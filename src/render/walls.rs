@@ -348,20 +348,24 @@ pub const ROW_HEIGHTS: usize = 4;
 ///
 /// A height `h` (24.8, above the eye) lands on row `first_row_at_or_after(cy − round(d_y·h·(1/z')))`
 /// ([`Viewport::projected_y`]). Where `1/z'` needs no clamp, it is the stepper's accumulator,
-/// affine in the column, so `d_y·h·(1/z') + ½` is affine too: [`WallRows::Stepped`] keeps it in
-/// a 64-bit accumulator per height and adds its step per column. Integer sums are exact, so
-/// every row is bit-identical to the projection computed afresh, for two adds, a shift and a
-/// clamp a height instead of a 64-bit multiply and a rounding. Walls where `1/z'` reaches the
-/// near or the far clamp somewhere in their columns take [`WallRows::Exact`], which evaluates
-/// each column as before.
+/// affine in the column and within `[SMALLEST_INVERSE_DEPTH, 2^30]` over the whole wall, so a
+/// 32-bit accumulator steps it exactly: [`WallRows::Stepped`] adds its step per column and
+/// multiplies by each height's `d_y·h` (below 2^29) into 64 bits, one multiply-accumulate a
+/// height with the rounding's 2^29 folded in. Integer arithmetic throughout, so every row is
+/// bit-identical to the projection computed afresh, without the 64-bit accumulators (16
+/// registers for four heights) that spilled to the stack at every column. Walls where `1/z'`
+/// reaches the near or the far clamp somewhere in their columns take [`WallRows::Exact`], which
+/// evaluates each column as before.
 #[derive(Clone, Copy, Debug)]
 pub enum WallRows {
     /// `1/z'` within `[SMALLEST_INVERSE_DEPTH, 2^30]` over every column of the wall.
     Stepped {
-        /// `d_y·h·(1/z') + 2^29` per height, in 24.8 × 2^30 (the 2^29 rounds the `>> 30`).
-        offsets: [i64; ROW_HEIGHTS],
-        /// What each offset grows by per column.
-        steps: [i64; ROW_HEIGHTS],
+        /// `1/z'` of the current column (units of 2^-30): within `[SMALLEST_INVERSE_DEPTH, 2^30]`.
+        inverse_depth: i32,
+        /// Its step per column (`|step| ≤ 2^30`: both ends of the wall are in that range).
+        inverse_depth_step: i32,
+        /// `d_y·h` per height, in 24.8 (below 2^29 in magnitude).
+        scales: [i32; ROW_HEIGHTS],
         /// `cy` in 24.8 plus the 127 of [`Fx24_8::first_pixel_at_or_after`]'s rounding.
         horizon: i32,
         /// The viewport's height: rows are clamped to `[0, height]`.
@@ -406,12 +410,12 @@ impl WallRows {
                 viewport: *viewport,
             };
         }
-        // |d_y·h| < 2^29 (24.8 heights within HEIGHT_DIFF_MAX, d_y ≤ 120) and 1/z' ≤ 2^30, and
-        // one step past the last column stays below 2^31: every product and sum below 2^61.
-        let scale = |height: Fx24_8| i64::from(height.mul_int(viewport.focal_y).to_bits());
+        // |d_y·h| < 2^29: 24.8 heights within HEIGHT_DIFF_MAX, d_y ≤ 120.
+        let scale = |height: Fx24_8| height.mul_int(viewport.focal_y).to_bits();
         WallRows::Stepped {
-            offsets: heights.map(|height| scale(height) * first + (1 << 29)),
-            steps: heights.map(|height| scale(height) * step),
+            inverse_depth: first as i32,
+            inverse_depth_step: step as i32,
+            scales: heights.map(scale),
             horizon: (viewport.horizon_y << 8) + 127,
             height: viewport.height,
         }
@@ -422,19 +426,25 @@ impl WallRows {
     pub fn next_column(&mut self) -> [i16; ROW_HEIGHTS] {
         match self {
             WallRows::Stepped {
-                offsets,
-                steps,
+                inverse_depth,
+                inverse_depth_step,
+                scales,
                 horizon,
                 height,
             } => {
                 let mut rows = [0; ROW_HEIGHTS];
-                for ((row, offset), step) in rows.iter_mut().zip(offsets).zip(steps) {
-                    // The offset in 24.8 is below 2^29 in magnitude.
-                    let y = *horizon - (*offset >> 30) as i32;
+                for (row, scale) in rows.iter_mut().zip(scales) {
+                    // d_y·h·(1/z') + ½ in 24.8 × 2^30: below 2^59. The offset in 24.8 is below
+                    // 2^29 in magnitude.
+                    let offset =
+                        ((i64::from(*scale) * i64::from(*inverse_depth) + (1 << 29)) >> 30) as i32;
+                    let y = *horizon - offset;
                     // max then min: `clamp` would carry a panic path for a bound it cannot miss.
                     *row = (y >> 8).max(0).min(*height) as i16;
-                    *offset += *step;
                 }
+                // Past the wall's last column the sum may leave i32 (by at most 2^30); it is
+                // never read then.
+                *inverse_depth = inverse_depth.wrapping_add(*inverse_depth_step);
                 rows
             }
             WallRows::Exact { .. } => self.next_exact_column(),
