@@ -701,15 +701,18 @@ impl Renderer {
             canvas.column(strip.column, top as usize, count, &column);
             return;
         };
-        let level = mip_level_of_ratio(
-            strip.mip_ratio,
-            texture_image.mip_count,
-            texture_image.width_log2,
-            texture_image.height_log2,
-        );
-        let width_log2 = u32::from(texture_image.level_width_log2(level));
-        let height_log2 = u32::from(texture_image.level_height_log2(level));
-        let texels = texture_image.wall_level(level);
+        let mut cached = texture.level.get();
+        if !(cached.ratio_low..=cached.ratio_high).contains(&strip.mip_ratio) {
+            cached = StripLevel::of(texture_image, strip.mip_ratio);
+            texture.level.set(cached);
+        }
+        let StripLevel {
+            level,
+            width_log2,
+            height_log2,
+            texels,
+            ..
+        } = cached;
         let u_texel = (strip.u.to_int_floor() >> level) & ((1 << width_log2) - 1);
         let column_texels =
             &texels[(u_texel as usize) << height_log2..((u_texel as usize) + 1) << height_log2];
@@ -849,6 +852,63 @@ struct StripTexture<'s> {
     surface: Surface,
     /// `anchor − eye_z + y_offset` in 24.8 texels: v at the eye's height.
     eye_to_anchor: i64,
+    /// The mip level the strip's last column took, reused while the columns' depth keeps
+    /// within it (neighbouring columns mostly do).
+    level: Cell<StripLevel<'s>>,
+}
+
+/// A strip's mip level and what its columns need of it, with the range of [`mip_ratio`]s that
+/// select it.
+#[derive(Clone, Copy)]
+struct StripLevel<'s> {
+    /// The ratios `ratio_low..=ratio_high` select this level (empty until a column asks).
+    ratio_low: i32,
+    ratio_high: i32,
+    level: u8,
+    width_log2: u32,
+    height_log2: u32,
+    texels: &'s [u8],
+}
+
+impl<'s> StripLevel<'s> {
+    const NONE: StripLevel<'static> = StripLevel {
+        ratio_low: 1,
+        ratio_high: 0,
+        level: 0,
+        width_log2: 0,
+        height_log2: 0,
+        texels: &[],
+    };
+
+    /// The level [`mip_level_of_ratio`] picks for `ratio`, and the ratios that pick it too.
+    fn of(texture: &Texture<'s>, ratio: i32) -> StripLevel<'s> {
+        let level = mip_level_of_ratio(
+            ratio,
+            texture.mip_count,
+            texture.width_log2,
+            texture.height_log2,
+        );
+        let deepest = mip_level_of_ratio(
+            i32::MAX,
+            texture.mip_count,
+            texture.width_log2,
+            texture.height_log2,
+        );
+        // Unclamped, level L ≥ 1 is floor(log2(ratio)): ratios 2^L..2^(L+1) − 1; level 0 takes
+        // every ratio below 2, and the deepest level every ratio from its own power up.
+        StripLevel {
+            ratio_low: if level == 0 { i32::MIN } else { 1 << level },
+            ratio_high: if level == deepest {
+                i32::MAX
+            } else {
+                (1 << (level + 1)) - 1
+            },
+            level,
+            width_log2: u32::from(texture.level_width_log2(level)),
+            height_log2: u32::from(texture.level_height_log2(level)),
+            texels: texture.wall_level(level),
+        }
+    }
 }
 
 impl<'s> WallJob<'s> {
@@ -859,6 +919,7 @@ impl<'s> WallJob<'s> {
             texture: scene.assets.textures.get(usize::from(texture)),
             surface,
             eye_to_anchor: i64::from(above_eye(anchor).to_bits()) + (i64::from(wall.y_offset) << 8),
+            level: Cell::new(StripLevel::NONE),
         };
         let (strips, portal) = if wall.portal == NO_PORTAL {
             (
