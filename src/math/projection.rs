@@ -217,8 +217,16 @@ impl Viewport {
     #[inline]
     #[track_caller]
     pub fn projected_x_saturating(&self, p: EyePoint) -> Fx16_16 {
+        self.projected_x_saturating_with(p, p.z.recip_fx2_30())
+    }
+
+    /// [`projected_x_saturating`](Self::projected_x_saturating) from `inverse_depth`, the
+    /// reciprocal of `p.z` (shared by callers that project one point several ways).
+    #[inline]
+    #[track_caller]
+    pub fn projected_x_saturating_with(&self, p: EyePoint, inverse_depth: Fx2_30) -> Fx16_16 {
         self.projection_numerator(p)
-            .saturating_mul_fx2_30_as_fx16_16(p.z.recip_fx2_30())
+            .saturating_mul_fx2_30_as_fx16_16(inverse_depth)
     }
 
     /// Continuous screen `x` correctly rounded to 16.16 and clamped, through the integer divide:
@@ -240,8 +248,16 @@ impl Viewport {
     #[inline]
     #[track_caller]
     pub fn projected_x_fx24_8(&self, p: EyePoint) -> Fx24_8 {
+        self.projected_x_fx24_8_with(p, p.z.recip_fx2_30())
+    }
+
+    /// [`projected_x_fx24_8`](Self::projected_x_fx24_8) from `inverse_depth`, the reciprocal
+    /// of `p.z`.
+    #[inline]
+    #[track_caller]
+    pub fn projected_x_fx24_8_with(&self, p: EyePoint, inverse_depth: Fx2_30) -> Fx24_8 {
         self.projection_numerator(p)
-            .saturating_mul_fx2_30(p.z.recip_fx2_30())
+            .saturating_mul_fx2_30(inverse_depth)
     }
 
     /// Continuous screen `x` the thesis' way, in 24.8: the ray's slope `x'/z'` truncated to 24.8
@@ -254,12 +270,20 @@ impl Viewport {
     #[inline]
     #[track_caller]
     pub fn projected_x_thesis_fx24_8(&self, p: EyePoint) -> Fx24_8 {
+        self.projected_x_thesis_fx24_8_with(p, p.z.recip_fx2_30())
+    }
+
+    /// [`projected_x_thesis_fx24_8`](Self::projected_x_thesis_fx24_8) from `inverse_depth`,
+    /// the reciprocal of `p.z`.
+    #[inline]
+    #[track_caller]
+    pub fn projected_x_thesis_fx24_8_with(&self, p: EyePoint, inverse_depth: Fx2_30) -> Fx24_8 {
         debug_assert!(
             p.z >= NEAR_DEPTH,
             "the thesis' projection needs z' ≥ NEAR_DEPTH"
         );
         // 24.8 bits × 2.30 bits = the slope in 24.8 × 2^30.
-        let product = i64::from(p.x.to_bits()) * i64::from(p.z.recip_fx2_30().to_bits());
+        let product = i64::from(p.x.to_bits()) * i64::from(inverse_depth.to_bits());
         let truncated = if product < 0 {
             -((-product) >> 30)
         } else {

@@ -253,21 +253,24 @@ impl Projection {
     /// [`Viewport::first_column_at_or_after`]. `None` for [`Projection::Exact`] and for a vertex
     /// at or behind the near plane (a projection is undefined there): the exact
     /// [`VertexSplit::new`] splits the columns then. Computed once per vertex and frame (the
-    /// renderer caches it), so it stays out of line and in ROM.
+    /// renderer caches it), so it stays out of line; in IWRAM by its section, since the
+    /// rounded projections are there to be cheaper than the exact bisection it replaces.
     #[inline(never)]
+    #[link_section = ".iwram.render_projection_first_column"]
     pub fn first_column(self, viewport: &Viewport, p: EyePoint) -> Option<i32> {
+        if self == Projection::Exact || p.z <= NEAR_DEPTH {
+            return None;
+        }
+        let inverse_depth = p.z.recip_fx2_30();
         Some(match self {
-            _ if p.z <= NEAR_DEPTH => return None,
-            Projection::Exact => return None,
-            Projection::Fx16_16 => {
-                viewport.first_column_at_or_after_x(viewport.projected_x_saturating(p))
-            }
-            Projection::Fx24_8 => {
-                viewport.first_column_at_or_after_x_fx24_8(viewport.projected_x_fx24_8(p))
-            }
-            Projection::Thesis24_8 => {
-                viewport.first_column_at_or_after_x_fx24_8(viewport.projected_x_thesis_fx24_8(p))
-            }
+            Projection::Fx16_16 => viewport
+                .first_column_at_or_after_x(viewport.projected_x_saturating_with(p, inverse_depth)),
+            Projection::Fx24_8 => viewport.first_column_at_or_after_x_fx24_8(
+                viewport.projected_x_fx24_8_with(p, inverse_depth),
+            ),
+            _ => viewport.first_column_at_or_after_x_fx24_8(
+                viewport.projected_x_thesis_fx24_8_with(p, inverse_depth),
+            ),
         })
     }
 
