@@ -29,6 +29,8 @@ pub const BENCH_MAP: &str = "bench";
 pub const GUARD_DONE: &str = "bench guard done";
 /// Printed at the end of the bench scene.
 pub const BENCH_DONE: &str = "bench done";
+/// The first word of the set-up runs' lines ([`SetupLine`]).
+pub const SETUP_WORD: &str = "setup";
 
 /// The bench map from the compiled assets (the first map if there is no `bench`).
 pub fn bench_map() -> &'static MapTables<'static> {
@@ -110,6 +112,13 @@ pub fn report_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Setti
     knobs.chain(other_maps)
 }
 
+/// The set-up runs, last in the bench scene: the guard's runs again, drawn on a canvas that
+/// prepares every kernel call and runs none, so that the report can tell the renderer's
+/// set-up per wall column and per span from its kernels' cycles per pixel.
+pub fn setup_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Settings)> {
+    guard_runs()
+}
+
 /// Every run of the bench scene, in order: [`guard_runs`], then [`report_runs`].
 pub fn all_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Settings)> {
     guard_runs().chain(report_runs())
@@ -163,6 +172,33 @@ impl fmt::Display for BenchLine<'_> {
     }
 }
 
+/// One frame's set-up line: `setup map=NAME <settings> frame=N cycles=C <stages> <counts>`,
+/// a [`BenchLine`] of a frame drawn without kernels, with the counts the report divides by:
+/// wall columns, wall strips, spans, and the pixels of the wall stage (strips) and of the
+/// plane stage (spans and sky).
+pub struct SetupLine<'l>(pub BenchLine<'l>);
+
+impl fmt::Display for SetupLine<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let line = &self.0;
+        let stats = line.stats;
+        write!(
+            f,
+            "{SETUP_WORD} map={} {} frame={} cycles={}{} cols={} strips={} spans={} wall_px={} plane_px={}",
+            line.map,
+            SettingsLabel(line.settings),
+            line.frame,
+            line.cycles,
+            StageCycles(stats),
+            stats.wall_columns,
+            stats.strips,
+            stats.spans,
+            stats.column_pixels - stats.sky_pixels,
+            stats.span_pixels + stats.sky_pixels,
+        )
+    }
+}
+
 /// A frame's stage timings as the `name_cycles=N` words of a bench line, each with a leading
 /// space. A new stage is one `write!` line.
 pub struct StageCycles<'s>(pub &'s FrameStats);
@@ -202,6 +238,9 @@ mod tests {
             wall_columns: u32::MAX,
             column_pixels: u32::MAX,
             span_pixels: u32::MAX,
+            strips: u32::MAX,
+            sky_pixels: u32::MAX,
+            spans: u32::MAX,
             depth_cutoffs: u32::MAX,
             repeat_visits: u32::MAX,
             merged_visits: u32::MAX,
@@ -209,20 +248,26 @@ mod tests {
             wall_ticks: u32::MAX,
             plane_ticks: u32::MAX,
         };
-        for (map, settings) in all_runs() {
+        let stats = FrameStats {
+            sky_pixels: 0,
+            span_pixels: u32::MAX / 2,
+            ..stats
+        };
+        for (map, settings) in all_runs().chain(setup_runs()) {
             let line = BenchLine {
                 map: map.name,
                 settings: &settings,
                 frame: FRAMES_PER_SETTING,
                 cycles: u32::MAX,
                 stats: &stats,
+            };
+            for line in [line.to_string(), SetupLine(line).to_string()] {
+                assert!(
+                    line.len() <= MAX_LINE_BYTES,
+                    "{} bytes: {line} (shorten the knob or stage words)",
+                    line.len()
+                );
             }
-            .to_string();
-            assert!(
-                line.len() <= MAX_LINE_BYTES,
-                "{} bytes: {line} (shorten the knob or stage words)",
-                line.len()
-            );
         }
     }
 

@@ -207,6 +207,10 @@ mod rom {
                 let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
                 bench_run(display, renderer, &render_assets, map, &settings);
             }
+            for (map, settings) in bench::setup_runs() {
+                let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
+                setup_run(display, renderer, &render_assets, map, &settings);
+            }
         }
         log_stack();
         log::info(format_args!("{}", bench::BENCH_DONE));
@@ -224,21 +228,46 @@ mod rom {
         map: &MapTables,
         settings: &Settings,
     ) {
+        timed_run(display, renderer, render_assets, map, settings, true);
+    }
+
+    /// One setting of the benchmark's set-up runs: [`bench_run`]'s frames on a canvas that runs
+    /// no kernel ([`VramCanvas::without_kernels`]), printed as [`bench::SetupLine`]s.
+    fn setup_run(
+        display: &mut Display,
+        renderer: &mut Renderer,
+        render_assets: &RenderAssets,
+        map: &MapTables,
+        settings: &Settings,
+    ) {
+        timed_run(display, renderer, render_assets, map, settings, false);
+    }
+
+    fn timed_run(
+        display: &mut Display,
+        renderer: &mut Renderer,
+        render_assets: &RenderAssets,
+        map: &MapTables,
+        settings: &Settings,
+        kernels: bool,
+    ) {
         let frames = Flight::new(map)
             .take(1)
             .chain(Flight::new(map).take(bench::FRAMES_PER_SETTING as usize));
         for (index, camera) in frames.enumerate() {
             let view = View::new(&camera, settings);
             let page = VramPage::back_of(display.shown_page());
+            let mut canvas = if kernels {
+                VramCanvas::new(page, settings.resolution)
+            } else {
+                VramCanvas::without_kernels(page, settings.resolution)
+            };
             let started = meter::now();
-            let stats = renderer.render(
-                map,
-                render_assets,
-                &view,
-                &mut VramCanvas::new(page, settings.resolution),
-            );
+            let stats = renderer.render(map, render_assets, &view, &mut canvas);
             let cycles = meter::cycles_since(started);
-            display.flip_at_vblank(settings.resolution);
+            if kernels {
+                display.flip_at_vblank(settings.resolution);
+            }
             if index > 0 {
                 let line = BenchLine {
                     map: map.name,
@@ -247,7 +276,11 @@ mod rom {
                     cycles,
                     stats: &stats,
                 };
-                log::info(format_args!("{line}"));
+                if kernels {
+                    log::info(format_args!("{line}"));
+                } else {
+                    log::info(format_args!("{}", bench::SetupLine(line)));
+                }
             }
         }
     }

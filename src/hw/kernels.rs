@@ -188,12 +188,28 @@ static FLAT_KERNELS: [[[FlatKernel; 4]; 2]; 2] = [
 pub struct VramCanvas {
     page: VramPage,
     resolution: Resolution,
+    /// False for the benchmark's set-up measurement: every call is prepared as usual, up to
+    /// the kernel's argument block, and the kernel is not run.
+    kernels: bool,
 }
 
 impl VramCanvas {
     /// Draws into `page` at `resolution`.
     pub fn new(page: VramPage, resolution: Resolution) -> VramCanvas {
-        VramCanvas { page, resolution }
+        VramCanvas {
+            page,
+            resolution,
+            kernels: true,
+        }
+    }
+
+    /// A canvas that prepares every column and span as [`VramCanvas::new`]'s does and draws
+    /// no pixel: the benchmark times the renderer on it to tell its set-up from its kernels.
+    pub fn without_kernels(page: VramPage, resolution: Resolution) -> VramCanvas {
+        VramCanvas {
+            kernels: false,
+            ..VramCanvas::new(page, resolution)
+        }
     }
 
     fn row_address(&self, row: usize) -> *mut u8 {
@@ -249,10 +265,12 @@ impl Canvas for VramCanvas {
         };
         let kernel = COLUMN_KERNELS[packing][usize::from(texture.colormap.is_some())]
             [(texture.log2_height - 3) as usize];
-        // SAFETY: the column lies inside the page (checked above), the texel column holds
-        // 2^log2_height bytes and every index the kernel forms is below that; the colormap, if
-        // used, has 256 entries.
-        unsafe { kernel(&job) };
+        if self.kernels {
+            // SAFETY: the column lies inside the page (checked above), the texel column holds
+            // 2^log2_height bytes and every index the kernel forms is below that; the
+            // colormap, if used, has 256 entries.
+            unsafe { kernel(&job) };
+        }
     }
 
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
@@ -269,7 +287,9 @@ impl Canvas for VramCanvas {
             // neighbour outside the span is written here with the twin's arithmetic.
             if x % 2 == 1 {
                 let index = texture.indices(1).next().unwrap_or(0);
-                self.put_native(x, row, index);
+                if self.kernels {
+                    self.put_native(x, row, index);
+                }
                 texture = texture.advanced(1);
                 x += 1;
                 count -= 1;
@@ -280,7 +300,9 @@ impl Canvas for VramCanvas {
                     .indices(1)
                     .next()
                     .unwrap_or(0);
-                self.put_native(x + count - 1, row, index);
+                if self.kernels {
+                    self.put_native(x + count - 1, row, index);
+                }
                 count -= 1;
             }
             if count == 0 {
@@ -302,8 +324,11 @@ impl Canvas for VramCanvas {
             count: halfwords as u32,
             colormap: colormap_pointer(texture.colormap),
         };
-        // SAFETY: the run lies inside the page row (checked above); the flat holds 4^k texels
-        // and the kernel's index is below that by construction of its masks.
-        unsafe { FLAT_KERNELS[pairs][lit][side](&job) };
+        let kernel = FLAT_KERNELS[pairs][lit][side];
+        if self.kernels {
+            // SAFETY: the run lies inside the page row (checked above); the flat holds 4^k
+            // texels and the kernel's index is below that by construction of its masks.
+            unsafe { kernel(&job) };
+        }
     }
 }

@@ -60,6 +60,7 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
         for (offset, window) in ceiling.iter().enumerate() {
             if !window.is_empty() {
                 stats.column_pixels += (window.bottom - window.top) as u32;
+                stats.sky_pixels += (window.bottom - window.top) as u32;
                 sky_column(view, assets, column_angles, canvas, first + offset, *window);
             }
         }
@@ -91,6 +92,7 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
         };
         make_spans(windows, first, span_start, |row, start, end| {
             stats.span_pixels += (end - start) as u32;
+            stats.spans += 1;
             plane.span(canvas, row, start, end);
         });
     }

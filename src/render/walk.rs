@@ -41,6 +41,12 @@ pub struct FrameStats {
     pub column_pixels: u32,
     /// Pixels drawn by span kernels (floors, ceilings).
     pub span_pixels: u32,
+    /// Wall strips drawn (column kernel calls of the wall stage).
+    pub strips: u32,
+    /// Of [`FrameStats::column_pixels`], the sky's (drawn in the plane stage).
+    pub sky_pixels: u32,
+    /// Floor and ceiling spans drawn (span kernel calls).
+    pub spans: u32,
     /// Portal chains cut at [`MAX_PORTAL_DEPTH`].
     pub depth_cutoffs: u32,
     /// Draws of a sector already drawn this frame (seen through another portal): what the
@@ -687,6 +693,7 @@ impl Renderer {
         }
         let count = (bottom - top) as usize;
         stats.column_pixels += count as u32;
+        stats.strips += 1;
         canvas.set_surface(texture.surface);
         let view = scene.view;
         let colormap = strip.colormap;

@@ -22,6 +22,8 @@ pub struct Frame {
     pub cycles: u64,
     /// Cycles of each named stage (`wall`, `plane`, …), in line order.
     pub stages: Vec<(String, u64)>,
+    /// The line's other numbers after `cycles=` (a set-up line's counts: `cols`, `spans`, …).
+    pub counts: Vec<(String, u64)>,
 }
 
 /// The frames of one map at one setting, in the order the ROM printed them.
@@ -115,13 +117,29 @@ pub fn run_key(map: &str, settings: &[(String, String)]) -> String {
 /// The bench runs in `log` (other lines are skipped), grouped by map and settings in the order
 /// they first appear.
 pub fn bench_runs(log: &str) -> Result<Vec<Run>, String> {
+    runs_of(log, "bench")
+}
+
+/// The set-up runs in `log` (`portalcast::bench::SetupLine`: frames drawn without kernels, with
+/// their counts), grouped like [`bench_runs`].
+pub fn setup_runs(log: &str) -> Result<Vec<Run>, String> {
+    runs_of(log, SETUP_WORD)
+}
+
+/// The first word of the ROM's set-up lines (`portalcast::bench::SETUP_WORD`).
+pub const SETUP_WORD: &str = "setup";
+
+/// The runs of the lines of `log` that start with `word` and `map=`.
+fn runs_of(log: &str, word: &str) -> Result<Vec<Run>, String> {
+    let prefix = format!("{word} map=");
     let mut runs: Vec<Run> = Vec::new();
-    for line in log.lines().filter(|line| line.starts_with("bench map=")) {
+    for line in log.lines().filter(|line| line.starts_with(&prefix)) {
         let (map, settings, rest) = split_head(line, "frame")?;
         let mut frame = Frame {
             index: 0,
             cycles: 0,
             stages: Vec::new(),
+            counts: Vec::new(),
         };
         let mut has_cycles = false;
         for (key, value) in rest {
@@ -134,6 +152,10 @@ pub fn bench_runs(log: &str) -> Result<Vec<Run>, String> {
                 frame
                     .stages
                     .push((stage.to_string(), number(key, value, line)?));
+            } else {
+                frame
+                    .counts
+                    .push((key.to_string(), number(key, value, line)?));
             }
         }
         if !has_cycles {

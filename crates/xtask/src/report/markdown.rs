@@ -223,6 +223,7 @@ pub fn write(measurements: &Measurements) -> String {
     chart(&mut doc);
     instruction_set(&mut doc, measurements);
     kernels(&mut doc, measurements);
+    set_up(&mut doc, measurements);
     accuracy(&mut doc, measurements);
     sizes(&mut doc, measurements);
     // The section brings its own heading (`cargo bench-math` writes the same block).
@@ -555,6 +556,121 @@ fn kernels(doc: &mut String, measurements: &Measurements) {
         "\n`cargo test --test emulator_foundation` also proves that every kernel variant writes \
          exactly the same VRAM bytes as its Rust twin.\n\n",
     );
+}
+
+/// The brief's targets for the renderer's set-up: cycles per wall column and per span.
+const WALL_SET_UP_TARGET: u64 = 300;
+const SPAN_SET_UP_TARGET: u64 = 100;
+
+/// The mean of a count over a run's frames.
+fn mean_count(run: &Run, name: &str) -> u64 {
+    let frames = run.frames.len().max(1) as u64;
+    let sum: u64 = run
+        .frames
+        .iter()
+        .filter_map(|frame| frame.counts.iter().find(|(key, _)| key == name))
+        .map(|(_, value)| value)
+        .sum();
+    (sum + frames / 2) / frames
+}
+
+/// The mean cycles of stage `name` in `summary`.
+fn stage_mean(summary: &Summary, name: &str) -> u64 {
+    summary
+        .stage_means
+        .iter()
+        .find(|(stage, _)| stage == name)
+        .map_or(0, |(_, mean)| *mean)
+}
+
+/// `part / whole`, 0 when there is no whole.
+fn per(part: u64, whole: u64) -> f64 {
+    if whole == 0 {
+        0.0
+    } else {
+        part as f64 / whole as f64
+    }
+}
+
+/// `≤ target` met, or how far over it.
+fn against(value: f64, target: u64) -> String {
+    if value <= target as f64 {
+        "met".to_string()
+    } else {
+        format!("**{:.1}× over**", value / target as f64)
+    }
+}
+
+fn set_up(doc: &mut String, measurements: &Measurements) {
+    doc.push_str(
+        "## Set-up per wall column and per span, and the kernels as the game runs them\n\n\
+         The bench scene ends by flying the guard's runs again (the bench map at the default \
+         settings) on a canvas that prepares every kernel call up to its argument block and runs \
+         none (`VramCanvas::without_kernels`), and prints each frame's counts \
+         (`portalcast::bench::SetupLine`). The wall stage's cycles there, over the wall columns, \
+         are the **set-up per wall column**: ownership, projection, rows, clip windows, texture \
+         column, mip level and light, the strips' set-up, and the per-wall and per-visit work \
+         spread over the columns; the plane stage's, over the spans, the **set-up per span** \
+         (`R_MakeSpans`, each span's depth, mip level, texture steps and light, and the sky's \
+         columns). What the kernels add to each stage, over the pixels it draws, is their cost \
+         per pixel as the game runs them: texels in EWRAM, the colormap in OBJ VRAM, the call \
+         and its dispatch included (the kernel table above has texels and colormap in IWRAM and \
+         the call cancelled out). Means over the 64 frames; `cargo bench-rom` prints this table \
+         too.\n\n",
+    );
+    doc.push_str(&set_up_table(
+        measurements.guard(),
+        &measurements.setup_runs,
+    ));
+    doc.push('\n');
+}
+
+/// The set-up table: each set-up run beside the bench run of the same map and settings.
+pub fn set_up_table(runs: &[Run], setup_runs: &[Run]) -> String {
+    let mut doc = String::from(
+        "| resolution | wall columns | set-up per wall column | target | strips | wall pixels | \
+         kernel cycles per wall pixel | spans | set-up per span | target | plane pixels | \
+         kernel cycles per plane pixel |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for setup in setup_runs {
+        let Some(drawn) = runs.iter().find(|run| run.key() == setup.key()) else {
+            continue;
+        };
+        let (setup_summary, drawn_summary) = (setup.summary(), drawn.summary());
+        let (wall_setup, plane_setup) = (
+            stage_mean(&setup_summary, "wall"),
+            stage_mean(&setup_summary, "plane"),
+        );
+        let wall_kernels = stage_mean(&drawn_summary, "wall").saturating_sub(wall_setup);
+        let plane_kernels = stage_mean(&drawn_summary, "plane").saturating_sub(plane_setup);
+        let (columns, strips, spans) = (
+            mean_count(setup, "cols"),
+            mean_count(setup, "strips"),
+            mean_count(setup, "spans"),
+        );
+        let (wall_pixels, plane_pixels) =
+            (mean_count(setup, "wall_px"), mean_count(setup, "plane_px"));
+        let per_column = per(wall_setup, columns);
+        let per_span = per(plane_setup, spans);
+        let _ = writeln!(
+            doc,
+            "| {} | {} | {:.0} | ≤ {WALL_SET_UP_TARGET}: {} | {} | {} | {:.1} | {} | {:.0} | ≤ {SPAN_SET_UP_TARGET}: {} | {} | {:.1} |",
+            resolution_name(setup.setting("res").unwrap_or("?")),
+            group_digits(columns),
+            per_column,
+            against(per_column, WALL_SET_UP_TARGET),
+            group_digits(strips),
+            group_digits(wall_pixels),
+            per(wall_kernels, wall_pixels),
+            group_digits(spans),
+            per_span,
+            against(per_span, SPAN_SET_UP_TARGET),
+            group_digits(plane_pixels),
+            per(plane_kernels, plane_pixels),
+        );
+    }
+    doc
 }
 
 fn accuracy(doc: &mut String, measurements: &Measurements) {

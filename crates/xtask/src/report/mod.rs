@@ -54,6 +54,8 @@ pub struct Measurements {
     pub runs: Vec<Run>,
     /// How many of `runs`, from the first, are the regression guard's.
     pub guard_runs: usize,
+    /// The guard's runs again, drawn without kernels (`portalcast::bench::setup_runs`).
+    pub setup_runs: Vec<Run>,
     /// The host's accuracy lines, one per run.
     pub accuracy: Vec<Accuracy>,
     /// The kernel check's cycles per pixel, in hundredths.
@@ -128,6 +130,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         .ok_or_else(|| TaskError(format!("the bench scene printed no {GUARD_DONE:?}")))?;
     let guard_runs = bench_log::bench_runs(guard_log).map_err(TaskError)?.len();
     let runs = bench_log::bench_runs(&bench_log).map_err(TaskError)?;
+    let setup_runs = bench_log::setup_runs(&bench_log).map_err(TaskError)?;
     let kernel_log = run_rom(&gba, "L+R", KERNEL_LINE)?;
     let kernels = bench_log::numbers_of_line(&kernel_log, KERNEL_LINE)
         .ok_or_else(|| TaskError("the kernel check printed no cycles".to_string()))?;
@@ -153,6 +156,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
     let measurements = Measurements {
         runs,
         guard_runs,
+        setup_runs,
         accuracy,
         kernels,
         boot,
@@ -203,8 +207,11 @@ pub fn bench_rom() -> TaskResult<()> {
     let isa = portalcast_xtask::engine_isa()?;
     let gba = rom_path(isa);
     build_rom_for(isa, &gba)?;
-    let runs = bench_log::bench_runs(&run_rom(&gba, "R", BENCH_DONE)?).map_err(TaskError)?;
+    let log = run_rom(&gba, "R", BENCH_DONE)?;
+    let runs = bench_log::bench_runs(&log).map_err(TaskError)?;
     print!("{}", markdown::cycle_table(&runs));
+    let setup_runs = bench_log::setup_runs(&log).map_err(TaskError)?;
+    print!("\n{}", markdown::set_up_table(&runs, &setup_runs));
     Ok(())
 }
 
