@@ -438,6 +438,14 @@ fn validate(map: &MapTables, compiled: &Compiled) -> Result<(), String> {
             if length2 > longest * longest {
                 return Err(format!("sector {s} wall {i}: longer than WALL_LENGTH_MAX"));
             }
+            // The stored length is the floor of 256 times the true one.
+            let stored = i128::from(wall.length_fx8);
+            if stored < 0 || stored * stored > length2 << 16 || (stored + 1).pow(2) <= length2 << 16
+            {
+                return Err(format!(
+                    "sector {s} wall {i}: stored length {stored}/256 is not floor(256·√{length2})"
+                ));
+            }
             let turn = cross(a, b, c);
             // A straight continuation is allowed (a wall split for a neighbour), a fold is not.
             if turn < 0 || (turn == 0 && dot(b, a, c) >= 0) {

@@ -962,7 +962,7 @@ impl<'s> WallJob<'s> {
         };
         WallJob {
             sector,
-            length: wall_length(scene.map, wall),
+            length: wall_length(wall),
             x_offset: Fx24_8::from_int(i32::from(wall.x_offset)),
             ceiling_above_eye: above_eye(sector.ceil_z),
             floor_above_eye: above_eye(sector.floor_z),
@@ -991,36 +991,9 @@ fn vertex(map: &MapTables, index: u16) -> WorldPoint {
     WorldPoint::from_int(v.x, v.y)
 }
 
-/// A wall's length in 24.8, from the integer square root of its squared length.
-fn wall_length(map: &MapTables, wall: &Wall) -> Fx24_8 {
-    let (a, b) = (
-        map.vertices[usize::from(wall.start)],
-        map.vertices[usize::from(wall.end)],
-    );
-    let (dx, dy) = (i64::from(b.x - a.x), i64::from(b.y - a.y));
-    // (length · 256)² = (dx² + dy²) · 65536.
-    Fx24_8::from_bits(isqrt(((dx * dx + dy * dy) << 16) as u64) as i32)
-}
-
-/// Floor of the square root.
-pub fn isqrt(n: u64) -> u64 {
-    if n == 0 {
-        return 0;
-    }
-    let mut root = 0u64;
-    // The largest power of 4 not above n.
-    let mut bit = 1u64 << ((63 - super::ratio::leading_zeros(n)) & !1);
-    let mut rest = n;
-    while bit != 0 {
-        if rest >= root + bit {
-            rest -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
-    root
+/// A wall's length in 24.8: the map compiler's ([`Wall::length_fx8`]).
+fn wall_length(wall: &Wall) -> Fx24_8 {
+    Fx24_8::from_bits(wall.length_fx8)
 }
 
 /// The mip level for depth `depth`: `floor(log2(depth / focal_y))`, at least 0, below
@@ -1087,38 +1060,4 @@ pub fn column_angle(q: i32, twice_focal: i32) -> i16 {
         }
     }
     low as i16
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use proptest::prelude::*;
-
-    proptest! {
-        #![proptest_config(ProptestConfig::with_cases(5000))]
-        #[test]
-        fn isqrt_is_the_floor_of_the_square_root(n in any::<u64>(), shift in 0u32..64) {
-            let n = n >> shift;
-            prop_assert_eq!(isqrt(n), n.isqrt());
-        }
-    }
-
-    #[test]
-    fn isqrt_edges() {
-        for n in [
-            0u64,
-            1,
-            2,
-            3,
-            4,
-            15,
-            16,
-            17,
-            u64::MAX,
-            1 << 62,
-            (1 << 62) - 1,
-        ] {
-            assert_eq!(isqrt(n), n.isqrt(), "{n}");
-        }
-    }
 }

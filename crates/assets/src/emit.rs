@@ -233,8 +233,8 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
     for w in &map.walls {
         let _ = writeln!(
             s,
-            "    {FORMAT}::Wall {{ start: {}, end: {}, portal: {}, texture: {}, upper_texture: {}, lower_texture: {}, x_offset: {}, y_offset: {} }},",
-            w.start, w.end, w.portal, w.texture, w.upper_texture, w.lower_texture, w.x_offset, w.y_offset
+            "    {FORMAT}::Wall {{ start: {}, end: {}, portal: {}, texture: {}, upper_texture: {}, lower_texture: {}, x_offset: {}, y_offset: {}, length_fx8: {} }},",
+            w.start, w.end, w.portal, w.texture, w.upper_texture, w.lower_texture, w.x_offset, w.y_offset, w.length_fx8
         );
     }
     let _ = writeln!(s, "];");

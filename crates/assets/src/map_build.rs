@@ -736,6 +736,10 @@ fn tables(
                 lower_texture: texture(&wall.source.lower),
                 x_offset: wall.source.x_offset.value as i16,
                 y_offset: wall.source.y_offset.value as i16,
+                length_fx8: wall_length_fx8(
+                    vertices[usize::from(new_index[wall.start])],
+                    vertices[usize::from(new_index[wall.end])],
+                ),
             });
         }
         sectors.push(Sector {
@@ -781,4 +785,12 @@ fn tables(
             sector: player_sector,
         },
     }
+}
+
+/// `floor(256·√(Δx² + Δy²))`: a wall's length in 24.8, as [`Wall::length_fx8`] stores it. Within
+/// the declared limits (`WALL_LENGTH_MAX`) it fits i32.
+pub fn wall_length_fx8(a: Vertex, b: Vertex) -> i32 {
+    let (dx, dy) = (i64::from(b.x - a.x), i64::from(b.y - a.y));
+    // (length · 256)² = (dx² + dy²) · 65536.
+    (((dx * dx + dy * dy) as u64) << 16).isqrt() as i32
 }

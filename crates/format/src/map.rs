@@ -54,6 +54,9 @@ pub struct Wall {
     pub x_offset: i16,
     /// Vertical texture offset, in texels.
     pub y_offset: i16,
+    /// The wall's length in 24.8 world units, `floor(256·√(Δx² + Δy²))`: computed by the map
+    /// compiler, so the renderer takes no square root per wall.
+    pub length_fx8: i32,
 }
 
 impl Wall {

@@ -160,6 +160,9 @@ fn wall(start: u16, end: u16, portal: u16) -> Wall {
         lower_texture: if solid { NO_TEXTURE } else { STRIP_TEX },
         x_offset: 0,
         y_offset: 0,
+        // Only the engine reads it; these maps are drawn by the oracle, which measures each
+        // wall itself.
+        length_fx8: 0,
     }
 }
 
