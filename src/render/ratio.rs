@@ -10,31 +10,59 @@ use crate::math::recip_pow2;
 /// its reciprocal 29), plus ½ from the rounding.
 #[inline]
 pub fn ratio_shifted(num: i64, shift: u32, den: i64) -> i64 {
-    debug_assert!(den != 0, "ratio with a zero divisor");
-    let negative = (num < 0) != (den < 0);
-    let d = den.unsigned_abs();
-    // d ≈ mantissa · 2^exponent with the mantissa in [2^31, 2^32).
-    let exponent = 32 - leading_zeros(d) as i32;
-    let mantissa = if exponent >= 0 {
-        (d >> exponent) as u32
-    } else {
-        (d << -exponent) as u32
-    };
-    // 2^61 / mantissa, in (2^29, 2^30].
-    let reciprocal = u128::from(recip_pow2(mantissa, 61));
-    // num · 2^shift / d = num · reciprocal / 2^(61 + exponent − shift).
-    let product = u128::from(num.unsigned_abs()) * reciprocal;
-    let right = 61 + exponent - shift as i32;
-    let quotient = if right > 0 {
-        ((product >> (right - 1)) + 1) >> 1
-    } else {
-        product << -right
-    };
-    let quotient = quotient as i64;
-    if negative {
-        -quotient
-    } else {
-        quotient
+    Divisor::new(den).ratio_shifted(num, shift)
+}
+
+/// A divisor normalised once, for several quotients by it ([`ratio_shifted`] is one): a wall's
+/// stepper divides four values by the same scale.
+#[derive(Clone, Copy, Debug)]
+pub struct Divisor {
+    /// `2^61 / mantissa`, in (2^29, 2^30], for the divisor's top 32 bits as the mantissa.
+    reciprocal: u64,
+    /// The divisor is about `mantissa · 2^exponent`.
+    exponent: i32,
+    negative: bool,
+}
+
+impl Divisor {
+    /// `den != 0`. Out of line, as [`Divisor::ratio_shifted`]: IWRAM is short, and both are
+    /// called per wall, not per column.
+    #[inline(never)]
+    pub fn new(den: i64) -> Divisor {
+        debug_assert!(den != 0, "ratio with a zero divisor");
+        let d = den.unsigned_abs();
+        // d ≈ mantissa · 2^exponent with the mantissa in [2^31, 2^32).
+        let exponent = 32 - leading_zeros(d) as i32;
+        let mantissa = if exponent >= 0 {
+            (d >> exponent) as u32
+        } else {
+            (d << -exponent) as u32
+        };
+        Divisor {
+            reciprocal: u64::from(recip_pow2(mantissa, 61)),
+            exponent,
+            negative: den < 0,
+        }
+    }
+
+    /// Approximately `num · 2^shift / self`, rounded to nearest: [`ratio_shifted`]'s result.
+    #[inline(never)]
+    pub fn ratio_shifted(&self, num: i64, shift: u32) -> i64 {
+        let negative = (num < 0) != self.negative;
+        // num · 2^shift / d = num · reciprocal / 2^(61 + exponent − shift).
+        let product = u128::from(num.unsigned_abs()) * u128::from(self.reciprocal);
+        let right = 61 + self.exponent - shift as i32;
+        let quotient = if right > 0 {
+            ((product >> (right - 1)) + 1) >> 1
+        } else {
+            product << -right
+        };
+        let quotient = quotient as i64;
+        if negative {
+            -quotient
+        } else {
+            quotient
+        }
     }
 }
 

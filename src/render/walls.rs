@@ -14,7 +14,7 @@
 //! `K = a.z·Δx − a.x·Δz`. `N` and `D` are linear in `c`. The depth is clamped to the near plane
 //! (`NEAR_DEPTH`), so an eye closer than that to a wall sees it as at the near plane.
 
-use super::ratio::{ratio, ratio_shifted};
+use super::ratio::{ratio, ratio_shifted, Divisor};
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, Side, Viewport, NEAR_DEPTH};
 
 /// The columns `[start, end)` where a monotone predicate over `0..width` holds.
@@ -235,8 +235,8 @@ impl WallProjector {
         let denominator = self.twice_focal * self.delta_x - q * self.delta_z;
         // With D in 2^-8 and 2dK in 2^-16 units, 1/z' = D/(2dK) is in 2^-8 units and
         // t/z' = N/(2dK) likewise: × 2^38 / (2dK) gives 2.30.
-        let scale = self.twice_focal * self.cross;
-        let to_fx2_30 = |value: i64| ratio_shifted(value, 38, scale);
+        let scale = Divisor::new(self.twice_focal * self.cross);
+        let to_fx2_30 = |value: i64| scale.ratio_shifted(value, 38);
         WallStepper {
             inverse_depth: to_fx2_30(denominator),
             inverse_depth_step: to_fx2_30(-2 * self.delta_z),
