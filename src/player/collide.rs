@@ -38,9 +38,10 @@
 //! pleasant. The pushes use square roots and divisions rounded away from the wall (never short
 //! of the radius by more than a rounding step).
 
-use portalcast_format::{MapTables, Sector, Wall};
+use portalcast_format::{MapTables, Sector, Vertex, Wall};
 
 use crate::math::{cross, segment_contact, Fx24_8, SegmentContact, WorldPoint};
+use crate::render::ratio::leading_zeros;
 
 /// Radius of the body's disc, in world units: Doom's player radius, half the thesis' 64-unit
 /// square. Corridors of the shipped maps are at least 64 wide.
@@ -125,6 +126,10 @@ pub fn slide(
         .max(delta.y.unsigned_abs())
         .div_ceil(MAX_STEP_BITS as u32)
         .max(1) as i32;
+    if steps == 1 {
+        // Every move within the speed limit of walking and running: no split, so no divide.
+        return slide_step(map, sector, from, delta, body);
+    }
     let (mut position, mut sector) = (from, sector);
     for index in 0..steps {
         // The exact split: the steps add up to `delta`.
@@ -331,21 +336,21 @@ impl Bounds {
     }
 }
 
-/// A segment's ends in 24.8 bits.
-type Segment = ((i32, i32), (i32, i32));
-
-/// The blocking segments near one step (768 bytes of stack).
-struct Obstacles {
-    segments: [Segment; MAX_SEGMENTS],
+/// The blocking segments near one step, as their walls' vertex indices: 192 bytes of stack to
+/// clear per step, where the segments' coordinates took 768 (most steps find none).
+struct Obstacles<'m> {
+    vertices: &'m [Vertex],
+    ends: [(u16, u16); MAX_SEGMENTS],
     count: usize,
 }
 
-impl Obstacles {
+impl<'m> Obstacles<'m> {
     /// Walks from `sector` through the open portals that meet `bounds` and keeps every
     /// blocking segment of the sectors reached that meets `bounds`.
-    fn near(map: &MapTables, sector: u16, bounds: &Bounds, body: &Body) -> Obstacles {
+    fn near(map: &MapTables<'m>, sector: u16, bounds: &Bounds, body: &Body) -> Obstacles<'m> {
         let mut obstacles = Obstacles {
-            segments: [((0, 0), (0, 0)); MAX_SEGMENTS],
+            vertices: map.vertices,
+            ends: [(0, 0); MAX_SEGMENTS],
             count: 0,
         };
         let mut sectors = [sector; MAX_NEARBY_SECTORS];
@@ -370,10 +375,7 @@ impl Obstacles {
                     }
                     _ => {
                         if obstacles.count < MAX_SEGMENTS {
-                            obstacles.segments[obstacles.count] = (
-                                (a.x.to_bits(), a.y.to_bits()),
-                                (b.x.to_bits(), b.y.to_bits()),
-                            );
+                            obstacles.ends[obstacles.count] = (wall.start, wall.end);
                             obstacles.count += 1;
                         }
                     }
@@ -383,16 +385,15 @@ impl Obstacles {
         obstacles
     }
 
-    /// The segments, widened for the pushes' 64-bit products.
+    /// The segments in 24.8 bits, widened for the pushes' 64-bit products.
     fn segments(&self) -> impl Iterator<Item = ((i64, i64), (i64, i64))> + '_ {
-        self.segments[..self.count]
+        let bits = |index: u16| {
+            let vertex = self.vertices[usize::from(index)];
+            (i64::from(vertex.x) * 256, i64::from(vertex.y) * 256)
+        };
+        self.ends[..self.count]
             .iter()
-            .map(|&((ax, ay), (bx, by))| {
-                (
-                    (i64::from(ax), i64::from(ay)),
-                    (i64::from(bx), i64::from(by)),
-                )
-            })
+            .map(move |&(start, end)| (bits(start), bits(end)))
     }
 
     /// `p` pushed out of the segments: a few passes, edges before vertices in each.
@@ -470,11 +471,17 @@ fn push_from_segment(
     if area <= 0 {
         return None;
     }
-    let length = isqrt_ceil(length_squared as u64) as i64;
-    let reach = RADIUS_BITS * length;
-    if area >= reach {
+    // The disc reaches the segment if `area < RADIUS_BITS · ceil(√length_squared)`, that is
+    // (the right side being a multiple of RADIUS_BITS) if `area / RADIUS_BITS`, rounded down,
+    // is below `ceil(√length_squared)`, or its square below `length_squared`: the same test
+    // without the square root, which only a push needs. A quotient of 2^23 or more squares
+    // past any length_squared of the declared world (under 2^45), and could overflow.
+    let quotient = area / RADIUS_BITS;
+    if quotient >= 1 << 23 || quotient * quotient >= length_squared {
         return None;
     }
+    let length = isqrt_ceil(length_squared as u64) as i64;
+    let reach = RADIUS_BITS * length;
     // Along the normal (-dy, dx)/length by (reach - area)/length: the area grows by exactly
     // reach - area, to the radius (times the rounded-up length).
     let depth = reach - area;
@@ -512,12 +519,13 @@ fn div_away_from_zero(n: i64, d: i64) -> i64 {
 
 /// `floor(sqrt(n))`, bit by bit (no division, no float).
 pub fn isqrt_floor(n: u64) -> u64 {
+    if n == 0 {
+        return 0;
+    }
     let mut remainder = n;
     let mut root = 0u64;
-    let mut bit = 1u64 << 62;
-    while bit > remainder {
-        bit >>= 2;
-    }
+    // The highest power of 4 at most n: where the loop of halvings from 4^31 would stop.
+    let mut bit = 1u64 << ((63 - leading_zeros(n)) & !1);
     while bit != 0 {
         if remainder >= root + bit {
             remainder -= root + bit;
