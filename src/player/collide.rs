@@ -130,6 +130,20 @@ pub fn slide(
         // Every move within the speed limit of walking and running: no split, so no divide.
         return slide_step(map, sector, from, delta, body);
     }
+    slide_in_steps(map, sector, from, delta, body, steps)
+}
+
+/// [`slide`] of a move split into `steps` steps. Out of line (it stays in ROM when the tick runs
+/// from IWRAM): only a push faster than running takes it.
+#[inline(never)]
+fn slide_in_steps(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    delta: Delta,
+    body: &Body,
+    steps: i32,
+) -> (WorldPoint, u16) {
     let (mut position, mut sector) = (from, sector);
     for index in 0..steps {
         // The exact split: the steps add up to `delta`.
@@ -154,7 +168,8 @@ fn slide_step(
     let reach = 2 * RADIUS_BITS as i32 + 256;
     let bounds = Bounds::around(from, step, reach);
     let obstacles = Obstacles::near(map, sector, &bounds, body);
-    let allowed = obstacles.overlap(point_bits(from)).max(OVERLAP_TOLERANCE);
+    // Only needed for a target the pushes leave overlapping: most steps never compute it.
+    let mut allowed = None;
     let mut tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
     let try_count = if step.x != 0 && step.y != 0 { 3 } else { 1 };
     for attempt in &mut tries[..try_count] {
@@ -162,9 +177,14 @@ fn slide_step(
             i64::from(from.x.to_bits() + attempt.x),
             i64::from(from.y.to_bits() + attempt.y),
         );
-        let settled = obstacles.push_out(target);
-        if obstacles.overlap(settled) > allowed {
-            continue;
+        let (settled, pushes_done) = obstacles.push_out(target);
+        // When the last pass pushed nothing, no segment pushes the result: its overlap is 0.
+        if !pushes_done {
+            let allowed = *allowed
+                .get_or_insert_with(|| obstacles.overlap(point_bits(from)).max(OVERLAP_TOLERANCE));
+            if obstacles.overlap(settled) > allowed {
+                continue;
+            }
         }
         let Some(to) = point_from_bits(settled) else {
             continue;
@@ -186,9 +206,20 @@ fn track_nudged(
     body: &Body,
 ) -> Option<(WorldPoint, u16)> {
     match track(map, sector, from, to, body) {
-        Track::Inside(sector) => return Some((to, sector)),
-        Track::Blocked | Track::Degenerate => {}
+        Track::Inside(sector) => Some((to, sector)),
+        Track::Blocked | Track::Degenerate => track_nudges(map, sector, from, to, body),
     }
+}
+
+/// The nudges of [`track_nudged`]. Out of line, since rare.
+#[inline(never)]
+fn track_nudges(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    to: WorldPoint,
+    body: &Body,
+) -> Option<(WorldPoint, u16)> {
     let sx = if to.x >= from.x { 1 } else { -1 };
     let sy = if to.y >= from.y { 1 } else { -1 };
     let nudges = [
@@ -221,12 +252,29 @@ fn track_nudged(
 /// by) that the path properly crosses; anything else (touching a vertex, running along a wall,
 /// ending on one) is [`Track::Degenerate`].
 pub fn track(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint, body: &Body) -> Track {
+    // Most paths end in the sector they start in (convex: they cross nothing). This test is the
+    // first of the walk below, which is out of line (in ROM when the tick runs from IWRAM).
+    if strictly_inside(map, &map.sectors[usize::from(sector)], to) {
+        return Track::Inside(sector);
+    }
+    track_through_portals(map, sector, from, to, body)
+}
+
+/// [`track`] of a path that leaves `sector`, which `to` is not strictly inside.
+#[inline(never)]
+fn track_through_portals(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    to: WorldPoint,
+    body: &Body,
+) -> Track {
     let start = sector;
     let mut current = sector;
     let mut came_through: Option<usize> = None;
-    for _ in 0..=MAX_HOPS {
+    for hop in 0..=MAX_HOPS {
         let here = &map.sectors[usize::from(current)];
-        if strictly_inside(map, here, to) {
+        if hop > 0 && strictly_inside(map, here, to) {
             return Track::Inside(current);
         }
         let mut exit = None;
@@ -265,10 +313,27 @@ pub fn track(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint, bod
 
 /// Whether `p` is strictly inside `sector` (right of every wall). Exact.
 pub fn strictly_inside(map: &MapTables, sector: &Sector, p: WorldPoint) -> bool {
-    map.sector_walls(sector).iter().all(|wall| {
-        let (a, b) = wall_points(map, wall);
-        cross(a, b, p) > 0
-    })
+    SectorWalls { map, sector }.strictly_inside(p)
+}
+
+/// A sector's walls, for the tests every step runs over all of them.
+struct SectorWalls<'a, 'm> {
+    map: &'a MapTables<'m>,
+    sector: &'a Sector,
+}
+
+impl SectorWalls<'_, '_> {
+    /// See [`strictly_inside`]. In IWRAM on the GBA (a method: `link_section` on a free
+    /// function counts as unsafe code).
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.player_strictly_inside")]
+    fn strictly_inside(&self, p: WorldPoint) -> bool {
+        let map = self.map;
+        map.sector_walls(self.sector).iter().all(|wall| {
+            let (a, b) = wall_points(map, wall);
+            cross(a, b, p) > 0
+        })
+    }
 }
 
 /// The two ends of a wall, in world coordinates.
@@ -347,6 +412,10 @@ struct Obstacles<'m> {
 impl<'m> Obstacles<'m> {
     /// Walks from `sector` through the open portals that meet `bounds` and keeps every
     /// blocking segment of the sectors reached that meets `bounds`.
+    ///
+    /// In IWRAM on the GBA: every step runs it over at least a whole sector's walls.
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.player_obstacles_near")]
     fn near(map: &MapTables<'m>, sector: u16, bounds: &Bounds, body: &Body) -> Obstacles<'m> {
         let mut obstacles = Obstacles {
             vertices: map.vertices,
@@ -396,8 +465,19 @@ impl<'m> Obstacles<'m> {
             .map(move |&(start, end)| (bits(start), bits(end)))
     }
 
-    /// `p` pushed out of the segments: a few passes, edges before vertices in each.
-    fn push_out(&self, mut p: (i64, i64)) -> (i64, i64) {
+    /// `p` pushed out of the segments: a few passes, edges before vertices in each. And whether
+    /// the last pass pushed nothing (the pushes settled before the passes ran out).
+    #[inline]
+    fn push_out(&self, p: (i64, i64)) -> ((i64, i64), bool) {
+        if self.count == 0 {
+            return (p, true);
+        }
+        self.push_out_of_some(p)
+    }
+
+    /// [`Obstacles::push_out`] with at least one segment. Out of line: most steps have none.
+    #[inline(never)]
+    fn push_out_of_some(&self, mut p: (i64, i64)) -> ((i64, i64), bool) {
         for _ in 0..PUSH_PASSES {
             let mut moved = false;
             for contact in [Contact::Edge, Contact::Vertex] {
@@ -409,14 +489,24 @@ impl<'m> Obstacles<'m> {
                 }
             }
             if !moved {
-                break;
+                return (p, true);
             }
         }
-        p
+        (p, false)
     }
 
     /// The largest push (per axis, in bits) any segment would still give `p`.
+    #[inline]
     fn overlap(&self, p: (i64, i64)) -> i64 {
+        if self.count == 0 {
+            return 0;
+        }
+        self.overlap_of_some(p)
+    }
+
+    /// [`Obstacles::overlap`] with at least one segment. Out of line: most steps have none.
+    #[inline(never)]
+    fn overlap_of_some(&self, p: (i64, i64)) -> i64 {
         self.segments()
             .flat_map(|(a, b)| {
                 [Contact::Edge, Contact::Vertex]
