@@ -167,7 +167,41 @@ fn slide_step(
 ) -> (WorldPoint, u16) {
     let reach = 2 * RADIUS_BITS as i32 + 256;
     let bounds = Bounds::around(from, step, reach);
-    let obstacles = Obstacles::near(map, sector, &bounds, body);
+    // Room for a few segments, which is quick to clear; more take the slower path.
+    let mut few = [(0, 0); FEW_SEGMENTS];
+    match Obstacles::near(map, sector, &bounds, body, &mut few) {
+        Some(obstacles) => try_moves(map, sector, from, step, body, &obstacles),
+        None => slide_step_among_many(map, sector, from, step, body, &bounds),
+    }
+}
+
+/// [`slide_step`] when more than [`FEW_SEGMENTS`] blocking segments are near. Out of line.
+#[inline(never)]
+fn slide_step_among_many(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    step: Delta,
+    body: &Body,
+    bounds: &Bounds,
+) -> (WorldPoint, u16) {
+    let mut many = [(0, 0); MAX_SEGMENTS];
+    match Obstacles::near(map, sector, bounds, body, &mut many) {
+        Some(obstacles) => try_moves(map, sector, from, step, body, &obstacles),
+        None => unreachable!("a list of MAX_SEGMENTS segments drops the rest"),
+    }
+}
+
+/// The rest of [`slide_step`]: the step, else along x alone, else along y alone, among
+/// `obstacles`.
+fn try_moves(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    step: Delta,
+    body: &Body,
+    obstacles: &Obstacles,
+) -> (WorldPoint, u16) {
     // Only needed for a target the pushes leave overlapping: most steps never compute it.
     let mut allowed = None;
     let mut tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
@@ -401,27 +435,34 @@ impl Bounds {
     }
 }
 
-/// The blocking segments near one step, as their walls' vertex indices: 192 bytes of stack to
-/// clear per step, where the segments' coordinates took 768 (most steps find none).
-struct Obstacles<'m> {
+/// Blocking segments a step keeps in the list it clears on every step (32 bytes); a step near
+/// more takes a slower path with room for [`MAX_SEGMENTS`].
+const FEW_SEGMENTS: usize = 8;
+
+/// The blocking segments near one step, as their walls' vertex indices in a list the caller
+/// provides: clearing room for [`MAX_SEGMENTS`] segments on every step cost more than the rest
+/// of a step without pushes, and most steps find none.
+struct Obstacles<'a, 'm> {
     vertices: &'m [Vertex],
-    ends: [(u16, u16); MAX_SEGMENTS],
-    count: usize,
+    ends: &'a [(u16, u16)],
 }
 
-impl<'m> Obstacles<'m> {
+impl<'a, 'm> Obstacles<'a, 'm> {
     /// Walks from `sector` through the open portals that meet `bounds` and keeps every
-    /// blocking segment of the sectors reached that meets `bounds`.
+    /// blocking segment of the sectors reached that meets `bounds`, in `ends`: the first
+    /// [`MAX_SEGMENTS`] of them. `None` if they do not fit a shorter `ends`.
     ///
     /// In IWRAM on the GBA: every step runs it over at least a whole sector's walls.
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".iwram.player_obstacles_near")]
-    fn near(map: &MapTables<'m>, sector: u16, bounds: &Bounds, body: &Body) -> Obstacles<'m> {
-        let mut obstacles = Obstacles {
-            vertices: map.vertices,
-            ends: [(0, 0); MAX_SEGMENTS],
-            count: 0,
-        };
+    fn near(
+        map: &MapTables<'m>,
+        sector: u16,
+        bounds: &Bounds,
+        body: &Body,
+        ends: &'a mut [(u16, u16)],
+    ) -> Option<Obstacles<'a, 'm>> {
+        let mut count = 0;
         let mut sectors = [sector; MAX_NEARBY_SECTORS];
         let mut found = 1;
         let mut next_to_scan = 0;
@@ -443,15 +484,20 @@ impl<'m> Obstacles<'m> {
                         }
                     }
                     _ => {
-                        if obstacles.count < MAX_SEGMENTS {
-                            obstacles.ends[obstacles.count] = (wall.start, wall.end);
-                            obstacles.count += 1;
+                        if count < ends.len().min(MAX_SEGMENTS) {
+                            ends[count] = (wall.start, wall.end);
+                            count += 1;
+                        } else if ends.len() < MAX_SEGMENTS {
+                            return None;
                         }
                     }
                 }
             }
         }
-        obstacles
+        Some(Obstacles {
+            vertices: map.vertices,
+            ends: &ends[..count],
+        })
     }
 
     /// The segments in 24.8 bits, widened for the pushes' 64-bit products.
@@ -460,7 +506,7 @@ impl<'m> Obstacles<'m> {
             let vertex = self.vertices[usize::from(index)];
             (i64::from(vertex.x) * 256, i64::from(vertex.y) * 256)
         };
-        self.ends[..self.count]
+        self.ends
             .iter()
             .map(move |&(start, end)| (bits(start), bits(end)))
     }
@@ -469,7 +515,7 @@ impl<'m> Obstacles<'m> {
     /// the last pass pushed nothing (the pushes settled before the passes ran out).
     #[inline]
     fn push_out(&self, p: (i64, i64)) -> ((i64, i64), bool) {
-        if self.count == 0 {
+        if self.ends.is_empty() {
             return (p, true);
         }
         self.push_out_of_some(p)
@@ -498,7 +544,7 @@ impl<'m> Obstacles<'m> {
     /// The largest push (per axis, in bits) any segment would still give `p`.
     #[inline]
     fn overlap(&self, p: (i64, i64)) -> i64 {
-        if self.count == 0 {
+        if self.ends.is_empty() {
             return 0;
         }
         self.overlap_of_some(p)
