@@ -616,7 +616,12 @@ fn push_from_segment(
     if quotient >= 1 << 23 || quotient * quotient >= length_squared {
         return None;
     }
-    let length = isqrt_ceil(length_squared as u64) as i64;
+    // Walls along an axis, most of them, need no square root.
+    let length = match (dx, dy) {
+        (0, dy) => dy.abs(),
+        (dx, 0) => dx.abs(),
+        _ => isqrt_ceil(length_squared as u64) as i64,
+    };
     let reach = RADIUS_BITS * length;
     // Along the normal (-dy, dx)/length by (reach - area)/length: the area grows by exactly
     // reach - area, to the radius (times the rounded-up length).
@@ -646,22 +651,67 @@ fn push_from_point(p: (i64, i64), end: (i64, i64)) -> Option<(i64, i64)> {
 
 /// `n / d` rounded away from zero; `d > 0`.
 fn div_away_from_zero(n: i64, d: i64) -> i64 {
+    let (quotient, remainder) = divide(n.unsigned_abs(), d as u64);
+    let magnitude = (quotient + u64::from(remainder != 0)) as i64;
     if n >= 0 {
-        (n + d - 1) / d
+        magnitude
     } else {
-        -((-n + d - 1) / d)
+        -magnitude
     }
+}
+
+/// `(n / d, n % d)` for `d > 0`, by shift and subtract over the quotient's bits alone. A push's
+/// quotient is at most about the radius in bits (13 bits), so this takes a few steps, where the
+/// library's 64-bit division is generic Thumb code in ROM.
+fn divide(n: u64, d: u64) -> (u64, u64) {
+    if n < d {
+        return (0, n);
+    }
+    // d shifted up to n's top bit: at most n's bit length minus d's quotient bits.
+    let shift = leading_zeros(d) - leading_zeros(n);
+    let mut divisor = d << shift;
+    let (mut quotient, mut remainder) = (0, n);
+    for _ in 0..=shift {
+        quotient <<= 1;
+        if remainder >= divisor {
+            remainder -= divisor;
+            quotient |= 1;
+        }
+        divisor >>= 1;
+    }
+    (quotient, remainder)
 }
 
 /// `floor(sqrt(n))`, bit by bit (no division, no float).
 pub fn isqrt_floor(n: u64) -> u64 {
-    if n == 0 {
-        return 0;
+    if let Ok(small) = u32::try_from(n) {
+        // A vertex push's distance is under the radius (n < 2^24): 32-bit steps.
+        return u64::from(isqrt_floor_u32(small));
     }
     let mut remainder = n;
     let mut root = 0u64;
     // The highest power of 4 at most n: where the loop of halvings from 4^31 would stop.
     let mut bit = 1u64 << ((63 - leading_zeros(n)) & !1);
+    while bit != 0 {
+        if remainder >= root + bit {
+            remainder -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    root
+}
+
+/// [`isqrt_floor`] of a 32-bit `n`: the same steps on 32-bit words.
+fn isqrt_floor_u32(n: u32) -> u32 {
+    if n == 0 {
+        return 0;
+    }
+    let mut remainder = n;
+    let mut root = 0u32;
+    let mut bit = 1u32 << ((63 - leading_zeros(u64::from(n))) & !1);
     while bit != 0 {
         if remainder >= root + bit {
             remainder -= root + bit;
@@ -702,6 +752,9 @@ mod tests {
             1 << 40,
             (1 << 46) - 1,
             u64::MAX >> 2,
+            u64::from(u32::MAX),
+            1 << 32,
+            (1 << 24) - 1,
         ] {
             let floor = isqrt_floor(n);
             assert!(floor * floor <= n && (floor + 1) * (floor + 1) > n, "{n}");
@@ -711,6 +764,34 @@ mod tests {
                 "{n}"
             );
         }
+    }
+
+    #[test]
+    fn the_shift_and_subtract_division_rounds_as_the_library_s() {
+        // The formula the pushes used with the library's division, against `divide`.
+        let reference = |n: i64, d: i64| {
+            if n >= 0 {
+                (n + d - 1) / d
+            } else {
+                -((-n + d - 1) / d)
+            }
+        };
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..20_000 {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            // Numerators and divisors of every size up to the pushes' (2^58 and 2^46).
+            let n = (seed >> 6) as i64 >> (seed % 58);
+            let d = ((seed >> 20) % (1 << 46) >> (seed % 46)).max(1) as i64;
+            // And exact multiples, which have no remainder to round.
+            for n in [n, -n, n % (1 << 16) * d, -(n % (1 << 16)) * d] {
+                assert_eq!(div_away_from_zero(n, d), reference(n, d), "{n} / {d}");
+            }
+        }
+        assert_eq!(divide(0, 7), (0, 0));
+        assert_eq!(divide(u64::MAX, 1), (u64::MAX, 0));
+        assert_eq!(divide(u64::MAX, u64::MAX), (1, 0));
     }
 
     #[test]
