@@ -67,7 +67,19 @@ const PUSH_PASSES: usize = 4;
 /// Most portals one step's path may cross.
 const MAX_HOPS: usize = 8;
 
-const RADIUS_BITS: i64 = RADIUS as i64 * 256;
+const RADIUS_BITS: i32 = RADIUS * 256;
+
+/// A point in 24.8 bits. The pushes' points stay within 2^23 bits: a target is within the
+/// declared world (2^21 bits) plus a step, and one settling adds at most
+/// `PUSH_PASSES · 2 · MAX_SEGMENTS` pushes of at most `2 · RADIUS_BITS + 1` each (under 2^22).
+/// Their differences with map vertices fit 32 bits and their products 64: every product below
+/// multiplies two 32-bit values into 64 bits, one ARM instruction.
+type Bits = (i32, i32);
+
+/// `value` widened for a 64-bit product.
+fn wide(value: i32) -> i64 {
+    i64::from(value)
+}
 
 /// The vertical extent of the body, which decides the sectors it may enter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -165,7 +177,7 @@ fn slide_step(
     step: Delta,
     body: &Body,
 ) -> (WorldPoint, u16) {
-    let reach = 2 * RADIUS_BITS as i32 + 256;
+    let reach = 2 * RADIUS_BITS + 256;
     let bounds = Bounds::around(from, step, reach);
     // Room for a few segments, which is quick to clear; more take the slower path.
     let mut few = [(0, 0); FEW_SEGMENTS];
@@ -207,10 +219,7 @@ fn try_moves(
     let mut tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
     let try_count = if step.x != 0 && step.y != 0 { 3 } else { 1 };
     for attempt in &mut tries[..try_count] {
-        let target = (
-            i64::from(from.x.to_bits() + attempt.x),
-            i64::from(from.y.to_bits() + attempt.y),
-        );
+        let target = (from.x.to_bits() + attempt.x, from.y.to_bits() + attempt.y);
         let (settled, pushes_done) = obstacles.push_out(target);
         // When the last pass pushed nothing, no segment pushes the result: its overlap is 0.
         if !pushes_done {
@@ -318,6 +327,11 @@ fn track_through_portals(
                 continue;
             }
             let (a, b) = wall_points(map, &map.walls[index]);
+            // Both ends strictly on one side of the wall's line: disjoint (a point of the wall
+            // on the path would lie on that side too), for two of segment_contact's products.
+            if cross(a, b, from).signum() * cross(a, b, to).signum() > 0 {
+                continue;
+            }
             match segment_contact(from, to, a, b) {
                 SegmentContact::Disjoint => {}
                 SegmentContact::Crossing if exit.is_none() => exit = Some(index),
@@ -390,21 +404,18 @@ fn twin_wall(map: &MapTables, wall: &Wall, sector: u16, next: u16) -> Option<usi
     })
 }
 
-fn point_bits(p: WorldPoint) -> (i64, i64) {
-    (i64::from(p.x.to_bits()), i64::from(p.y.to_bits()))
+fn point_bits(p: WorldPoint) -> Bits {
+    (p.x.to_bits(), p.y.to_bits())
 }
 
 /// The point at these 24.8 bits, if they are inside the declared world (a push cannot leave it
 /// on a valid map, but the tracking below relies on the bounds of its products).
-fn point_from_bits((x, y): (i64, i64)) -> Option<WorldPoint> {
-    let limit = i64::from(portalcast_format::limits::WORLD_COORD_MAX) * 256;
+fn point_from_bits((x, y): Bits) -> Option<WorldPoint> {
+    let limit = portalcast_format::limits::WORLD_COORD_MAX * 256;
     if x.abs() > limit || y.abs() > limit {
         return None;
     }
-    Some(WorldPoint::new(
-        Fx24_8::from_bits(x as i32),
-        Fx24_8::from_bits(y as i32),
-    ))
+    Some(WorldPoint::new(Fx24_8::from_bits(x), Fx24_8::from_bits(y)))
 }
 
 /// An axis-aligned box in 24.8 bits.
@@ -500,11 +511,11 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         })
     }
 
-    /// The segments in 24.8 bits, widened for the pushes' 64-bit products.
-    fn segments(&self) -> impl Iterator<Item = ((i64, i64), (i64, i64))> + '_ {
+    /// The segments' ends in 24.8 bits.
+    fn segments(&self) -> impl Iterator<Item = (Bits, Bits)> + '_ {
         let bits = |index: u16| {
             let vertex = self.vertices[usize::from(index)];
-            (i64::from(vertex.x) * 256, i64::from(vertex.y) * 256)
+            (vertex.x * 256, vertex.y * 256)
         };
         self.ends
             .iter()
@@ -514,7 +525,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
     /// `p` pushed out of the segments: a few passes, edges before vertices in each. And whether
     /// the last pass pushed nothing (the pushes settled before the passes ran out).
     #[inline]
-    fn push_out(&self, p: (i64, i64)) -> ((i64, i64), bool) {
+    fn push_out(&self, p: Bits) -> (Bits, bool) {
         if self.ends.is_empty() {
             return (p, true);
         }
@@ -523,7 +534,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
 
     /// [`Obstacles::push_out`] with at least one segment. Out of line: most steps have none.
     #[inline(never)]
-    fn push_out_of_some(&self, mut p: (i64, i64)) -> ((i64, i64), bool) {
+    fn push_out_of_some(&self, mut p: Bits) -> (Bits, bool) {
         for _ in 0..PUSH_PASSES {
             let mut moved = false;
             for contact in [Contact::Edge, Contact::Vertex] {
@@ -543,7 +554,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
 
     /// The largest push (per axis, in bits) any segment would still give `p`.
     #[inline]
-    fn overlap(&self, p: (i64, i64)) -> i64 {
+    fn overlap(&self, p: Bits) -> i64 {
         if self.ends.is_empty() {
             return 0;
         }
@@ -552,14 +563,14 @@ impl<'a, 'm> Obstacles<'a, 'm> {
 
     /// [`Obstacles::overlap`] with at least one segment. Out of line: most steps have none.
     #[inline(never)]
-    fn overlap_of_some(&self, p: (i64, i64)) -> i64 {
+    fn overlap_of_some(&self, p: Bits) -> i64 {
         self.segments()
             .flat_map(|(a, b)| {
                 [Contact::Edge, Contact::Vertex]
                     .into_iter()
                     .filter_map(move |contact| push_from_segment(p, a, b, contact))
             })
-            .map(|(x, y)| x.abs().max(y.abs()))
+            .map(|(x, y)| wide(x.abs().max(y.abs())))
             .max()
             .unwrap_or(0)
     }
@@ -576,22 +587,17 @@ enum Contact {
 
 /// The push (24.8 bits) that moves `p` to [`RADIUS`] from segment `a b`, if the disc overlaps
 /// the part of the segment `contact` names; rounded away from the segment.
-fn push_from_segment(
-    p: (i64, i64),
-    a: (i64, i64),
-    b: (i64, i64),
-    contact: Contact,
-) -> Option<(i64, i64)> {
+fn push_from_segment(p: Bits, a: Bits, b: Bits, contact: Contact) -> Option<Bits> {
     // Most segments near a step are farther than the radius from every part of it: a box
     // test rejects them before any product.
-    let beyond = |p: i64, a: i64, b: i64| p < a.min(b) - RADIUS_BITS || p > a.max(b) + RADIUS_BITS;
+    let beyond = |p: i32, a: i32, b: i32| p < a.min(b) - RADIUS_BITS || p > a.max(b) + RADIUS_BITS;
     if beyond(p.0, a.0, b.0) || beyond(p.1, a.1, b.1) {
         return None;
     }
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let (px, py) = (p.0 - a.0, p.1 - a.1);
-    let along = px * dx + py * dy;
-    let length_squared = dx * dx + dy * dy;
+    let along = wide(px) * wide(dx) + wide(py) * wide(dy);
+    let length_squared = wide(dx) * wide(dx) + wide(dy) * wide(dy);
     if along <= 0 || along >= length_squared {
         if contact != Contact::Vertex {
             return None;
@@ -603,7 +609,7 @@ fn push_from_segment(
         return None;
     }
     // Twice the signed area: the distance to the line times the length; positive in front.
-    let area = dx * py - dy * px;
+    let area = wide(dx) * wide(py) - wide(dy) * wide(px);
     if area <= 0 {
         return None;
     }
@@ -612,40 +618,46 @@ fn push_from_segment(
     // is below `ceil(√length_squared)`, or its square below `length_squared`: the same test
     // without the square root, which only a push needs. A quotient of 2^23 or more squares
     // past any length_squared of the declared world (under 2^45), and could overflow.
-    let quotient = area / RADIUS_BITS;
+    let quotient = area / wide(RADIUS_BITS);
     if quotient >= 1 << 23 || quotient * quotient >= length_squared {
         return None;
     }
-    // Walls along an axis, most of them, need no square root.
-    let length = match (dx, dy) {
-        (0, dy) => dy.abs(),
-        (dx, 0) => dx.abs(),
-        _ => isqrt_ceil(length_squared as u64) as i64,
-    };
-    let reach = RADIUS_BITS * length;
+    // The push below, for a wall along an axis, where the length is |dx| (or |dy|) and the
+    // divisions are exact: with dy = 0 the area is dx·py, the depth |dx|·(RADIUS_BITS −
+    // sign(dx)·py), and the push (0, dx·depth / dx²). Most walls are; no division, no root.
+    if dy == 0 {
+        return Some((0, dx.signum() * RADIUS_BITS - py));
+    }
+    if dx == 0 {
+        return Some((-dy.signum() * RADIUS_BITS - px, 0));
+    }
+    let length = isqrt_ceil(length_squared as u64) as i64;
+    let reach = wide(RADIUS_BITS) * length;
     // Along the normal (-dy, dx)/length by (reach - area)/length: the area grows by exactly
     // reach - area, to the radius (times the rounded-up length).
     let depth = reach - area;
     Some((
-        div_away_from_zero(-dy * depth, length_squared),
-        div_away_from_zero(dx * depth, length_squared),
+        div_away_from_zero(-wide(dy) * depth, length_squared) as i32,
+        div_away_from_zero(wide(dx) * depth, length_squared) as i32,
     ))
 }
 
 /// The push that moves `p` to [`RADIUS`] from `end`, radially, if it is closer.
-fn push_from_point(p: (i64, i64), end: (i64, i64)) -> Option<(i64, i64)> {
+fn push_from_point(p: Bits, end: Bits) -> Option<Bits> {
     let (ex, ey) = (p.0 - end.0, p.1 - end.1);
-    let distance_squared = ex * ex + ey * ey;
+    let distance_squared = wide(ex) * wide(ex) + wide(ey) * wide(ey);
     // At the point itself there is no direction; the centre is never at a map vertex anyway
     // (vertices lie on sector boundaries, the centre strictly inside).
-    if distance_squared == 0 || distance_squared >= RADIUS_BITS * RADIUS_BITS {
+    if distance_squared == 0 || distance_squared >= wide(RADIUS_BITS) * wide(RADIUS_BITS) {
         return None;
     }
-    let distance = isqrt_floor(distance_squared as u64) as i64;
+    // Closer than the radius: ex, ey, the distance and the gap are below 2^12, so the products
+    // below 2^24 and 32-bit words hold everything.
+    let distance = isqrt_floor_u32(distance_squared as u32) as i32;
     let gap = RADIUS_BITS - distance;
     Some((
-        div_away_from_zero(ex * gap, distance),
-        div_away_from_zero(ey * gap, distance),
+        div_away_from_zero_u32(ex * gap, distance),
+        div_away_from_zero_u32(ey * gap, distance),
     ))
 }
 
@@ -653,6 +665,17 @@ fn push_from_point(p: (i64, i64), end: (i64, i64)) -> Option<(i64, i64)> {
 fn div_away_from_zero(n: i64, d: i64) -> i64 {
     let (quotient, remainder) = divide(n.unsigned_abs(), d as u64);
     let magnitude = (quotient + u64::from(remainder != 0)) as i64;
+    if n >= 0 {
+        magnitude
+    } else {
+        -magnitude
+    }
+}
+
+/// [`div_away_from_zero`] on 32-bit words.
+fn div_away_from_zero_u32(n: i32, d: i32) -> i32 {
+    let (quotient, remainder) = divide_u32(n.unsigned_abs(), d as u32);
+    let magnitude = (quotient + u32::from(remainder != 0)) as i32;
     if n >= 0 {
         magnitude
     } else {
@@ -669,6 +692,25 @@ fn divide(n: u64, d: u64) -> (u64, u64) {
     }
     // d shifted up to n's top bit: at most n's bit length minus d's quotient bits.
     let shift = leading_zeros(d) - leading_zeros(n);
+    let mut divisor = d << shift;
+    let (mut quotient, mut remainder) = (0, n);
+    for _ in 0..=shift {
+        quotient <<= 1;
+        if remainder >= divisor {
+            remainder -= divisor;
+            quotient |= 1;
+        }
+        divisor >>= 1;
+    }
+    (quotient, remainder)
+}
+
+/// [`divide`] on 32-bit words.
+fn divide_u32(n: u32, d: u32) -> (u32, u32) {
+    if n < d {
+        return (0, n);
+    }
+    let shift = leading_zeros(u64::from(d)) - leading_zeros(u64::from(n));
     let mut divisor = d << shift;
     let (mut quotient, mut remainder) = (0, n);
     for _ in 0..=shift {
@@ -787,6 +829,15 @@ mod tests {
             // And exact multiples, which have no remainder to round.
             for n in [n, -n, n % (1 << 16) * d, -(n % (1 << 16)) * d] {
                 assert_eq!(div_away_from_zero(n, d), reference(n, d), "{n} / {d}");
+            }
+            // The vertex pushes' 32-bit form, over their operands' range (below 2^24 / 2^12).
+            let (small_n, small_d) = ((n % (1 << 24)) as i32, (d % (1 << 12)).max(1) as i32);
+            for small_n in [small_n, -small_n] {
+                assert_eq!(
+                    i64::from(div_away_from_zero_u32(small_n, small_d)),
+                    reference(i64::from(small_n), i64::from(small_d)),
+                    "{small_n} / {small_d}"
+                );
             }
         }
         assert_eq!(divide(0, 7), (0, 0));
