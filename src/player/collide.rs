@@ -40,7 +40,7 @@
 
 use portalcast_format::{MapTables, Sector, Vertex, Wall};
 
-use crate::math::{cross, segment_contact, Fx24_8, SegmentContact, WorldPoint};
+use crate::math::{segment_contact, Fx24_8, SegmentContact, WorldPoint};
 use crate::render::ratio::leading_zeros;
 
 /// Radius of the body's disc, in world units: Doom's player radius, half the thesis' 64-unit
@@ -79,6 +79,21 @@ type Bits = (i32, i32);
 /// `value` widened for a 64-bit product.
 fn wide(value: i32) -> i64 {
     i64::from(value)
+}
+
+/// [`cross`] of points whose differences fit 32 bits (map vertices and points within the
+/// declared world: under 2^23 bits apart): two 32×32→64 products, where `cross` widens first
+/// and multiplies 64×64.
+fn cross_near(a: Bits, b: Bits, p: Bits) -> i64 {
+    let (abx, aby) = (b.0 - a.0, b.1 - a.1);
+    let (apx, apy) = (p.0 - a.0, p.1 - a.1);
+    wide(abx) * wide(apy) - wide(aby) * wide(apx)
+}
+
+/// A vertex in 24.8 bits.
+fn vertex_bits(map: &MapTables, index: u16) -> Bits {
+    let vertex = map.vertices[usize::from(index)];
+    (vertex.x * 256, vertex.y * 256)
 }
 
 /// The vertical extent of the body, which decides the sectors it may enter.
@@ -179,11 +194,22 @@ fn slide_step(
 ) -> (WorldPoint, u16) {
     let reach = 2 * RADIUS_BITS + 256;
     let bounds = Bounds::around(from, step, reach);
+    let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
     // Room for a few segments, which is quick to clear; more take the slower path.
     let mut few = [(0, 0); FEW_SEGMENTS];
-    match Obstacles::near(map, sector, &bounds, body, &mut few) {
-        Some(obstacles) => try_moves(map, sector, from, step, body, &obstacles),
-        None => slide_step_among_many(map, sector, from, step, body, &bounds),
+    match Obstacles::near(map, sector, &bounds, body, &mut few, target) {
+        Some(obstacles) => {
+            // Nothing to push against and the step ends strictly inside its sector: what
+            // try_moves' first try finds (no push, then track's first test), without a second
+            // pass over the sector's walls.
+            if obstacles.ends.is_empty() && obstacles.target_inside {
+                if let Some(to) = point_from_bits(target) {
+                    return (to, sector);
+                }
+            }
+            try_moves(map, sector, from, step, body, &obstacles)
+        }
+        None => slide_step_among_many(map, sector, from, step, body, &bounds, target),
     }
 }
 
@@ -196,9 +222,10 @@ fn slide_step_among_many(
     step: Delta,
     body: &Body,
     bounds: &Bounds,
+    target: Bits,
 ) -> (WorldPoint, u16) {
     let mut many = [(0, 0); MAX_SEGMENTS];
-    match Obstacles::near(map, sector, bounds, body, &mut many) {
+    match Obstacles::near(map, sector, bounds, body, &mut many, target) {
         Some(obstacles) => try_moves(map, sector, from, step, body, &obstacles),
         None => unreachable!("a list of MAX_SEGMENTS segments drops the rest"),
     }
@@ -288,7 +315,8 @@ fn track_nudges(
 }
 
 /// Follows the centre's straight path from `from`, strictly inside `sector`, to `to`, through
-/// the portals it crosses. Exact.
+/// the portals it crosses. Exact for `to` within the declared world (as [`slide`]'s are; its
+/// 64-bit products take 32-bit differences).
 ///
 /// A convex sector's boundary meets the path at most where it enters and where it leaves, so
 /// in each sector the wall it leaves through is the one wall (other than the one it came in
@@ -329,7 +357,12 @@ fn track_through_portals(
             let (a, b) = wall_points(map, &map.walls[index]);
             // Both ends strictly on one side of the wall's line: disjoint (a point of the wall
             // on the path would lie on that side too), for two of segment_contact's products.
-            if cross(a, b, from).signum() * cross(a, b, to).signum() > 0 {
+            let (a_bits, b_bits) = (point_bits(a), point_bits(b));
+            let (from_side, to_side) = (
+                cross_near(a_bits, b_bits, point_bits(from)),
+                cross_near(a_bits, b_bits, point_bits(to)),
+            );
+            if from_side.signum() * to_side.signum() > 0 {
                 continue;
             }
             match segment_contact(from, to, a, b) {
@@ -377,10 +410,15 @@ impl SectorWalls<'_, '_> {
     #[cfg_attr(target_os = "none", link_section = ".iwram.player_strictly_inside")]
     fn strictly_inside(&self, p: WorldPoint) -> bool {
         let map = self.map;
-        map.sector_walls(self.sector).iter().all(|wall| {
-            let (a, b) = wall_points(map, wall);
-            cross(a, b, p) > 0
-        })
+        let limit = portalcast_format::limits::WORLD_COORD_MAX * 256;
+        let p = point_bits(p);
+        // Beyond the world no sector has an inside; within it, cross_near is exact.
+        if p.0.abs() > limit || p.1.abs() > limit {
+            return false;
+        }
+        map.sector_walls(self.sector)
+            .iter()
+            .all(|wall| cross_near(vertex_bits(map, wall.start), vertex_bits(map, wall.end), p) > 0)
     }
 }
 
@@ -456,12 +494,15 @@ const FEW_SEGMENTS: usize = 8;
 struct Obstacles<'a, 'm> {
     vertices: &'m [Vertex],
     ends: &'a [(u16, u16)],
+    /// Whether the step's whole target is strictly inside the step's sector.
+    target_inside: bool,
 }
 
 impl<'a, 'm> Obstacles<'a, 'm> {
     /// Walks from `sector` through the open portals that meet `bounds` and keeps every
     /// blocking segment of the sectors reached that meets `bounds`, in `ends`: the first
-    /// [`MAX_SEGMENTS`] of them. `None` if they do not fit a shorter `ends`.
+    /// [`MAX_SEGMENTS`] of them. `None` if they do not fit a shorter `ends`. On the way, tests
+    /// whether `target` is strictly inside `sector`.
     ///
     /// In IWRAM on the GBA: every step runs it over at least a whole sector's walls.
     #[inline(never)]
@@ -472,7 +513,9 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         bounds: &Bounds,
         body: &Body,
         ends: &'a mut [(u16, u16)],
+        target: Bits,
     ) -> Option<Obstacles<'a, 'm>> {
+        let mut target_inside = true;
         let mut count = 0;
         let mut sectors = [sector; MAX_NEARBY_SECTORS];
         let mut found = 1;
@@ -482,6 +525,11 @@ impl<'a, 'm> Obstacles<'a, 'm> {
             next_to_scan += 1;
             for wall in map.sector_walls(here) {
                 let (a, b) = wall_points(map, wall);
+                if next_to_scan == 1 {
+                    // strictly_inside(sector, target), on the walls this reads anyway (target is
+                    // a step from a point of the world: cross_near is exact).
+                    target_inside &= cross_near(point_bits(a), point_bits(b), target) > 0;
+                }
                 if !bounds.meets(a, b) {
                     continue;
                 }
@@ -508,6 +556,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         Some(Obstacles {
             vertices: map.vertices,
             ends: &ends[..count],
+            target_inside,
         })
     }
 

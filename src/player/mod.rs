@@ -158,6 +158,7 @@ impl Player {
     }
 
     /// One tick (1/60 s) of `intent` on `map`.
+    #[inline(never)]
     pub fn tick(&mut self, intent: &Intent, map: &MapTables) {
         if intent.toggle_fly {
             self.toggle_fly();
