@@ -243,9 +243,9 @@ fn try_moves(
 ) -> (WorldPoint, u16) {
     // Only needed for a target the pushes leave overlapping: most steps never compute it.
     let mut allowed = None;
-    let mut tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
+    let tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
     let try_count = if step.x != 0 && step.y != 0 { 3 } else { 1 };
-    for attempt in &mut tries[..try_count] {
+    for (index, attempt) in tries[..try_count].iter().enumerate() {
         let target = (from.x.to_bits() + attempt.x, from.y.to_bits() + attempt.y);
         let (settled, pushes_done) = obstacles.push_out(target);
         // When the last pass pushed nothing, no segment pushes the result: its overlap is 0.
@@ -259,6 +259,11 @@ fn try_moves(
         let Some(to) = point_from_bits(settled) else {
             continue;
         };
+        if index == 0 && settled == target && obstacles.target_inside {
+            // The whole step, not pushed, ends strictly inside the sector: track's first test,
+            // which the walk over the walls made already.
+            return (to, sector);
+        }
         if let Some((to, sector)) = track_nudged(map, sector, from, to, body) {
             return (to, sector);
         }
@@ -394,32 +399,24 @@ fn track_through_portals(
 
 /// Whether `p` is strictly inside `sector` (right of every wall). Exact.
 pub fn strictly_inside(map: &MapTables, sector: &Sector, p: WorldPoint) -> bool {
-    SectorWalls { map, sector }.strictly_inside(p)
-}
-
-/// A sector's walls, for the tests every step runs over all of them.
-struct SectorWalls<'a, 'm> {
-    map: &'a MapTables<'m>,
-    sector: &'a Sector,
-}
-
-impl SectorWalls<'_, '_> {
-    /// See [`strictly_inside`]. In IWRAM on the GBA (a method: `link_section` on a free
-    /// function counts as unsafe code).
-    #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram.player_strictly_inside")]
-    fn strictly_inside(&self, p: WorldPoint) -> bool {
-        let map = self.map;
-        let limit = portalcast_format::limits::WORLD_COORD_MAX * 256;
-        let p = point_bits(p);
-        // Beyond the world no sector has an inside; within it, cross_near is exact.
-        if p.0.abs() > limit || p.1.abs() > limit {
-            return false;
-        }
-        map.sector_walls(self.sector)
-            .iter()
-            .all(|wall| cross_near(vertex_bits(map, wall.start), vertex_bits(map, wall.end), p) > 0)
+    let limit = portalcast_format::limits::WORLD_COORD_MAX.unsigned_abs() * 256;
+    let p = point_bits(p);
+    // Beyond the world no sector has an inside; within it, cross_near is exact.
+    if p.0.unsigned_abs() > limit || p.1.unsigned_abs() > limit {
+        return false;
     }
+    let walls = map.sector_walls(sector);
+    let Some(last) = walls.last() else {
+        return true;
+    };
+    // Each wall starts where the one before it ends: one vertex read per wall.
+    let mut a = vertex_bits(map, last.end);
+    walls.iter().all(|wall| {
+        let b = vertex_bits(map, wall.end);
+        let side = cross_near(a, b, p);
+        a = b;
+        side > 0
+    })
 }
 
 /// The two ends of a wall, in world coordinates.
@@ -475,8 +472,7 @@ impl Bounds {
     }
 
     /// Whether the bounding box of segment `a b` meets this box.
-    fn meets(&self, a: WorldPoint, b: WorldPoint) -> bool {
-        let (ax, ay, bx, by) = (a.x.to_bits(), a.y.to_bits(), b.x.to_bits(), b.y.to_bits());
+    fn meets(&self, (ax, ay): Bits, (bx, by): Bits) -> bool {
         ax.max(bx) >= self.min.0
             && ax.min(bx) <= self.max.0
             && ay.max(by) >= self.min.1
@@ -521,16 +517,25 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         let mut found = 1;
         let mut next_to_scan = 0;
         while next_to_scan < found {
-            let here = &map.sectors[usize::from(sectors[next_to_scan])];
+            let first_sector = next_to_scan == 0;
+            let walls = map.sector_walls(&map.sectors[usize::from(sectors[next_to_scan])]);
             next_to_scan += 1;
-            for wall in map.sector_walls(here) {
-                let (a, b) = wall_points(map, wall);
-                if next_to_scan == 1 {
+            // Each wall starts where the one before it ends (the format's rule), so one vertex
+            // read per wall: they are in ROM.
+            let Some(last) = walls.last() else {
+                continue;
+            };
+            let mut a = vertex_bits(map, last.end);
+            for wall in walls {
+                let b = vertex_bits(map, wall.end);
+                let (wall_a, wall_b) = (a, b);
+                a = b;
+                if first_sector {
                     // strictly_inside(sector, target), on the walls this reads anyway (target is
                     // a step from a point of the world: cross_near is exact).
-                    target_inside &= cross_near(point_bits(a), point_bits(b), target) > 0;
+                    target_inside &= cross_near(wall_a, wall_b, target) > 0;
                 }
-                if !bounds.meets(a, b) {
+                if !bounds.meets(wall_a, wall_b) {
                     continue;
                 }
                 match wall.neighbour() {
