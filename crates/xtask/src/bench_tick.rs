@@ -5,7 +5,8 @@
 //!
 //! The ROM times each tick alone and prints, on every frame's `player` line, how many ticks ran
 //! before that frame (`ticks_run=`), their cycles added up (`tick_cycles=`) and the longest
-//! (`tick_max_cycles=`). [`tick_section`] plays [`KEYS_FILE`] and turns the lines into the
+//! (`tick_max_cycles=`); what the two timer reads cost with nothing between them
+//! (`timer_cycles=` on the `play start` line) is taken off each tick. [`tick_section`] plays [`KEYS_FILE`] and turns the lines into the
 //! "Game tick" section of docs/BENCH.md, which `cargo bench-report` writes; `cargo bench-tick`
 //! only prints it (the quick loop while optimising). mGBA's cycle counts are deterministic, so
 //! the same ROM gives the same figures.
@@ -142,8 +143,8 @@ fn render(figures: &TickFigures) -> String {
         "## Game tick: cycles per tick\n\n\
          One tick of the game (`Game::tick`: the buttons, the player's move with its collisions, \
          the jump) runs 60 times a second whatever the frame rate, before the frame is drawn. The \
-         ROM times each tick alone and prints the count, the sum and the longest on every frame's \
-         `player` line; the walk `{KEYS_FILE}` (run on, on the bench map) turns, strafes, jumps \
+         ROM times each tick alone (less the timer reads' own cost, measured once at the start) \
+         and prints the count, the sum and the longest on every frame's `player` line; the walk `{KEYS_FILE}` (run on, on the bench map) turns, strafes, jumps \
          and slides along walls and into corners for {frames} frames, {ticks} ticks.\n\n\
          | ticks | per tick | measured | target | |\n\
          |---|---|---|---|---|\n\
