@@ -685,15 +685,90 @@ fn push_from_segment(p: Bits, a: Bits, b: Bits, contact: Contact) -> Option<Bits
     if dx == 0 {
         return Some((-dy.signum() * RADIUS_BITS - px, 0));
     }
-    let length = isqrt_ceil(length_squared as u64) as i64;
+    // The segment's ends are whole units, so dx and dy are multiples of 256 and the squared
+    // length 65536 times the squared length in units, which fits 32 bits (2^29 at most).
+    let (units_x, units_y) = (dx >> 8, dy >> 8);
+    let units_squared = (units_x * units_x + units_y * units_y) as u32;
+    debug_assert!(wide(units_squared as i32) << 16 == length_squared);
+    let length = i64::from(ceil_sqrt_65536_times(units_squared));
     let reach = wide(RADIUS_BITS) * length;
     // Along the normal (-dy, dx)/length by (reach - area)/length: the area grows by exactly
     // reach - area, to the radius (times the rounded-up length).
     let depth = reach - area;
+    // The depth is a multiple of 256 too (RADIUS_BITS and the area are), so each quotient
+    // `−dy·depth / length_squared` is `−units_y·(depth/256) / units_squared`: the same
+    // quotient and remainder over 65536, with a 32-bit divisor.
+    debug_assert!(depth % 256 == 0);
+    let depth_units = depth >> 8;
     Some((
-        div_away_from_zero(-wide(dy) * depth, length_squared) as i32,
-        div_away_from_zero(wide(dx) * depth, length_squared) as i32,
+        div_away_from_zero_by_u32(-wide(units_y) * depth_units, units_squared) as i32,
+        div_away_from_zero_by_u32(wide(units_x) * depth_units, units_squared) as i32,
     ))
+}
+
+/// `ceil(√(65536·m))`, digit by digit on 32-bit words: two bits of the radicand a step, m's
+/// and then the 8 pairs of zeros of the factor 65536. The root stays under 2^23 and the
+/// remainder under twice the root.
+fn ceil_sqrt_65536_times(m: u32) -> u32 {
+    let (mut root, mut remainder) = (0u32, 0u32);
+    let mut step = |pair: u32| {
+        remainder = (remainder << 2) | pair;
+        let trial = (root << 2) | 1;
+        root <<= 1;
+        if remainder >= trial {
+            remainder -= trial;
+            root |= 1;
+        }
+    };
+    if m != 0 {
+        let pairs = (64 - leading_zeros(u64::from(m))).div_ceil(2);
+        for index in (0..pairs).rev() {
+            step((m >> (2 * index)) & 3);
+        }
+    }
+    for _ in 0..8 {
+        step(0);
+    }
+    root + u32::from(remainder != 0)
+}
+
+/// `n / d` rounded away from zero, for `0 < d < 2^31`.
+fn div_away_from_zero_by_u32(n: i64, d: u32) -> i64 {
+    let (quotient, remainder) = divide_by_u32(n.unsigned_abs(), d);
+    let magnitude = (quotient + u64::from(remainder != 0)) as i64;
+    if n >= 0 {
+        magnitude
+    } else {
+        -magnitude
+    }
+}
+
+/// `(n / d, n % d)` for `0 < d < 2^31`: shift and subtract over the quotient's bits, with the
+/// remainder (under 2·d) in one 32-bit word while the quotient has at most 32 bits; else
+/// [`divide`].
+fn divide_by_u32(n: u64, d: u32) -> (u64, u32) {
+    debug_assert!(d != 0 && d < 1 << 31);
+    if n < u64::from(d) {
+        return (0, n as u32);
+    }
+    // At most this many quotient bits: n shifted down by it is below d.
+    let bits = leading_zeros(u64::from(d)) - leading_zeros(n) + 1;
+    if bits > 32 {
+        let (quotient, remainder) = divide(n, u64::from(d));
+        return (quotient, remainder as u32);
+    }
+    let mut remainder = (n >> bits) as u32;
+    let low = n as u32;
+    let mut quotient = 0u32;
+    for index in (0..bits).rev() {
+        remainder = (remainder << 1) | ((low >> index) & 1);
+        quotient <<= 1;
+        if remainder >= d {
+            remainder -= d;
+            quotient |= 1;
+        }
+    }
+    (u64::from(quotient), remainder)
 }
 
 /// The push that moves `p` to [`RADIUS`] from `end`, radially, if it is closer.
@@ -715,18 +790,7 @@ fn push_from_point(p: Bits, end: Bits) -> Option<Bits> {
     ))
 }
 
-/// `n / d` rounded away from zero; `d > 0`.
-fn div_away_from_zero(n: i64, d: i64) -> i64 {
-    let (quotient, remainder) = divide(n.unsigned_abs(), d as u64);
-    let magnitude = (quotient + u64::from(remainder != 0)) as i64;
-    if n >= 0 {
-        magnitude
-    } else {
-        -magnitude
-    }
-}
-
-/// [`div_away_from_zero`] on 32-bit words.
+/// [`div_away_from_zero_by_u32`] on 32-bit words.
 fn div_away_from_zero_u32(n: i32, d: i32) -> i32 {
     let (quotient, remainder) = divide_u32(n.unsigned_abs(), d as u32);
     let magnitude = (quotient + u32::from(remainder != 0)) as i32;
@@ -863,8 +927,43 @@ mod tests {
     }
 
     #[test]
+    fn the_lengths_root_is_the_ceiling_of_the_square_root() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let check = |m: u32| {
+            let n = u64::from(m) << 16;
+            assert_eq!(
+                u64::from(ceil_sqrt_65536_times(m)),
+                isqrt_ceil(n),
+                "m = {m}"
+            );
+        };
+        for m in [
+            0,
+            1,
+            2,
+            3,
+            4,
+            255,
+            256,
+            65_535,
+            65_536,
+            (1 << 29) - 1,
+            1 << 29,
+        ] {
+            check(m);
+        }
+        for _ in 0..20_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            check((seed >> 35) as u32 >> (seed % 29));
+        }
+    }
+
+    #[test]
     fn the_shift_and_subtract_division_rounds_as_the_library_s() {
-        // The formula the pushes used with the library's division, against `divide`.
+        // The rounding the pushes used with the library's division, against the shift and
+        // subtract divisions that replace it.
         let reference = |n: i64, d: i64| {
             if n >= 0 {
                 (n + d - 1) / d
@@ -880,9 +979,21 @@ mod tests {
             // Numerators and divisors of every size up to the pushes' (2^58 and 2^46).
             let n = (seed >> 6) as i64 >> (seed % 58);
             let d = ((seed >> 20) % (1 << 46) >> (seed % 46)).max(1) as i64;
-            // And exact multiples, which have no remainder to round.
-            for n in [n, -n, n % (1 << 16) * d, -(n % (1 << 16)) * d] {
-                assert_eq!(div_away_from_zero(n, d), reference(n, d), "{n} / {d}");
+            let (unsigned_n, unsigned_d) = (n.unsigned_abs(), d as u64);
+            assert_eq!(
+                divide(unsigned_n, unsigned_d),
+                (unsigned_n / unsigned_d, unsigned_n % unsigned_d),
+                "{n} / {d}"
+            );
+            // The edge pushes' form, by a divisor under 2^31 (quotients over 32 bits included);
+            // with an exact multiple, which has no remainder to round.
+            let divisor = (d % (1 << 31)).max(1) as u32;
+            for n in [n, -n, n % (1 << 16) * i64::from(divisor)] {
+                assert_eq!(
+                    div_away_from_zero_by_u32(n, divisor),
+                    reference(n, i64::from(divisor)),
+                    "{n} / {divisor}"
+                );
             }
             // The vertex pushes' 32-bit form, over their operands' range (below 2^24 / 2^12).
             let (small_n, small_d) = ((n % (1 << 24)) as i32, (d % (1 << 12)).max(1) as i32);
