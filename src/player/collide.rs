@@ -184,7 +184,9 @@ fn slide_in_steps(
     (position, sector)
 }
 
-/// One step of at most [`MAX_STEP_BITS`] per axis.
+/// One step of at most [`MAX_STEP_BITS`] per axis. Out of line: [`crate::player::Player::tick`]
+/// runs from IWRAM, and IWRAM has no room for this too.
+#[inline(never)]
 fn slide_step(
     map: &MapTables,
     sector: u16,
@@ -233,6 +235,7 @@ fn slide_step_among_many(
 
 /// The rest of [`slide_step`]: the step, else along x alone, else along y alone, among
 /// `obstacles`.
+#[inline(never)]
 fn try_moves(
     map: &MapTables,
     sector: u16,
@@ -259,12 +262,12 @@ fn try_moves(
         let Some(to) = point_from_bits(settled) else {
             continue;
         };
-        if index == 0 && settled == target && obstacles.target_inside {
-            // The whole step, not pushed, ends strictly inside the sector: track's first test,
-            // which the walk over the walls made already.
+        // The whole step, not pushed: the walk over the walls has made track's first test.
+        let unpushed_step = index == 0 && settled == target;
+        if unpushed_step && obstacles.target_inside {
             return (to, sector);
         }
-        if let Some((to, sector)) = track_nudged(map, sector, from, to, body) {
+        if let Some((to, sector)) = track_nudged(map, sector, from, to, body, unpushed_step) {
             return (to, sector);
         }
     }
@@ -279,8 +282,15 @@ fn track_nudged(
     from: WorldPoint,
     to: WorldPoint,
     body: &Body,
+    to_outside: bool,
 ) -> Option<(WorldPoint, u16)> {
-    match track(map, sector, from, to, body) {
+    // `to_outside`: the caller knows `to` is not strictly inside `sector`, track's first test.
+    let tracked = if to_outside {
+        track_through_portals(map, sector, from, to, body)
+    } else {
+        track(map, sector, from, to, body)
+    };
+    match tracked {
         Track::Inside(sector) => Some((to, sector)),
         Track::Blocked | Track::Degenerate => track_nudges(map, sector, from, to, body),
     }
@@ -355,21 +365,29 @@ fn track_through_portals(
         }
         let mut exit = None;
         let first = usize::from(here.first_wall);
-        for index in first..first + usize::from(here.wall_count) {
+        let walls = map.sector_walls(here);
+        let Some(last) = walls.last() else {
+            return Track::Degenerate;
+        };
+        // Each wall starts where the one before it ends: one vertex read per wall.
+        let mut a_bits = vertex_bits(map, last.end);
+        for (index, wall) in (first..).zip(walls) {
+            let b_bits = vertex_bits(map, wall.end);
+            let start_bits = a_bits;
+            a_bits = b_bits;
             if Some(index) == came_through {
                 continue;
             }
-            let (a, b) = wall_points(map, &map.walls[index]);
             // Both ends strictly on one side of the wall's line: disjoint (a point of the wall
             // on the path would lie on that side too), for two of segment_contact's products.
-            let (a_bits, b_bits) = (point_bits(a), point_bits(b));
             let (from_side, to_side) = (
-                cross_near(a_bits, b_bits, point_bits(from)),
-                cross_near(a_bits, b_bits, point_bits(to)),
+                cross_near(start_bits, b_bits, point_bits(from)),
+                cross_near(start_bits, b_bits, point_bits(to)),
             );
             if from_side.signum() * to_side.signum() > 0 {
                 continue;
             }
+            let (a, b) = wall_points(map, wall);
             match segment_contact(from, to, a, b) {
                 SegmentContact::Disjoint => {}
                 SegmentContact::Crossing if exit.is_none() => exit = Some(index),
