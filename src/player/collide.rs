@@ -371,6 +371,7 @@ fn track_through_portals(
         };
         // Each wall starts where the one before it ends: one vertex read per wall.
         let mut a_bits = vertex_bits(map, last.end);
+        let (from_bits, to_bits) = (point_bits(from), point_bits(to));
         for (index, wall) in (first..).zip(walls) {
             let b_bits = vertex_bits(map, wall.end);
             let start_bits = a_bits;
@@ -381,14 +382,31 @@ fn track_through_portals(
             // Both ends strictly on one side of the wall's line: disjoint (a point of the wall
             // on the path would lie on that side too), for two of segment_contact's products.
             let (from_side, to_side) = (
-                cross_near(start_bits, b_bits, point_bits(from)),
-                cross_near(start_bits, b_bits, point_bits(to)),
+                cross_near(start_bits, b_bits, from_bits),
+                cross_near(start_bits, b_bits, to_bits),
             );
-            if from_side.signum() * to_side.signum() > 0 {
+            if (from_side > 0 && to_side > 0) || (from_side < 0 && to_side < 0) {
                 continue;
             }
-            let (a, b) = wall_points(map, wall);
-            match segment_contact(from, to, a, b) {
+            // segment_contact's four sides, two of them known: with none zero, the path and
+            // the wall cross or miss each other; a zero side (touching, collinear) takes
+            // segment_contact's whole test.
+            let (start_side, end_side) = (
+                cross_near(from_bits, to_bits, start_bits),
+                cross_near(from_bits, to_bits, b_bits),
+            );
+            let contact = if from_side != 0 && to_side != 0 && start_side != 0 && end_side != 0 {
+                // Nonzero, and the first two not on one side: opposite signs.
+                if (start_side > 0) != (end_side > 0) {
+                    SegmentContact::Crossing
+                } else {
+                    SegmentContact::Disjoint
+                }
+            } else {
+                let (a, b) = wall_points(map, wall);
+                segment_contact(from, to, a, b)
+            };
+            match contact {
                 SegmentContact::Disjoint => {}
                 SegmentContact::Crossing if exit.is_none() => exit = Some(index),
                 SegmentContact::Crossing
