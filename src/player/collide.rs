@@ -962,6 +962,137 @@ mod tests {
         }
     }
 
+    use portalcast_format::{PlayerStart, NO_PORTAL, NO_TEXTURE};
+
+    /// A square room from −30 to 30 units on each axis, clockwise (y down), each side split
+    /// into `pieces` collinear solid walls.
+    fn square_room(pieces: i32) -> (Vec<Vertex>, Vec<Wall>, Vec<Sector>) {
+        let corners = [(-30, -30), (30, -30), (30, 30), (-30, 30)];
+        let mut vertices = Vec::new();
+        for side in 0..4 {
+            let (ax, ay) = corners[side];
+            let (bx, by) = corners[(side + 1) % 4];
+            for piece in 0..pieces {
+                vertices.push(Vertex {
+                    x: ax + (bx - ax) * piece / pieces,
+                    y: ay + (by - ay) * piece / pieces,
+                });
+            }
+        }
+        let count = vertices.len() as u16;
+        let walls = (0..count)
+            .map(|index| Wall {
+                start: index,
+                end: (index + 1) % count,
+                portal: NO_PORTAL,
+                texture: 0,
+                upper_texture: NO_TEXTURE,
+                lower_texture: NO_TEXTURE,
+                x_offset: 0,
+                y_offset: 0,
+            })
+            .collect();
+        let sectors = vec![Sector {
+            first_wall: 0,
+            wall_count: count,
+            floor_z: 0,
+            ceil_z: 128,
+            floor_texture: 0,
+            ceil_texture: 0,
+            light: 255,
+        }];
+        (vertices, walls, sectors)
+    }
+
+    fn room_map<'a>(
+        vertices: &'a [Vertex],
+        walls: &'a [Wall],
+        sectors: &'a [Sector],
+    ) -> MapTables<'a> {
+        MapTables {
+            name: "room",
+            vertices,
+            walls,
+            sectors,
+            player_start: PlayerStart {
+                x_fx8: 0,
+                y_fx8: 0,
+                angle: 0,
+                sector: 0,
+            },
+            things: &[],
+        }
+    }
+
+    const STANDING: Body = Body {
+        feet: Fx24_8::ZERO,
+        eye_height: Fx24_8::from_int(32),
+    };
+
+    #[test]
+    fn more_segments_than_the_short_list_holds_take_the_long_one() {
+        let (vertices, walls, sectors) = square_room(4);
+        let map = room_map(&vertices, &walls, &sectors);
+        // From the middle, every one of the 16 walls is within the step's box.
+        let bounds = Bounds::around(
+            WorldPoint::from_int(0, 0),
+            Delta::default(),
+            2 * RADIUS_BITS + 256,
+        );
+        let mut few = [(0, 0); FEW_SEGMENTS];
+        assert!(Obstacles::near(&map, 0, &bounds, &STANDING, &mut few, (0, 0)).is_none());
+        let mut many = [(0, 0); MAX_SEGMENTS];
+        let obstacles = Obstacles::near(&map, 0, &bounds, &STANDING, &mut many, (0, 0))
+            .expect("room for every segment");
+        let in_wall_order: Vec<(u16, u16)> =
+            walls.iter().map(|wall| (wall.start, wall.end)).collect();
+        assert_eq!(obstacles.ends, &in_wall_order[..]);
+        assert!(obstacles.target_inside);
+        // A step toward the east wall (split at y = 0, in front of the disc) stops the disc at
+        // the radius from it, through the long list.
+        let (to, sector) = slide_step(
+            &map,
+            0,
+            WorldPoint::from_int(12, 0),
+            Delta { x: 8 * 256, y: 0 },
+            &STANDING,
+        );
+        assert_eq!((to, sector), (WorldPoint::from_int(30 - RADIUS, 0), 0));
+    }
+
+    #[test]
+    fn the_short_and_the_long_list_move_alike() {
+        // Four walls: the short list holds them; the long path must give the same moves.
+        let (vertices, walls, sectors) = square_room(1);
+        let map = room_map(&vertices, &walls, &sectors);
+        let mut seed = 0x853c_49e6_748f_ea9bu64;
+        let mut next = |range: i32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 33) as i32 % (2 * range + 1) - range
+        };
+        let mut pushed = 0;
+        for _ in 0..4_000 {
+            let from = WorldPoint::new(
+                Fx24_8::from_bits(next(29 * 256)),
+                Fx24_8::from_bits(next(29 * 256)),
+            );
+            let step = Delta {
+                x: next(MAX_STEP_BITS),
+                y: next(MAX_STEP_BITS),
+            };
+            let bounds = Bounds::around(from, step, 2 * RADIUS_BITS + 256);
+            let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
+            let short = slide_step(&map, 0, from, step, &STANDING);
+            let long = slide_step_among_many(&map, 0, from, step, &STANDING, &bounds, target);
+            assert_eq!(short, long, "from {from:?} by {step:?}");
+            pushed += usize::from(short.0 != point_from_bits(target).expect("in the world"));
+        }
+        // The walls were reached, not only the free middle.
+        assert!(pushed > 100, "only {pushed} moves were changed by a wall");
+    }
+
     #[test]
     fn the_lengths_root_is_the_ceiling_of_the_square_root() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
