@@ -1145,7 +1145,7 @@ mod tests {
                 .wrapping_add(1_442_695_040_888_963_407);
             // Numerators and divisors of every size up to the pushes' (2^58 and 2^46).
             let n = (seed >> 6) as i64 >> (seed % 58);
-            let d = ((seed >> 20) % (1 << 46) >> (seed % 46)).max(1) as i64;
+            let d = (((seed >> 20) % (1 << 46)) >> (seed % 46)).max(1) as i64;
             let (unsigned_n, unsigned_d) = (n.unsigned_abs(), d as u64);
             assert_eq!(
                 divide(unsigned_n, unsigned_d),

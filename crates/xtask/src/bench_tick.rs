@@ -43,11 +43,9 @@ pub struct TickFigures {
 impl TickFigures {
     /// Cycles per tick on average, rounded to the nearest.
     pub fn mean(&self) -> u64 {
-        if self.ticks == 0 {
-            0
-        } else {
-            (self.cycles + self.ticks / 2) / self.ticks
-        }
+        (self.cycles + self.ticks / 2)
+            .checked_div(self.ticks)
+            .unwrap_or(0)
     }
 }
 
