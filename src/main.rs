@@ -95,8 +95,14 @@ mod rom {
         let colours = MenuColours::from_palette(&assets::PALETTE);
         let mut game = Game::new(assets::MAPS);
         let mut sampler = input::Sampler::new();
+        // What the two timer reads around a tick cost with nothing between them: taken off
+        // each tick's figure, so `tick_cycles` counts the tick alone.
+        let timer_cycles = {
+            let started = meter::now();
+            meter::cycles_since(started)
+        };
         log::info(format_args!(
-            "play start vblank={} map={}",
+            "play start vblank={} map={} timer_cycles={timer_cycles}",
             sampler.next_index(),
             game.map().name
         ));
@@ -104,19 +110,24 @@ mod rom {
         let mut stack_reported = 0;
         loop {
             let game_started = meter::now();
+            let mut ticks = TickCycles::default();
             let lost = sampler.drain(|vblank, held| {
                 // The recording: every change of the buttons, which replays the game exactly
                 // (`KeyScript::from_rom_log` in the harness).
                 if held != game.held().0 {
                     log::info(format_args!("input vblank={vblank} keys=0x{held:03x}"));
                 }
+                // Each tick timed alone, so the figures leave out the recording's log lines
+                // and the frame's other work.
+                let started = meter::now();
                 game.tick(Buttons(held));
+                ticks.add(meter::cycles_since(started).saturating_sub(timer_cycles));
             });
             let game_cycles = meter::cycles_since(game_started);
             let camera = game.camera();
             let player = &game.player;
             log::info(format_args!(
-                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} hud={} game_cycles={game_cycles}",
+                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} hud={} game_cycles={game_cycles} ticks_run={} tick_cycles={} tick_max_cycles={}",
                 sampler.next_index(),
                 game.ticks(),
                 game.held().0,
@@ -132,6 +143,9 @@ mod rom {
                 u8::from(game.controls.always_run),
                 if game.menu.open { game.menu.cursor as i32 } else { -1 },
                 u8::from(game.hud),
+                ticks.count,
+                ticks.total,
+                ticks.max,
             ));
             let settings = game.settings;
             let view = View::new(&camera, &settings);
@@ -173,6 +187,23 @@ mod rom {
                     log_stack();
                 }
             }
+        }
+    }
+
+    /// The cycles of the ticks run before one frame: `cargo bench-tick` adds them up over a
+    /// walk for the mean and worst tick.
+    #[derive(Default)]
+    struct TickCycles {
+        count: u32,
+        total: u32,
+        max: u32,
+    }
+
+    impl TickCycles {
+        fn add(&mut self, cycles: u32) {
+            self.count += 1;
+            self.total = self.total.wrapping_add(cycles);
+            self.max = self.max.max(cycles);
         }
     }
 

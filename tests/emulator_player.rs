@@ -341,3 +341,47 @@ fn the_same_demo_twice_and_its_recording_give_the_same_poses_and_frames() {
     assert!(first.log.iter().any(|line| line.contains("res=120x160")));
     assert!(first.last().fly);
 }
+
+#[test]
+fn the_tick_benchmark_walk_turns_strafes_jumps_and_slides_along_walls() {
+    // `cargo bench-tick` times the ROM's ticks along this walk: its figures stand for play only
+    // if the walk has the collisions as well as free motion. Played here, every pose is also
+    // checked against the host's replay.
+    use common::player::{distance_to_segment, solid_walls, units};
+    use portalcast::player::collide::RADIUS;
+    use portalcast::player::input::Buttons;
+    use portalcast_xtask::bench_tick::{FRAMES, KEYS_FILE};
+
+    let script = KeyScript::load(&portalcast_xtask::workspace_root().join(KEYS_FILE))
+        .unwrap_or_else(|error| panic!("{error}"));
+    let run = play_script(&script, FRAMES);
+    let map = portalcast::render::demo::demo_map();
+    let walls: Vec<((f64, f64), (f64, f64))> = solid_walls(&map)
+        .into_iter()
+        .map(|(a, b)| {
+            let point =
+                |p: portalcast::math::WorldPoint| (units(p.x.to_bits()), units(p.y.to_bits()));
+            (point(a), point(b))
+        })
+        .collect();
+    let (mut turns, mut strafes, mut jumps, mut slides) = (0, 0, 0, 0);
+    for pair in run.host_ticks().windows(2) {
+        let (before, after) = (&pair[0].player, &pair[1].player);
+        let moved = after.position != before.position;
+        let centre = (
+            units(after.position.x.to_bits()),
+            units(after.position.y.to_bits()),
+        );
+        let touching = walls
+            .iter()
+            .any(|&(a, b)| distance_to_segment(centre, a, b) < f64::from(RADIUS) + 1.0 / 16.0);
+        turns += usize::from(after.angle != before.angle);
+        strafes += usize::from(moved && pair[1].held().any(Buttons(Buttons::L.0 | Buttons::R.0)));
+        jumps += usize::from(before.on_ground && !after.on_ground && !after.fly);
+        slides += usize::from(moved && touching);
+    }
+    assert!(turns >= 100, "{turns} ticks turned");
+    assert!(strafes >= 100, "{strafes} ticks strafed");
+    assert!(jumps >= 5, "{jumps} jumps");
+    assert!(slides >= 100, "{slides} ticks slid along a wall");
+}

@@ -115,6 +115,10 @@ const fn collinear_within(a: WorldPoint, b: WorldPoint, p: WorldPoint) -> bool {
 }
 
 /// How the closed segments `a–b` and `c–d` meet. Exact; degenerate segments (a point) allowed.
+///
+/// Always inlined: linker.ld puts math's out-of-line functions in IWRAM, and this one's engine
+/// caller (the player's walk through portals) runs from ROM, where it then belongs too.
+#[inline(always)]
 pub fn segment_contact(
     a: WorldPoint,
     b: WorldPoint,

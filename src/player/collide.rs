@@ -38,9 +38,10 @@
 //! pleasant. The pushes use square roots and divisions rounded away from the wall (never short
 //! of the radius by more than a rounding step).
 
-use portalcast_format::{MapTables, Sector, Wall};
+use portalcast_format::{MapTables, Sector, Vertex, Wall};
 
-use crate::math::{cross, segment_contact, Fx24_8, SegmentContact, WorldPoint};
+use crate::math::{segment_contact, Fx24_8, SegmentContact, WorldPoint};
+use crate::render::ratio::leading_zeros;
 
 /// Radius of the body's disc, in world units: Doom's player radius, half the thesis' 64-unit
 /// square. Corridors of the shipped maps are at least 64 wide.
@@ -66,7 +67,34 @@ const PUSH_PASSES: usize = 4;
 /// Most portals one step's path may cross.
 const MAX_HOPS: usize = 8;
 
-const RADIUS_BITS: i64 = RADIUS as i64 * 256;
+const RADIUS_BITS: i32 = RADIUS * 256;
+
+/// A point in 24.8 bits. The pushes' points stay within 2^23 bits: a target is within the
+/// declared world (2^21 bits) plus a step, and one settling adds at most
+/// `PUSH_PASSES · 2 · MAX_SEGMENTS` pushes of at most `2 · RADIUS_BITS + 1` each (under 2^22).
+/// Their differences with map vertices fit 32 bits and their products 64: every product below
+/// multiplies two 32-bit values into 64 bits, one ARM instruction.
+type Bits = (i32, i32);
+
+/// `value` widened for a 64-bit product.
+fn wide(value: i32) -> i64 {
+    i64::from(value)
+}
+
+/// [`cross`] of points whose differences fit 32 bits (map vertices and points within the
+/// declared world: under 2^23 bits apart): two 32×32→64 products, where `cross` widens first
+/// and multiplies 64×64.
+fn cross_near(a: Bits, b: Bits, p: Bits) -> i64 {
+    let (abx, aby) = (b.0 - a.0, b.1 - a.1);
+    let (apx, apy) = (p.0 - a.0, p.1 - a.1);
+    wide(abx) * wide(apy) - wide(aby) * wide(apx)
+}
+
+/// A vertex in 24.8 bits.
+fn vertex_bits(map: &MapTables, index: u16) -> Bits {
+    let vertex = map.vertices[usize::from(index)];
+    (vertex.x * 256, vertex.y * 256)
+}
 
 /// The vertical extent of the body, which decides the sectors it may enter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -125,6 +153,24 @@ pub fn slide(
         .max(delta.y.unsigned_abs())
         .div_ceil(MAX_STEP_BITS as u32)
         .max(1) as i32;
+    if steps == 1 {
+        // Every move within the speed limit of walking and running: no split, so no divide.
+        return slide_step(map, sector, from, delta, body);
+    }
+    slide_in_steps(map, sector, from, delta, body, steps)
+}
+
+/// [`slide`] of a move split into `steps` steps. Out of line (it stays in ROM when the tick runs
+/// from IWRAM): only a push faster than running takes it.
+#[inline(never)]
+fn slide_in_steps(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    delta: Delta,
+    body: &Body,
+    steps: i32,
+) -> (WorldPoint, u16) {
     let (mut position, mut sector) = (from, sector);
     for index in 0..steps {
         // The exact split: the steps add up to `delta`.
@@ -138,7 +184,9 @@ pub fn slide(
     (position, sector)
 }
 
-/// One step of at most [`MAX_STEP_BITS`] per axis.
+/// One step of at most [`MAX_STEP_BITS`] per axis. Out of line: [`crate::player::Player::tick`]
+/// runs from IWRAM, and IWRAM has no room for this too.
+#[inline(never)]
 fn slide_step(
     map: &MapTables,
     sector: u16,
@@ -146,25 +194,80 @@ fn slide_step(
     step: Delta,
     body: &Body,
 ) -> (WorldPoint, u16) {
-    let reach = 2 * RADIUS_BITS as i32 + 256;
+    let reach = 2 * RADIUS_BITS + 256;
     let bounds = Bounds::around(from, step, reach);
-    let obstacles = Obstacles::near(map, sector, &bounds, body);
-    let allowed = obstacles.overlap(point_bits(from)).max(OVERLAP_TOLERANCE);
-    let mut tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
+    let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
+    // Room for a few segments, which is quick to clear; more take the slower path.
+    let mut few = [(0, 0); FEW_SEGMENTS];
+    match Obstacles::near(map, sector, &bounds, body, &mut few, target) {
+        Some(obstacles) => {
+            // Nothing to push against and the step ends strictly inside its sector: what
+            // try_moves' first try finds (no push, then track's first test), without a second
+            // pass over the sector's walls.
+            if obstacles.ends.is_empty() && obstacles.target_inside {
+                if let Some(to) = point_from_bits(target) {
+                    return (to, sector);
+                }
+            }
+            try_moves(map, sector, from, step, body, &obstacles)
+        }
+        None => slide_step_among_many(map, sector, from, step, body, &bounds, target),
+    }
+}
+
+/// [`slide_step`] when more than [`FEW_SEGMENTS`] blocking segments are near. Out of line.
+#[inline(never)]
+fn slide_step_among_many(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    step: Delta,
+    body: &Body,
+    bounds: &Bounds,
+    target: Bits,
+) -> (WorldPoint, u16) {
+    let mut many = [(0, 0); MAX_SEGMENTS];
+    match Obstacles::near(map, sector, bounds, body, &mut many, target) {
+        Some(obstacles) => try_moves(map, sector, from, step, body, &obstacles),
+        None => unreachable!("a list of MAX_SEGMENTS segments drops the rest"),
+    }
+}
+
+/// The rest of [`slide_step`]: the step, else along x alone, else along y alone, among
+/// `obstacles`.
+#[inline(never)]
+fn try_moves(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    step: Delta,
+    body: &Body,
+    obstacles: &Obstacles,
+) -> (WorldPoint, u16) {
+    // Only needed for a target the pushes leave overlapping: most steps never compute it.
+    let mut allowed = None;
+    let tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
     let try_count = if step.x != 0 && step.y != 0 { 3 } else { 1 };
-    for attempt in &mut tries[..try_count] {
-        let target = (
-            i64::from(from.x.to_bits() + attempt.x),
-            i64::from(from.y.to_bits() + attempt.y),
-        );
-        let settled = obstacles.push_out(target);
-        if obstacles.overlap(settled) > allowed {
-            continue;
+    for (index, attempt) in tries[..try_count].iter().enumerate() {
+        let target = (from.x.to_bits() + attempt.x, from.y.to_bits() + attempt.y);
+        let (settled, pushes_done) = obstacles.push_out(target);
+        // When the last pass pushed nothing, no segment pushes the result: its overlap is 0.
+        if !pushes_done {
+            let allowed = *allowed
+                .get_or_insert_with(|| obstacles.overlap(point_bits(from)).max(OVERLAP_TOLERANCE));
+            if obstacles.overlap(settled) > allowed {
+                continue;
+            }
         }
         let Some(to) = point_from_bits(settled) else {
             continue;
         };
-        if let Some((to, sector)) = track_nudged(map, sector, from, to, body) {
+        // The whole step, not pushed: the walk over the walls has made track's first test.
+        let unpushed_step = index == 0 && settled == target;
+        if unpushed_step && obstacles.target_inside {
+            return (to, sector);
+        }
+        if let Some((to, sector)) = track_nudged(map, sector, from, to, body, unpushed_step) {
             return (to, sector);
         }
     }
@@ -179,11 +282,29 @@ fn track_nudged(
     from: WorldPoint,
     to: WorldPoint,
     body: &Body,
+    to_outside: bool,
 ) -> Option<(WorldPoint, u16)> {
-    match track(map, sector, from, to, body) {
-        Track::Inside(sector) => return Some((to, sector)),
-        Track::Blocked | Track::Degenerate => {}
+    // `to_outside`: the caller knows `to` is not strictly inside `sector`, track's first test.
+    let tracked = if to_outside {
+        track_through_portals(map, sector, from, to, body)
+    } else {
+        track(map, sector, from, to, body)
+    };
+    match tracked {
+        Track::Inside(sector) => Some((to, sector)),
+        Track::Blocked | Track::Degenerate => track_nudges(map, sector, from, to, body),
     }
+}
+
+/// The nudges of [`track_nudged`]. Out of line, since rare.
+#[inline(never)]
+fn track_nudges(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    to: WorldPoint,
+    body: &Body,
+) -> Option<(WorldPoint, u16)> {
     let sx = if to.x >= from.x { 1 } else { -1 };
     let sy = if to.y >= from.y { 1 } else { -1 };
     let nudges = [
@@ -209,29 +330,83 @@ fn track_nudged(
 }
 
 /// Follows the centre's straight path from `from`, strictly inside `sector`, to `to`, through
-/// the portals it crosses. Exact.
+/// the portals it crosses. Exact for `to` within the declared world (as [`slide`]'s are; its
+/// 64-bit products take 32-bit differences).
 ///
 /// A convex sector's boundary meets the path at most where it enters and where it leaves, so
 /// in each sector the wall it leaves through is the one wall (other than the one it came in
 /// by) that the path properly crosses; anything else (touching a vertex, running along a wall,
 /// ending on one) is [`Track::Degenerate`].
 pub fn track(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint, body: &Body) -> Track {
+    // Most paths end in the sector they start in (convex: they cross nothing). This test is the
+    // first of the walk below, which is out of line (in ROM when the tick runs from IWRAM).
+    if strictly_inside(map, &map.sectors[usize::from(sector)], to) {
+        return Track::Inside(sector);
+    }
+    track_through_portals(map, sector, from, to, body)
+}
+
+/// [`track`] of a path that leaves `sector`, which `to` is not strictly inside.
+#[inline(never)]
+fn track_through_portals(
+    map: &MapTables,
+    sector: u16,
+    from: WorldPoint,
+    to: WorldPoint,
+    body: &Body,
+) -> Track {
     let start = sector;
     let mut current = sector;
     let mut came_through: Option<usize> = None;
-    for _ in 0..=MAX_HOPS {
+    for hop in 0..=MAX_HOPS {
         let here = &map.sectors[usize::from(current)];
-        if strictly_inside(map, here, to) {
+        if hop > 0 && strictly_inside(map, here, to) {
             return Track::Inside(current);
         }
         let mut exit = None;
         let first = usize::from(here.first_wall);
-        for index in first..first + usize::from(here.wall_count) {
+        let walls = map.sector_walls(here);
+        let Some(last) = walls.last() else {
+            return Track::Degenerate;
+        };
+        // Each wall starts where the one before it ends: one vertex read per wall.
+        let mut a_bits = vertex_bits(map, last.end);
+        let (from_bits, to_bits) = (point_bits(from), point_bits(to));
+        for (index, wall) in (first..).zip(walls) {
+            let b_bits = vertex_bits(map, wall.end);
+            let start_bits = a_bits;
+            a_bits = b_bits;
             if Some(index) == came_through {
                 continue;
             }
-            let (a, b) = wall_points(map, &map.walls[index]);
-            match segment_contact(from, to, a, b) {
+            // Both ends strictly on one side of the wall's line: disjoint (a point of the wall
+            // on the path would lie on that side too), for two of segment_contact's products.
+            let (from_side, to_side) = (
+                cross_near(start_bits, b_bits, from_bits),
+                cross_near(start_bits, b_bits, to_bits),
+            );
+            if (from_side > 0 && to_side > 0) || (from_side < 0 && to_side < 0) {
+                continue;
+            }
+            // segment_contact's four sides, two of them known: with none zero, the path and
+            // the wall cross or miss each other; a zero side (touching, collinear) takes
+            // segment_contact's whole test.
+            let (start_side, end_side) = (
+                cross_near(from_bits, to_bits, start_bits),
+                cross_near(from_bits, to_bits, b_bits),
+            );
+            let contact = if from_side != 0 && to_side != 0 && start_side != 0 && end_side != 0 {
+                // Nonzero, and the first two not on one side: opposite signs.
+                if (start_side > 0) != (end_side > 0) {
+                    SegmentContact::Crossing
+                } else {
+                    SegmentContact::Disjoint
+                }
+            } else {
+                let (a, b) = wall_points(map, wall);
+                segment_contact(from, to, a, b)
+            };
+            match contact {
                 SegmentContact::Disjoint => {}
                 SegmentContact::Crossing if exit.is_none() => exit = Some(index),
                 SegmentContact::Crossing
@@ -260,9 +435,23 @@ pub fn track(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint, bod
 
 /// Whether `p` is strictly inside `sector` (right of every wall). Exact.
 pub fn strictly_inside(map: &MapTables, sector: &Sector, p: WorldPoint) -> bool {
-    map.sector_walls(sector).iter().all(|wall| {
-        let (a, b) = wall_points(map, wall);
-        cross(a, b, p) > 0
+    let limit = portalcast_format::limits::WORLD_COORD_MAX.unsigned_abs() * 256;
+    let p = point_bits(p);
+    // Beyond the world no sector has an inside; within it, cross_near is exact.
+    if p.0.unsigned_abs() > limit || p.1.unsigned_abs() > limit {
+        return false;
+    }
+    let walls = map.sector_walls(sector);
+    let Some(last) = walls.last() else {
+        return true;
+    };
+    // Each wall starts where the one before it ends: one vertex read per wall.
+    let mut a = vertex_bits(map, last.end);
+    walls.iter().all(|wall| {
+        let b = vertex_bits(map, wall.end);
+        let side = cross_near(a, b, p);
+        a = b;
+        side > 0
     })
 }
 
@@ -286,21 +475,18 @@ fn twin_wall(map: &MapTables, wall: &Wall, sector: u16, next: u16) -> Option<usi
     })
 }
 
-fn point_bits(p: WorldPoint) -> (i64, i64) {
-    (i64::from(p.x.to_bits()), i64::from(p.y.to_bits()))
+fn point_bits(p: WorldPoint) -> Bits {
+    (p.x.to_bits(), p.y.to_bits())
 }
 
 /// The point at these 24.8 bits, if they are inside the declared world (a push cannot leave it
 /// on a valid map, but the tracking below relies on the bounds of its products).
-fn point_from_bits((x, y): (i64, i64)) -> Option<WorldPoint> {
-    let limit = i64::from(portalcast_format::limits::WORLD_COORD_MAX) * 256;
+fn point_from_bits((x, y): Bits) -> Option<WorldPoint> {
+    let limit = portalcast_format::limits::WORLD_COORD_MAX * 256;
     if x.abs() > limit || y.abs() > limit {
         return None;
     }
-    Some(WorldPoint::new(
-        Fx24_8::from_bits(x as i32),
-        Fx24_8::from_bits(y as i32),
-    ))
+    Some(WorldPoint::new(Fx24_8::from_bits(x), Fx24_8::from_bits(y)))
 }
 
 /// An axis-aligned box in 24.8 bits.
@@ -322,8 +508,7 @@ impl Bounds {
     }
 
     /// Whether the bounding box of segment `a b` meets this box.
-    fn meets(&self, a: WorldPoint, b: WorldPoint) -> bool {
-        let (ax, ay, bx, by) = (a.x.to_bits(), a.y.to_bits(), b.x.to_bits(), b.y.to_bits());
+    fn meets(&self, (ax, ay): Bits, (bx, by): Bits) -> bool {
         ax.max(bx) >= self.min.0
             && ax.min(bx) <= self.max.0
             && ay.max(by) >= self.min.1
@@ -331,32 +516,62 @@ impl Bounds {
     }
 }
 
-/// A segment's ends in 24.8 bits.
-type Segment = ((i32, i32), (i32, i32));
+/// Blocking segments a step keeps in the list it clears on every step (32 bytes); a step near
+/// more takes a slower path with room for [`MAX_SEGMENTS`].
+const FEW_SEGMENTS: usize = 8;
 
-/// The blocking segments near one step (768 bytes of stack).
-struct Obstacles {
-    segments: [Segment; MAX_SEGMENTS],
-    count: usize,
+/// The blocking segments near one step, as their walls' vertex indices in a list the caller
+/// provides: clearing room for [`MAX_SEGMENTS`] segments on every step cost more than the rest
+/// of a step without pushes, and most steps find none.
+struct Obstacles<'a, 'm> {
+    vertices: &'m [Vertex],
+    ends: &'a [(u16, u16)],
+    /// Whether the step's whole target is strictly inside the step's sector.
+    target_inside: bool,
 }
 
-impl Obstacles {
+impl<'a, 'm> Obstacles<'a, 'm> {
     /// Walks from `sector` through the open portals that meet `bounds` and keeps every
-    /// blocking segment of the sectors reached that meets `bounds`.
-    fn near(map: &MapTables, sector: u16, bounds: &Bounds, body: &Body) -> Obstacles {
-        let mut obstacles = Obstacles {
-            segments: [((0, 0), (0, 0)); MAX_SEGMENTS],
-            count: 0,
-        };
+    /// blocking segment of the sectors reached that meets `bounds`, in `ends`: the first
+    /// [`MAX_SEGMENTS`] of them. `None` if they do not fit a shorter `ends`. On the way, tests
+    /// whether `target` is strictly inside `sector`.
+    ///
+    /// In IWRAM on the GBA: every step runs it over at least a whole sector's walls.
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.player_obstacles_near")]
+    fn near(
+        map: &MapTables<'m>,
+        sector: u16,
+        bounds: &Bounds,
+        body: &Body,
+        ends: &'a mut [(u16, u16)],
+        target: Bits,
+    ) -> Option<Obstacles<'a, 'm>> {
+        let mut target_inside = true;
+        let mut count = 0;
         let mut sectors = [sector; MAX_NEARBY_SECTORS];
         let mut found = 1;
         let mut next_to_scan = 0;
         while next_to_scan < found {
-            let here = &map.sectors[usize::from(sectors[next_to_scan])];
+            let first_sector = next_to_scan == 0;
+            let walls = map.sector_walls(&map.sectors[usize::from(sectors[next_to_scan])]);
             next_to_scan += 1;
-            for wall in map.sector_walls(here) {
-                let (a, b) = wall_points(map, wall);
-                if !bounds.meets(a, b) {
+            // Each wall starts where the one before it ends (the format's rule), so one vertex
+            // read per wall: they are in ROM.
+            let Some(last) = walls.last() else {
+                continue;
+            };
+            let mut a = vertex_bits(map, last.end);
+            for wall in walls {
+                let b = vertex_bits(map, wall.end);
+                let (wall_a, wall_b) = (a, b);
+                a = b;
+                if first_sector {
+                    // strictly_inside(sector, target), on the walls this reads anyway (target is
+                    // a step from a point of the world: cross_near is exact).
+                    target_inside &= cross_near(wall_a, wall_b, target) > 0;
+                }
+                if !bounds.meets(wall_a, wall_b) {
                     continue;
                 }
                 match wall.neighbour() {
@@ -369,34 +584,47 @@ impl Obstacles {
                         }
                     }
                     _ => {
-                        if obstacles.count < MAX_SEGMENTS {
-                            obstacles.segments[obstacles.count] = (
-                                (a.x.to_bits(), a.y.to_bits()),
-                                (b.x.to_bits(), b.y.to_bits()),
-                            );
-                            obstacles.count += 1;
+                        if count < ends.len().min(MAX_SEGMENTS) {
+                            ends[count] = (wall.start, wall.end);
+                            count += 1;
+                        } else if ends.len() < MAX_SEGMENTS {
+                            return None;
                         }
                     }
                 }
             }
         }
-        obstacles
+        Some(Obstacles {
+            vertices: map.vertices,
+            ends: &ends[..count],
+            target_inside,
+        })
     }
 
-    /// The segments, widened for the pushes' 64-bit products.
-    fn segments(&self) -> impl Iterator<Item = ((i64, i64), (i64, i64))> + '_ {
-        self.segments[..self.count]
+    /// The segments' ends in 24.8 bits.
+    fn segments(&self) -> impl Iterator<Item = (Bits, Bits)> + '_ {
+        let bits = |index: u16| {
+            let vertex = self.vertices[usize::from(index)];
+            (vertex.x * 256, vertex.y * 256)
+        };
+        self.ends
             .iter()
-            .map(|&((ax, ay), (bx, by))| {
-                (
-                    (i64::from(ax), i64::from(ay)),
-                    (i64::from(bx), i64::from(by)),
-                )
-            })
+            .map(move |&(start, end)| (bits(start), bits(end)))
     }
 
-    /// `p` pushed out of the segments: a few passes, edges before vertices in each.
-    fn push_out(&self, mut p: (i64, i64)) -> (i64, i64) {
+    /// `p` pushed out of the segments: a few passes, edges before vertices in each. And whether
+    /// the last pass pushed nothing (the pushes settled before the passes ran out).
+    #[inline]
+    fn push_out(&self, p: Bits) -> (Bits, bool) {
+        if self.ends.is_empty() {
+            return (p, true);
+        }
+        self.push_out_of_some(p)
+    }
+
+    /// [`Obstacles::push_out`] with at least one segment. Out of line: most steps have none.
+    #[inline(never)]
+    fn push_out_of_some(&self, mut p: Bits) -> (Bits, bool) {
         for _ in 0..PUSH_PASSES {
             let mut moved = false;
             for contact in [Contact::Edge, Contact::Vertex] {
@@ -408,21 +636,31 @@ impl Obstacles {
                 }
             }
             if !moved {
-                break;
+                return (p, true);
             }
         }
-        p
+        (p, false)
     }
 
     /// The largest push (per axis, in bits) any segment would still give `p`.
-    fn overlap(&self, p: (i64, i64)) -> i64 {
+    #[inline]
+    fn overlap(&self, p: Bits) -> i64 {
+        if self.ends.is_empty() {
+            return 0;
+        }
+        self.overlap_of_some(p)
+    }
+
+    /// [`Obstacles::overlap`] with at least one segment. Out of line: most steps have none.
+    #[inline(never)]
+    fn overlap_of_some(&self, p: Bits) -> i64 {
         self.segments()
             .flat_map(|(a, b)| {
                 [Contact::Edge, Contact::Vertex]
                     .into_iter()
                     .filter_map(move |contact| push_from_segment(p, a, b, contact))
             })
-            .map(|(x, y)| x.abs().max(y.abs()))
+            .map(|(x, y)| wide(x.abs().max(y.abs())))
             .max()
             .unwrap_or(0)
     }
@@ -439,22 +677,17 @@ enum Contact {
 
 /// The push (24.8 bits) that moves `p` to [`RADIUS`] from segment `a b`, if the disc overlaps
 /// the part of the segment `contact` names; rounded away from the segment.
-fn push_from_segment(
-    p: (i64, i64),
-    a: (i64, i64),
-    b: (i64, i64),
-    contact: Contact,
-) -> Option<(i64, i64)> {
+fn push_from_segment(p: Bits, a: Bits, b: Bits, contact: Contact) -> Option<Bits> {
     // Most segments near a step are farther than the radius from every part of it: a box
     // test rejects them before any product.
-    let beyond = |p: i64, a: i64, b: i64| p < a.min(b) - RADIUS_BITS || p > a.max(b) + RADIUS_BITS;
+    let beyond = |p: i32, a: i32, b: i32| p < a.min(b) - RADIUS_BITS || p > a.max(b) + RADIUS_BITS;
     if beyond(p.0, a.0, b.0) || beyond(p.1, a.1, b.1) {
         return None;
     }
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let (px, py) = (p.0 - a.0, p.1 - a.1);
-    let along = px * dx + py * dy;
-    let length_squared = dx * dx + dy * dy;
+    let along = wide(px) * wide(dx) + wide(py) * wide(dy);
+    let length_squared = wide(dx) * wide(dx) + wide(dy) * wide(dy);
     if along <= 0 || along >= length_squared {
         if contact != Contact::Vertex {
             return None;
@@ -466,58 +699,215 @@ fn push_from_segment(
         return None;
     }
     // Twice the signed area: the distance to the line times the length; positive in front.
-    let area = dx * py - dy * px;
+    let area = wide(dx) * wide(py) - wide(dy) * wide(px);
     if area <= 0 {
         return None;
     }
-    let length = isqrt_ceil(length_squared as u64) as i64;
-    let reach = RADIUS_BITS * length;
-    if area >= reach {
+    // The disc reaches the segment if `area < RADIUS_BITS · ceil(√length_squared)`, that is
+    // (the right side being a multiple of RADIUS_BITS) if `area / RADIUS_BITS`, rounded down,
+    // is below `ceil(√length_squared)`, or its square below `length_squared`: the same test
+    // without the square root, which only a push needs. A quotient of 2^23 or more squares
+    // past any length_squared of the declared world (under 2^45), and could overflow.
+    let quotient = area / wide(RADIUS_BITS);
+    if quotient >= 1 << 23 || quotient * quotient >= length_squared {
         return None;
     }
+    // The push below, for a wall along an axis, where the length is |dx| (or |dy|) and the
+    // divisions are exact: with dy = 0 the area is dx·py, the depth |dx|·(RADIUS_BITS −
+    // sign(dx)·py), and the push (0, dx·depth / dx²). Most walls are; no division, no root.
+    if dy == 0 {
+        return Some((0, dx.signum() * RADIUS_BITS - py));
+    }
+    if dx == 0 {
+        return Some((-dy.signum() * RADIUS_BITS - px, 0));
+    }
+    // The segment's ends are whole units, so dx and dy are multiples of 256 and the squared
+    // length 65536 times the squared length in units, which fits 32 bits (2^29 at most).
+    let (units_x, units_y) = (dx >> 8, dy >> 8);
+    let units_squared = (units_x * units_x + units_y * units_y) as u32;
+    debug_assert!(wide(units_squared as i32) << 16 == length_squared);
+    let length = i64::from(ceil_sqrt_65536_times(units_squared));
+    let reach = wide(RADIUS_BITS) * length;
     // Along the normal (-dy, dx)/length by (reach - area)/length: the area grows by exactly
     // reach - area, to the radius (times the rounded-up length).
     let depth = reach - area;
+    // The depth is a multiple of 256 too (RADIUS_BITS and the area are), so each quotient
+    // `−dy·depth / length_squared` is `−units_y·(depth/256) / units_squared`: the same
+    // quotient and remainder over 65536, with a 32-bit divisor.
+    debug_assert!(depth % 256 == 0);
+    let depth_units = depth >> 8;
     Some((
-        div_away_from_zero(-dy * depth, length_squared),
-        div_away_from_zero(dx * depth, length_squared),
+        div_away_from_zero_by_u32(-wide(units_y) * depth_units, units_squared) as i32,
+        div_away_from_zero_by_u32(wide(units_x) * depth_units, units_squared) as i32,
     ))
+}
+
+/// `ceil(√(65536·m))`, digit by digit on 32-bit words: two bits of the radicand a step, m's
+/// and then the 8 pairs of zeros of the factor 65536. The root stays under 2^23 and the
+/// remainder under twice the root.
+fn ceil_sqrt_65536_times(m: u32) -> u32 {
+    let (mut root, mut remainder) = (0u32, 0u32);
+    let mut step = |pair: u32| {
+        remainder = (remainder << 2) | pair;
+        let trial = (root << 2) | 1;
+        root <<= 1;
+        if remainder >= trial {
+            remainder -= trial;
+            root |= 1;
+        }
+    };
+    if m != 0 {
+        let pairs = (64 - leading_zeros(u64::from(m))).div_ceil(2);
+        for index in (0..pairs).rev() {
+            step((m >> (2 * index)) & 3);
+        }
+    }
+    for _ in 0..8 {
+        step(0);
+    }
+    root + u32::from(remainder != 0)
+}
+
+/// `n / d` rounded away from zero, for `0 < d < 2^31`.
+fn div_away_from_zero_by_u32(n: i64, d: u32) -> i64 {
+    let (quotient, remainder) = divide_by_u32(n.unsigned_abs(), d);
+    let magnitude = (quotient + u64::from(remainder != 0)) as i64;
+    if n >= 0 {
+        magnitude
+    } else {
+        -magnitude
+    }
+}
+
+/// `(n / d, n % d)` for `0 < d < 2^31`: shift and subtract over the quotient's bits, with the
+/// remainder (under 2·d) in one 32-bit word while the quotient has at most 32 bits; else
+/// [`divide`].
+fn divide_by_u32(n: u64, d: u32) -> (u64, u32) {
+    debug_assert!(d != 0 && d < 1 << 31);
+    if n < u64::from(d) {
+        return (0, n as u32);
+    }
+    // At most this many quotient bits: n shifted down by it is below d.
+    let bits = leading_zeros(u64::from(d)) - leading_zeros(n) + 1;
+    if bits > 32 {
+        let (quotient, remainder) = divide(n, u64::from(d));
+        return (quotient, remainder as u32);
+    }
+    let mut remainder = (n >> bits) as u32;
+    let low = n as u32;
+    let mut quotient = 0u32;
+    for index in (0..bits).rev() {
+        remainder = (remainder << 1) | ((low >> index) & 1);
+        quotient <<= 1;
+        if remainder >= d {
+            remainder -= d;
+            quotient |= 1;
+        }
+    }
+    (u64::from(quotient), remainder)
 }
 
 /// The push that moves `p` to [`RADIUS`] from `end`, radially, if it is closer.
-fn push_from_point(p: (i64, i64), end: (i64, i64)) -> Option<(i64, i64)> {
+fn push_from_point(p: Bits, end: Bits) -> Option<Bits> {
     let (ex, ey) = (p.0 - end.0, p.1 - end.1);
-    let distance_squared = ex * ex + ey * ey;
+    let distance_squared = wide(ex) * wide(ex) + wide(ey) * wide(ey);
     // At the point itself there is no direction; the centre is never at a map vertex anyway
     // (vertices lie on sector boundaries, the centre strictly inside).
-    if distance_squared == 0 || distance_squared >= RADIUS_BITS * RADIUS_BITS {
+    if distance_squared == 0 || distance_squared >= wide(RADIUS_BITS) * wide(RADIUS_BITS) {
         return None;
     }
-    let distance = isqrt_floor(distance_squared as u64) as i64;
+    // Closer than the radius: ex, ey, the distance and the gap are below 2^12, so the products
+    // below 2^24 and 32-bit words hold everything.
+    let distance = isqrt_floor_u32(distance_squared as u32) as i32;
     let gap = RADIUS_BITS - distance;
     Some((
-        div_away_from_zero(ex * gap, distance),
-        div_away_from_zero(ey * gap, distance),
+        div_away_from_zero_u32(ex * gap, distance),
+        div_away_from_zero_u32(ey * gap, distance),
     ))
 }
 
-/// `n / d` rounded away from zero; `d > 0`.
-fn div_away_from_zero(n: i64, d: i64) -> i64 {
+/// [`div_away_from_zero_by_u32`] on 32-bit words.
+fn div_away_from_zero_u32(n: i32, d: i32) -> i32 {
+    let (quotient, remainder) = divide_u32(n.unsigned_abs(), d as u32);
+    let magnitude = (quotient + u32::from(remainder != 0)) as i32;
     if n >= 0 {
-        (n + d - 1) / d
+        magnitude
     } else {
-        -((-n + d - 1) / d)
+        -magnitude
     }
+}
+
+/// `(n / d, n % d)` for `d > 0`, by shift and subtract over the quotient's bits alone. A push's
+/// quotient is at most about the radius in bits (13 bits), so this takes a few steps, where the
+/// library's 64-bit division is generic Thumb code in ROM.
+fn divide(n: u64, d: u64) -> (u64, u64) {
+    if n < d {
+        return (0, n);
+    }
+    // d shifted up to n's top bit: at most n's bit length minus d's quotient bits.
+    let shift = leading_zeros(d) - leading_zeros(n);
+    let mut divisor = d << shift;
+    let (mut quotient, mut remainder) = (0, n);
+    for _ in 0..=shift {
+        quotient <<= 1;
+        if remainder >= divisor {
+            remainder -= divisor;
+            quotient |= 1;
+        }
+        divisor >>= 1;
+    }
+    (quotient, remainder)
+}
+
+/// [`divide`] on 32-bit words.
+fn divide_u32(n: u32, d: u32) -> (u32, u32) {
+    if n < d {
+        return (0, n);
+    }
+    let shift = leading_zeros(u64::from(d)) - leading_zeros(u64::from(n));
+    let mut divisor = d << shift;
+    let (mut quotient, mut remainder) = (0, n);
+    for _ in 0..=shift {
+        quotient <<= 1;
+        if remainder >= divisor {
+            remainder -= divisor;
+            quotient |= 1;
+        }
+        divisor >>= 1;
+    }
+    (quotient, remainder)
 }
 
 /// `floor(sqrt(n))`, bit by bit (no division, no float).
 pub fn isqrt_floor(n: u64) -> u64 {
+    if let Ok(small) = u32::try_from(n) {
+        // A vertex push's distance is under the radius (n < 2^24): 32-bit steps.
+        return u64::from(isqrt_floor_u32(small));
+    }
     let mut remainder = n;
     let mut root = 0u64;
-    let mut bit = 1u64 << 62;
-    while bit > remainder {
+    // The highest power of 4 at most n: where the loop of halvings from 4^31 would stop.
+    let mut bit = 1u64 << ((63 - leading_zeros(n)) & !1);
+    while bit != 0 {
+        if remainder >= root + bit {
+            remainder -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
         bit >>= 2;
     }
+    root
+}
+
+/// [`isqrt_floor`] of a 32-bit `n`: the same steps on 32-bit words.
+fn isqrt_floor_u32(n: u32) -> u32 {
+    if n == 0 {
+        return 0;
+    }
+    let mut remainder = n;
+    let mut root = 0u32;
+    let mut bit = 1u32 << ((63 - leading_zeros(u64::from(n))) & !1);
     while bit != 0 {
         if remainder >= root + bit {
             remainder -= root + bit;
@@ -558,6 +948,9 @@ mod tests {
             1 << 40,
             (1 << 46) - 1,
             u64::MAX >> 2,
+            u64::from(u32::MAX),
+            1 << 32,
+            (1 << 24) - 1,
         ] {
             let floor = isqrt_floor(n);
             assert!(floor * floor <= n && (floor + 1) * (floor + 1) > n, "{n}");
@@ -567,6 +960,221 @@ mod tests {
                 "{n}"
             );
         }
+    }
+
+    use portalcast_format::{PlayerStart, NO_PORTAL, NO_TEXTURE};
+
+    /// A square room from −30 to 30 units on each axis, clockwise (y down), each side split
+    /// into `pieces` collinear solid walls.
+    fn square_room(pieces: i32) -> (Vec<Vertex>, Vec<Wall>, Vec<Sector>) {
+        let corners = [(-30, -30), (30, -30), (30, 30), (-30, 30)];
+        let mut vertices = Vec::new();
+        for side in 0..4 {
+            let (ax, ay) = corners[side];
+            let (bx, by) = corners[(side + 1) % 4];
+            for piece in 0..pieces {
+                vertices.push(Vertex {
+                    x: ax + (bx - ax) * piece / pieces,
+                    y: ay + (by - ay) * piece / pieces,
+                });
+            }
+        }
+        let count = vertices.len() as u16;
+        let walls = (0..count)
+            .map(|index| Wall {
+                start: index,
+                end: (index + 1) % count,
+                portal: NO_PORTAL,
+                texture: 0,
+                upper_texture: NO_TEXTURE,
+                lower_texture: NO_TEXTURE,
+                x_offset: 0,
+                y_offset: 0,
+            })
+            .collect();
+        let sectors = vec![Sector {
+            first_wall: 0,
+            wall_count: count,
+            floor_z: 0,
+            ceil_z: 128,
+            floor_texture: 0,
+            ceil_texture: 0,
+            light: 255,
+        }];
+        (vertices, walls, sectors)
+    }
+
+    fn room_map<'a>(
+        vertices: &'a [Vertex],
+        walls: &'a [Wall],
+        sectors: &'a [Sector],
+    ) -> MapTables<'a> {
+        MapTables {
+            name: "room",
+            vertices,
+            walls,
+            sectors,
+            player_start: PlayerStart {
+                x_fx8: 0,
+                y_fx8: 0,
+                angle: 0,
+                sector: 0,
+            },
+            things: &[],
+        }
+    }
+
+    const STANDING: Body = Body {
+        feet: Fx24_8::ZERO,
+        eye_height: Fx24_8::from_int(32),
+    };
+
+    #[test]
+    fn more_segments_than_the_short_list_holds_take_the_long_one() {
+        let (vertices, walls, sectors) = square_room(4);
+        let map = room_map(&vertices, &walls, &sectors);
+        // From the middle, every one of the 16 walls is within the step's box.
+        let bounds = Bounds::around(
+            WorldPoint::from_int(0, 0),
+            Delta::default(),
+            2 * RADIUS_BITS + 256,
+        );
+        let mut few = [(0, 0); FEW_SEGMENTS];
+        assert!(Obstacles::near(&map, 0, &bounds, &STANDING, &mut few, (0, 0)).is_none());
+        let mut many = [(0, 0); MAX_SEGMENTS];
+        let obstacles = Obstacles::near(&map, 0, &bounds, &STANDING, &mut many, (0, 0))
+            .expect("room for every segment");
+        let in_wall_order: Vec<(u16, u16)> =
+            walls.iter().map(|wall| (wall.start, wall.end)).collect();
+        assert_eq!(obstacles.ends, &in_wall_order[..]);
+        assert!(obstacles.target_inside);
+        // A step toward the east wall (split at y = 0, in front of the disc) stops the disc at
+        // the radius from it, through the long list.
+        let (to, sector) = slide_step(
+            &map,
+            0,
+            WorldPoint::from_int(12, 0),
+            Delta { x: 8 * 256, y: 0 },
+            &STANDING,
+        );
+        assert_eq!((to, sector), (WorldPoint::from_int(30 - RADIUS, 0), 0));
+    }
+
+    #[test]
+    fn the_short_and_the_long_list_move_alike() {
+        // Four walls: the short list holds them; the long path must give the same moves.
+        let (vertices, walls, sectors) = square_room(1);
+        let map = room_map(&vertices, &walls, &sectors);
+        let mut seed = 0x853c_49e6_748f_ea9bu64;
+        let mut next = |range: i32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 33) as i32 % (2 * range + 1) - range
+        };
+        let mut pushed = 0;
+        for _ in 0..4_000 {
+            let from = WorldPoint::new(
+                Fx24_8::from_bits(next(29 * 256)),
+                Fx24_8::from_bits(next(29 * 256)),
+            );
+            let step = Delta {
+                x: next(MAX_STEP_BITS),
+                y: next(MAX_STEP_BITS),
+            };
+            let bounds = Bounds::around(from, step, 2 * RADIUS_BITS + 256);
+            let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
+            let short = slide_step(&map, 0, from, step, &STANDING);
+            let long = slide_step_among_many(&map, 0, from, step, &STANDING, &bounds, target);
+            assert_eq!(short, long, "from {from:?} by {step:?}");
+            pushed += usize::from(short.0 != point_from_bits(target).expect("in the world"));
+        }
+        // The walls were reached, not only the free middle.
+        assert!(pushed > 100, "only {pushed} moves were changed by a wall");
+    }
+
+    #[test]
+    fn the_lengths_root_is_the_ceiling_of_the_square_root() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let check = |m: u32| {
+            let n = u64::from(m) << 16;
+            assert_eq!(
+                u64::from(ceil_sqrt_65536_times(m)),
+                isqrt_ceil(n),
+                "m = {m}"
+            );
+        };
+        for m in [
+            0,
+            1,
+            2,
+            3,
+            4,
+            255,
+            256,
+            65_535,
+            65_536,
+            (1 << 29) - 1,
+            1 << 29,
+        ] {
+            check(m);
+        }
+        for _ in 0..20_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            check((seed >> 35) as u32 >> (seed % 29));
+        }
+    }
+
+    #[test]
+    fn the_shift_and_subtract_division_rounds_as_the_library_s() {
+        // The rounding the pushes used with the library's division, against the shift and
+        // subtract divisions that replace it.
+        let reference = |n: i64, d: i64| {
+            if n >= 0 {
+                (n + d - 1) / d
+            } else {
+                -((-n + d - 1) / d)
+            }
+        };
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..20_000 {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            // Numerators and divisors of every size up to the pushes' (2^58 and 2^46).
+            let n = (seed >> 6) as i64 >> (seed % 58);
+            let d = (((seed >> 20) % (1 << 46)) >> (seed % 46)).max(1) as i64;
+            let (unsigned_n, unsigned_d) = (n.unsigned_abs(), d as u64);
+            assert_eq!(
+                divide(unsigned_n, unsigned_d),
+                (unsigned_n / unsigned_d, unsigned_n % unsigned_d),
+                "{n} / {d}"
+            );
+            // The edge pushes' form, by a divisor under 2^31 (quotients over 32 bits included);
+            // with an exact multiple, which has no remainder to round.
+            let divisor = (d % (1 << 31)).max(1) as u32;
+            for n in [n, -n, n % (1 << 16) * i64::from(divisor)] {
+                assert_eq!(
+                    div_away_from_zero_by_u32(n, divisor),
+                    reference(n, i64::from(divisor)),
+                    "{n} / {divisor}"
+                );
+            }
+            // The vertex pushes' 32-bit form, over their operands' range (below 2^24 / 2^12).
+            let (small_n, small_d) = ((n % (1 << 24)) as i32, (d % (1 << 12)).max(1) as i32);
+            for small_n in [small_n, -small_n] {
+                assert_eq!(
+                    i64::from(div_away_from_zero_u32(small_n, small_d)),
+                    reference(i64::from(small_n), i64::from(small_d)),
+                    "{small_n} / {small_d}"
+                );
+            }
+        }
+        assert_eq!(divide(0, 7), (0, 0));
+        assert_eq!(divide(u64::MAX, 1), (u64::MAX, 0));
+        assert_eq!(divide(u64::MAX, u64::MAX), (1, 0));
     }
 
     #[test]

@@ -7,6 +7,7 @@
 pub mod baseline;
 pub mod bench_log;
 pub mod bench_math;
+pub mod bench_tick;
 pub mod extreme_maps;
 pub mod overlay;
 

@@ -1,11 +1,11 @@
-//! `cargo rom`, `cargo play`, `cargo xtest`, `cargo bench-rom`, `cargo bench-report` and
-//! `cargo bench-math` (aliases in .cargo/config.toml).
+//! `cargo rom`, `cargo play`, `cargo xtest`, `cargo bench-rom`, `cargo bench-report`,
+//! `cargo bench-math` and `cargo bench-tick` (aliases in .cargo/config.toml).
 use portalcast_xtask::{build_rom, ensure_setup, workspace_root, TaskError, TaskResult};
 use std::process::{Command, ExitCode};
 
 mod report;
 
-const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math";
+const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math | cargo bench-tick";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -16,6 +16,7 @@ fn main() -> ExitCode {
         Some("bench") => report::bench_rom(),
         Some("report") => report::bench_report(&args[1..]),
         Some("bench-math") => portalcast_xtask::bench_math::run(),
+        Some("bench-tick") => portalcast_xtask::bench_tick::run(),
         _ => Err(TaskError(USAGE.to_string())),
     };
     match result {

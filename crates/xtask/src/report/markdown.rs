@@ -226,6 +226,9 @@ pub fn write(measurements: &Measurements) -> String {
     set_up(&mut doc, measurements);
     accuracy(&mut doc, measurements);
     sizes(&mut doc, measurements);
+    // The section brings its own heading (`cargo bench-tick` prints the same block).
+    doc.push_str(&measurements.tick_section);
+    doc.push('\n');
     // The section brings its own heading (`cargo bench-math` writes the same block).
     doc.push_str(&measurements.math_section);
     doc.push_str("\n\n");

@@ -2,8 +2,8 @@
 //! from nothing. `--check` regenerates both in memory and fails if they differ from the
 //! committed files; `--update-baseline` also rewrites the regression guard's baseline.
 //!
-//! The steps: build the ROM (Thumb, and the ARM knob), run its bench scene and kernel check in
-//! the real mGBA core through `pc-run`, run the host's accuracy comparison (`bench-accuracy`
+//! The steps: build the ROM (Thumb, and the ARM knob), run its bench scene, kernel check and the
+//! game tick's walk in the real mGBA core through `pc-run`, run the host's accuracy comparison (`bench-accuracy`
 //! in crates/oracle), read the sizes from the ELF, then draw and write. The engine is not a
 //! dependency of this crate (its commands must build before any setup, and must not rebuild
 //! whenever the engine changes), so the ROM and the accuracy pass run as separate programs and
@@ -70,6 +70,8 @@ pub struct Measurements {
     pub baseline: Option<Baseline>,
     /// The math micro-benchmark section, markers included.
     pub math_section: String,
+    /// The game tick's section (`cargo bench-tick` prints the same).
+    pub tick_section: String,
 }
 
 impl Measurements {
@@ -164,6 +166,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         thumb_engine_runs,
         baseline,
         math_section: math_section(&gba)?,
+        tick_section: portalcast_xtask::bench_tick::tick_section(&gba)?,
     };
     let doc = markdown::write(&measurements);
     let chart = chart::draw(&chart_panels(&measurements))?;
