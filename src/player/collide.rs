@@ -990,6 +990,8 @@ mod tests {
                 lower_texture: NO_TEXTURE,
                 x_offset: 0,
                 y_offset: 0,
+                // Collision never reads a wall's length (the renderer does).
+                length_fx8: 0,
             })
             .collect();
         let sectors = vec![Sector {

@@ -253,10 +253,10 @@ impl Projection {
     /// [`Viewport::first_column_at_or_after`]. `None` for [`Projection::Exact`] and for a vertex
     /// at or behind the near plane (a projection is undefined there): the exact
     /// [`VertexSplit::new`] splits the columns then. Computed once per vertex and frame (the
-    /// renderer caches it), so it stays out of line; in IWRAM by its section, since the
-    /// rounded projections are there to be cheaper than the exact bisection it replaces.
+    /// renderer caches it), so it stays out of line and in ROM: in IWRAM it made the rounded
+    /// projections as cheap as the exact bisection it replaces and no cheaper (docs/BENCH.md),
+    /// and IWRAM is short.
     #[inline(never)]
-    #[link_section = ".iwram.render_projection_first_column"]
     pub fn first_column(self, viewport: &Viewport, p: EyePoint) -> Option<i32> {
         if self == Projection::Exact || p.z <= NEAR_DEPTH {
             return None;

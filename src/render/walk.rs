@@ -267,23 +267,10 @@ impl Renderer {
         self.visited = [0; VISITS_TRACKED / 32];
         self.frame_stamp = self.frame_stamp.wrapping_add(1);
         if self.frame_stamp == 0 {
-            // After 2^32 frames the stamps come round: forget every entry.
-            for entry in &self.vertices.0 {
-                entry.set(CachedVertex {
-                    stamp: 0,
-                    ..entry.get()
-                });
-            }
-            self.frame_stamp = 1;
+            self.forget_vertices();
         }
         if self.column_angles_width != view.viewport.width {
-            for (column, angle) in self.column_angles[..width].iter_mut().enumerate() {
-                *angle = column_angle(
-                    2 * (column as i32 - view.viewport.centre_x()) + 1,
-                    2 * view.viewport.focal_x,
-                );
-            }
-            self.column_angles_width = view.viewport.width;
+            self.fill_column_angles(&view.viewport);
         }
         for window in &mut self.clip[..width] {
             *window = Window {
@@ -307,6 +294,35 @@ impl Renderer {
             self.walk(&scene, canvas, &mut stats, view.sector, 0, width as i32);
         }
         stats
+    }
+
+    /// The column angles of `viewport`'s columns, for the sky: computed when the resolution
+    /// changes, so from ROM (its own section, outside linker.ld's IWRAM patterns).
+    #[inline(never)]
+    #[link_section = ".text.rom.render_fill_column_angles"]
+    fn fill_column_angles(&mut self, viewport: &crate::math::Viewport) {
+        let width = viewport.width as usize;
+        for (column, angle) in self.column_angles[..width].iter_mut().enumerate() {
+            *angle = column_angle(
+                2 * (column as i32 - viewport.centre_x()) + 1,
+                2 * viewport.focal_x,
+            );
+        }
+        self.column_angles_width = viewport.width;
+    }
+
+    /// After 2^32 frames the vertex cache's stamps come round: every entry is forgotten. From
+    /// ROM, like [`Renderer::fill_column_angles`].
+    #[inline(never)]
+    #[link_section = ".text.rom.render_forget_vertices"]
+    fn forget_vertices(&mut self) {
+        for entry in &self.vertices.0 {
+            entry.set(CachedVertex {
+                stamp: 0,
+                ..entry.get()
+            });
+        }
+        self.frame_stamp = 1;
     }
 
     /// The scene preprocessing's first pass: the walk of [`Renderer::walk`], in the same order,
