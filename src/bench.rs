@@ -16,7 +16,7 @@ use crate::assets;
 use crate::frame::Resolution;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Perspective, Preprocessing, Projection, Settings, TexturePlacement};
+use crate::render::view::{Perspective, Preprocessing, Settings, TexturePlacement};
 use crate::render::walk::FrameStats;
 
 /// Frames measured per setting along the [`crate::flight`] path.
@@ -60,21 +60,12 @@ pub fn knob_variants(resolution: Resolution) -> impl Iterator<Item = Settings> {
                 .map(move |lighting| Settings { lighting, ..base }),
         )
         .chain(
-            [Perspective::Every8, Perspective::Every16]
+            [Perspective::Every16]
                 .into_iter()
                 .map(move |perspective| Settings {
                     perspective,
                     ..base
                 }),
-        )
-        .chain(
-            [
-                Projection::Fx16_16,
-                Projection::Fx24_8,
-                Projection::Thesis24_8,
-            ]
-            .into_iter()
-            .map(move |projection| Settings { projection, ..base }),
         )
         .chain(core::iter::once(Settings {
             textures: TexturePlacement::Rom,
@@ -134,7 +125,6 @@ impl fmt::Display for SettingsLabel<'_> {
         write!(f, "res={}", settings.resolution.label())?;
         write!(f, " lighting={}", lighting_label(settings.lighting))?;
         write!(f, " persp={}", settings.perspective.label())?;
-        write!(f, " proj={}", settings.projection.label())?;
         write!(f, " tex={}", settings.textures.label())?;
         write!(f, " prep={}", settings.preprocessing.label())?;
         Ok(())
@@ -226,7 +216,7 @@ mod tests {
         assert_eq!(distinct.len(), labels.len(), "{labels:?}");
         assert_eq!(
             labels[0],
-            "map=bench res=120x80 lighting=depth persp=exact proj=exact tex=ewram prep=off"
+            "map=bench res=120x80 lighting=depth persp=exact tex=ewram prep=off"
         );
         assert_eq!(guard_runs().count(), Resolution::ALL.len());
     }

@@ -86,7 +86,6 @@ impl<'m> Game<'m> {
             run: self.controls.always_run,
             hud: self.hud,
             perspective: self.settings.perspective,
-            projection: self.settings.projection,
             textures: self.settings.textures,
             preprocessing: self.settings.preprocessing,
         }
@@ -167,18 +166,7 @@ impl<'m> Game<'m> {
             }
             Entry::Fly => self.player.toggle_fly(),
             Entry::Run => self.controls.always_run = !self.controls.always_run,
-            Entry::Perspective => {
-                let steps = if forward { 1 } else { 2 };
-                for _ in 0..steps {
-                    self.settings.perspective = self.settings.perspective.next();
-                }
-            }
-            Entry::Projection => {
-                let steps = if forward { 1 } else { 2 };
-                for _ in 0..steps {
-                    self.settings.projection = self.settings.projection.next();
-                }
-            }
+            Entry::Perspective => self.settings.perspective = self.settings.perspective.next(),
             Entry::Preprocessing => {
                 self.settings.preprocessing = self.settings.preprocessing.next();
             }

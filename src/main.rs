@@ -164,12 +164,11 @@ mod rom {
             }
             display.flip_at_vblank(settings.resolution);
             log::info(format_args!(
-                "render map={} frame={frame} res={} lighting={} persp={} proj={} tex={} prep={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
+                "render map={} frame={frame} res={} lighting={} persp={} tex={} prep={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
                 game.map().name,
                 settings.resolution.label(),
                 demo::lighting_label(settings.lighting),
                 settings.perspective.label(),
-                settings.projection.label(),
                 settings.textures.label(),
                 settings.preprocessing.label(),
                 stats.wall_ticks,

@@ -14,7 +14,7 @@ use crate::raster::flat::{FlatTexture, PackedUv};
 use crate::raster::Canvas;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Perspective, Preprocessing, Projection, TexturePlacement};
+use crate::render::view::{Perspective, Preprocessing, TexturePlacement};
 
 /// One line of the menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,8 +31,6 @@ pub enum Entry {
     Run,
     /// Wall perspective (exact, or exact every 8 or 16 columns).
     Perspective,
-    /// Fixed-point precision of the column splits (exact, 16.16, 24.8, or the thesis' 24.8 slope).
-    Projection,
     /// Where texels are read from (EWRAM or the cartridge).
     Textures,
     /// The thesis' scene preprocessing (merged sector visits), on or off.
@@ -42,14 +40,13 @@ pub enum Entry {
 }
 
 /// The menu's entries, top to bottom.
-pub const ENTRIES: [Entry; 10] = [
+pub const ENTRIES: [Entry; 9] = [
     Entry::Resolution,
     Entry::Lighting,
     Entry::Map,
     Entry::Fly,
     Entry::Run,
     Entry::Perspective,
-    Entry::Projection,
     Entry::Textures,
     Entry::Preprocessing,
     Entry::Hud,
@@ -65,7 +62,6 @@ impl Entry {
             Entry::Fly => "FLY",
             Entry::Run => "RUN",
             Entry::Perspective => "PERSP",
-            Entry::Projection => "PROJ",
             Entry::Textures => "TEX",
             Entry::Preprocessing => "PREP",
             Entry::Hud => "HUD",
@@ -90,8 +86,6 @@ pub struct Shown<'a> {
     pub hud: bool,
     /// Wall perspective.
     pub perspective: Perspective,
-    /// Column split precision.
-    pub projection: Projection,
     /// Texture placement.
     pub textures: TexturePlacement,
     /// Scene preprocessing.
@@ -109,7 +103,6 @@ impl Entry {
             Entry::Fly => on_off(shown.fly),
             Entry::Run => on_off(shown.run),
             Entry::Perspective => shown.perspective.label(),
-            Entry::Projection => shown.projection.label(),
             Entry::Textures => shown.textures.label(),
             Entry::Preprocessing => shown.preprocessing.label(),
             Entry::Hud => on_off(shown.hud),

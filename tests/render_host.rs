@@ -49,7 +49,7 @@ fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
                 let knobs = [
                     (Lighting::Off, Perspective::Exact),
                     (Lighting::SectorDepth, Perspective::Exact),
-                    (Lighting::SectorDepth, Perspective::Every8),
+                    (Lighting::SectorDepth, Perspective::Every16),
                     (Lighting::Off, Perspective::Every16),
                 ];
                 for (lighting, perspective) in knobs {

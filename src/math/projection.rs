@@ -217,16 +217,8 @@ impl Viewport {
     #[inline]
     #[track_caller]
     pub fn projected_x_saturating(&self, p: EyePoint) -> Fx16_16 {
-        self.projected_x_saturating_with(p, p.z.recip_fx2_30())
-    }
-
-    /// [`projected_x_saturating`](Self::projected_x_saturating) from `inverse_depth`, the
-    /// reciprocal of `p.z` (shared by callers that project one point several ways).
-    #[inline]
-    #[track_caller]
-    pub fn projected_x_saturating_with(&self, p: EyePoint, inverse_depth: Fx2_30) -> Fx16_16 {
         self.projection_numerator(p)
-            .saturating_mul_fx2_30_as_fx16_16(inverse_depth)
+            .saturating_mul_fx2_30_as_fx16_16(p.z.recip_fx2_30())
     }
 
     /// Continuous screen `x` correctly rounded to 16.16 and clamped, through the integer divide:
@@ -239,59 +231,6 @@ impl Viewport {
             "projection needs a point in front of the eye"
         );
         self.projection_numerator(p).saturating_ratio_fx16_16(p.z)
-    }
-
-    /// Continuous screen `x` in 24.8 (1/256 pixel, the thesis' format), through the
-    /// reciprocal of `z'` as [`projected_x_saturating`](Self::projected_x_saturating) (its error,
-    /// at most 0.0026 pixel, then ½ ulp of 24.8), clamped: the projection of the 24.8 precision
-    /// knob (`render::view::Projection`). No divide. `z' > ½`.
-    #[inline]
-    #[track_caller]
-    pub fn projected_x_fx24_8(&self, p: EyePoint) -> Fx24_8 {
-        self.projected_x_fx24_8_with(p, p.z.recip_fx2_30())
-    }
-
-    /// [`projected_x_fx24_8`](Self::projected_x_fx24_8) from `inverse_depth`, the reciprocal
-    /// of `p.z`.
-    #[inline]
-    #[track_caller]
-    pub fn projected_x_fx24_8_with(&self, p: EyePoint, inverse_depth: Fx2_30) -> Fx24_8 {
-        self.projection_numerator(p)
-            .saturating_mul_fx2_30(inverse_depth)
-    }
-
-    /// Continuous screen `x` the thesis' way, in 24.8: the ray's slope `x'/z'` truncated to 24.8
-    /// first (its `DivFX`, here `x'` times the reciprocal of `z'`, truncated toward zero like
-    /// C's division), then `cx + d·(x'/z')`. The slope keeps 1/256, so `x` is off by up to
-    /// `d/256` of a pixel (0.23 at 120 columns, 0.47 at 240), against 1/256 of a pixel for
-    /// [`projected_x_fx24_8`](Self::projected_x_fx24_8): the projection of the thesis' own 24.8
-    /// precision (`render::view::Projection::Thesis24_8`). `z' ≥ NEAR_DEPTH`, so within the
-    /// declared limits `|x'/z'| ≤ 23171` and `d·|x'/z'|` fits i32.
-    #[inline]
-    #[track_caller]
-    pub fn projected_x_thesis_fx24_8(&self, p: EyePoint) -> Fx24_8 {
-        self.projected_x_thesis_fx24_8_with(p, p.z.recip_fx2_30())
-    }
-
-    /// [`projected_x_thesis_fx24_8`](Self::projected_x_thesis_fx24_8) from `inverse_depth`,
-    /// the reciprocal of `p.z`.
-    #[inline]
-    #[track_caller]
-    pub fn projected_x_thesis_fx24_8_with(&self, p: EyePoint, inverse_depth: Fx2_30) -> Fx24_8 {
-        debug_assert!(
-            p.z >= NEAR_DEPTH,
-            "the thesis' projection needs z' ≥ NEAR_DEPTH"
-        );
-        // 24.8 bits × 2.30 bits = the slope in 24.8 × 2^30.
-        let product = i64::from(p.x.to_bits()) * i64::from(inverse_depth.to_bits());
-        let truncated = if product < 0 {
-            -((-product) >> 30)
-        } else {
-            product >> 30
-        };
-        let slope =
-            Fx24_8::from_bits(truncated.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32);
-        Fx24_8::from_int(self.centre_x()) + slope.mul_int(self.focal_x)
     }
 
     /// `cx·z' + d·x'`, so that `x = (cx·z' + d·x') / z'` saturates once. Each term is at most

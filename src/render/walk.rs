@@ -10,7 +10,7 @@ use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, SKY};
 use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
-use super::view::{Preprocessing, Projection, View};
+use super::view::{Preprocessing, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
     owned_columns_in, VertexSplit, WallLerp, WallProjector, WallRows, WallStepper, ROW_HEIGHTS,
@@ -91,9 +91,8 @@ pub struct Renderer {
 /// transformed at every use.
 pub const VERTICES_CACHED: usize = 2048;
 
-/// A vertex's eye-space position this frame, and its first column: the exact one in front of
-/// the eye, or where the precision knob's rounded projection puts it
-/// ([`Projection::first_column`]); [`NO_COLUMN`] where the split is found by bisection.
+/// A vertex's eye-space position this frame, and its first column in front of the eye
+/// ([`NO_COLUMN`] behind it, where each visit's split is found by bisection).
 #[derive(Clone, Copy)]
 struct CachedVertex {
     stamp: u32,
@@ -101,12 +100,12 @@ struct CachedVertex {
     first_column: i32,
 }
 
-/// [`CachedVertex::first_column`] where the split is the exact one.
+/// [`CachedVertex::first_column`] of a vertex at or behind the eye.
 const NO_COLUMN: i32 = i32::MIN;
 
 /// The per-frame vertex cache: every visit of a sector (the portal walk's and the drawing's)
 /// asks for its walls' vertices, and neighbouring sectors share them, so each is transformed
-/// (and, with a rounded projection, projected) once a frame instead of at every use. Cells,
+/// and placed among the columns once a frame instead of at every use. Cells,
 /// so that the walk can fill it through the shared borrows it holds.
 struct VertexCache([Cell<CachedVertex>; VERTICES_CACHED]);
 
@@ -196,15 +195,13 @@ impl VertexCache {
         }
         let point = scene.view.eye.to_eye(vertex(scene.map, index));
         let viewport = &scene.view.viewport;
-        let first_column = match scene.view.projection {
-            // In front of the eye the exact split of any range is the vertex's first column,
-            // clamped into it (`VertexSplit::from_first_column`): found once a frame by the
-            // exact bisection over the whole width instead of over each visit's columns.
-            Projection::Exact if point.z.to_bits() > 0 => viewport.first_column_at_or_after(point),
-            Projection::Exact => NO_COLUMN,
-            projection => projection
-                .first_column(viewport, point)
-                .unwrap_or(NO_COLUMN),
+        // In front of the eye the exact split of any range is the vertex's first column,
+        // clamped into it (`VertexSplit::from_first_column`): found once a frame by the exact
+        // bisection over the whole width instead of over each visit's columns.
+        let first_column = if point.z.to_bits() > 0 {
+            viewport.first_column_at_or_after(point)
+        } else {
+            NO_COLUMN
         };
         if let Some(entry) = entry {
             entry.set(CachedVertex {
@@ -777,6 +774,9 @@ impl Ownership {
         }
     }
 
+    /// Vertex `index` in eye space and its split of the columns. Out of line: the portal walk
+    /// and the wall pass both call it, and a copy in each would not fit IWRAM.
+    #[inline(never)]
     fn vertex(&self, scene: &Scene, vertices: &VertexCache, index: u16) -> (EyePoint, VertexSplit) {
         let (point, first_column) = vertices.get(scene, index);
         let split = if first_column == NO_COLUMN {

@@ -417,16 +417,18 @@ fn knobs(doc: &mut String, measurements: &Measurements) {
          - `lighting`: `off`, `sector` (each sector's light level), `depth` (sector light \
            darkened with distance, through the colormap);\n\
          - `persp`: a wall's depth and texture column from the exact reciprocal at every column \
-           (`exact`), or every 8 or 16 columns with linear steps between (`every8`, `every16`, \
-           the thesis' choice);\n\
-         - `proj`: which wall owns a column, decided exactly from cross products (`exact`), or \
-           from the vertex's screen `x` rounded to 16.16 or 24.8 (`fx16_16`, `fx24_8`), or the \
-           thesis' way (`thesis`: the ray's slope `x'/z'` truncated to 24.8, then times the focal \
-           length, so `x` keeps a quarter of a pixel at 120 columns, half at 240);\n\
+           (`exact`), or every 16 columns with linear steps between (`every16`, the thesis' \
+           choice);\n\
          - `tex`: texels read from the EWRAM copy (`ewram`) or the cartridge (`rom`);\n\
          - `prep`: the thesis' scene preprocessing: `on` plans the portal walk first and draws \
            each sector once over the touching columns of its visits (`src/render/visits.rs`), \
-           `off` draws each visit as the walk reaches it.\n\n",
+           `off` draws each visit as the walk reaches it.\n\n\
+         Which wall owns a column is always decided exactly, from cross products of each vertex \
+         against the column rays, once per vertex and frame. A precision knob rounded each \
+         vertex's screen `x` to 16.16 or 24.8 instead (the thesis' way missed sectors: this \
+         file as of commit 0ddd37d has its figures); once the exact split was cached per vertex \
+         and frame, a rounded projection cost as much as the exact one and bought nothing, so \
+         the knob was removed (issue 15).\n\n",
         label_without_resolution(first)
     );
     for base in measurements.guard() {
