@@ -435,24 +435,41 @@ fn track_through_portals(
 
 /// Whether `p` is strictly inside `sector` (right of every wall). Exact.
 pub fn strictly_inside(map: &MapTables, sector: &Sector, p: WorldPoint) -> bool {
-    let limit = portalcast_format::limits::WORLD_COORD_MAX.unsigned_abs() * 256;
-    let p = point_bits(p);
-    // Beyond the world no sector has an inside; within it, cross_near is exact.
-    if p.0.unsigned_abs() > limit || p.1.unsigned_abs() > limit {
-        return false;
+    SectorWalls { map, sector }.strictly_inside(p)
+}
+
+/// A sector's walls, for the test that pushed steps and portal crossings run over all of them.
+struct SectorWalls<'a, 'm> {
+    map: &'a MapTables<'m>,
+    sector: &'a Sector,
+}
+
+impl SectorWalls<'_, '_> {
+    /// See [`strictly_inside`]. In IWRAM on the GBA; a method because `link_section` on a free
+    /// function counts as unsafe code.
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.player_strictly_inside")]
+    fn strictly_inside(&self, p: WorldPoint) -> bool {
+        let (map, sector) = (self.map, self.sector);
+        let limit = portalcast_format::limits::WORLD_COORD_MAX.unsigned_abs() * 256;
+        let p = point_bits(p);
+        // Beyond the world no sector has an inside; within it, cross_near is exact.
+        if p.0.unsigned_abs() > limit || p.1.unsigned_abs() > limit {
+            return false;
+        }
+        let walls = map.sector_walls(sector);
+        let Some(last) = walls.last() else {
+            return true;
+        };
+        // Each wall starts where the one before it ends: one vertex read per wall.
+        let mut a = vertex_bits(map, last.end);
+        walls.iter().all(|wall| {
+            let b = vertex_bits(map, wall.end);
+            let side = cross_near(a, b, p);
+            a = b;
+            side > 0
+        })
     }
-    let walls = map.sector_walls(sector);
-    let Some(last) = walls.last() else {
-        return true;
-    };
-    // Each wall starts where the one before it ends: one vertex read per wall.
-    let mut a = vertex_bits(map, last.end);
-    walls.iter().all(|wall| {
-        let b = vertex_bits(map, wall.end);
-        let side = cross_near(a, b, p);
-        a = b;
-        side > 0
-    })
 }
 
 /// The two ends of a wall, in world coordinates.
