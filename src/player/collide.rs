@@ -160,8 +160,8 @@ pub fn slide(
     slide_in_steps(map, sector, from, delta, body, steps)
 }
 
-/// [`slide`] of a move split into `steps` steps. Out of line (it stays in ROM when the tick runs
-/// from IWRAM): only a push faster than running takes it.
+/// [`slide`] of a move split into `steps` steps. Out of line: only a push faster than running
+/// takes it.
 #[inline(never)]
 fn slide_in_steps(
     map: &MapTables,
@@ -184,9 +184,7 @@ fn slide_in_steps(
     (position, sector)
 }
 
-/// One step of at most [`MAX_STEP_BITS`] per axis. Out of line: [`crate::player::Player::tick`]
-/// runs from IWRAM, and IWRAM has no room for this too.
-#[inline(never)]
+/// One step of at most [`MAX_STEP_BITS`] per axis.
 fn slide_step(
     map: &MapTables,
     sector: u16,
@@ -339,7 +337,7 @@ fn track_nudges(
 /// ending on one) is [`Track::Degenerate`].
 pub fn track(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint, body: &Body) -> Track {
     // Most paths end in the sector they start in (convex: they cross nothing). This test is the
-    // first of the walk below, which is out of line (in ROM when the tick runs from IWRAM).
+    // first of the walk below, which is out of line.
     if strictly_inside(map, &map.sectors[usize::from(sector)], to) {
         return Track::Inside(sector);
     }
