@@ -127,7 +127,7 @@ mod rom {
             let camera = game.camera();
             let player = &game.player;
             log::info(format_args!(
-                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} hud={} game_cycles={game_cycles} ticks_run={} tick_cycles={} tick_max_cycles={}",
+                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} hud={} game_cycles={game_cycles} ticks={} tick_cycles={} tick_max_cycles={}",
                 sampler.next_index(),
                 game.ticks(),
                 game.held().0,
@@ -189,8 +189,9 @@ mod rom {
         }
     }
 
-    /// The cycles of the ticks run before one frame: `cargo bench-tick` adds them up over a
-    /// walk for the mean and worst tick.
+    /// The cycles of the ticks run before one frame, printed as `ticks=` (how many),
+    /// `tick_cycles=` (their sum) and `tick_max_cycles=` on the `player` line: `cargo bench-tick`
+    /// adds them up over a walk for the mean and worst tick.
     #[derive(Default)]
     struct TickCycles {
         count: u32,

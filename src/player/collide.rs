@@ -160,8 +160,8 @@ pub fn slide(
     slide_in_steps(map, sector, from, delta, body, steps)
 }
 
-/// [`slide`] of a move split into `steps` steps. Out of line (it stays in ROM when the tick runs
-/// from IWRAM): only a push faster than running takes it.
+/// [`slide`] of a move split into `steps` steps. Out of line: only a push faster than running
+/// takes it.
 #[inline(never)]
 fn slide_in_steps(
     map: &MapTables,
@@ -184,9 +184,7 @@ fn slide_in_steps(
     (position, sector)
 }
 
-/// One step of at most [`MAX_STEP_BITS`] per axis. Out of line: [`crate::player::Player::tick`]
-/// runs from IWRAM, and IWRAM has no room for this too.
-#[inline(never)]
+/// One step of at most [`MAX_STEP_BITS`] per axis.
 fn slide_step(
     map: &MapTables,
     sector: u16,
@@ -339,7 +337,7 @@ fn track_nudges(
 /// ending on one) is [`Track::Degenerate`].
 pub fn track(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint, body: &Body) -> Track {
     // Most paths end in the sector they start in (convex: they cross nothing). This test is the
-    // first of the walk below, which is out of line (in ROM when the tick runs from IWRAM).
+    // first of the walk below, which is out of line.
     if strictly_inside(map, &map.sectors[usize::from(sector)], to) {
         return Track::Inside(sector);
     }
@@ -435,24 +433,41 @@ fn track_through_portals(
 
 /// Whether `p` is strictly inside `sector` (right of every wall). Exact.
 pub fn strictly_inside(map: &MapTables, sector: &Sector, p: WorldPoint) -> bool {
-    let limit = portalcast_format::limits::WORLD_COORD_MAX.unsigned_abs() * 256;
-    let p = point_bits(p);
-    // Beyond the world no sector has an inside; within it, cross_near is exact.
-    if p.0.unsigned_abs() > limit || p.1.unsigned_abs() > limit {
-        return false;
+    SectorWalls { map, sector }.strictly_inside(p)
+}
+
+/// A sector's walls, for the test that pushed steps and portal crossings run over all of them.
+struct SectorWalls<'a, 'm> {
+    map: &'a MapTables<'m>,
+    sector: &'a Sector,
+}
+
+impl SectorWalls<'_, '_> {
+    /// See [`strictly_inside`]. In IWRAM on the GBA; a method because `link_section` on a free
+    /// function counts as unsafe code.
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.player_strictly_inside")]
+    fn strictly_inside(&self, p: WorldPoint) -> bool {
+        let (map, sector) = (self.map, self.sector);
+        let limit = portalcast_format::limits::WORLD_COORD_MAX.unsigned_abs() * 256;
+        let p = point_bits(p);
+        // Beyond the world no sector has an inside; within it, cross_near is exact.
+        if p.0.unsigned_abs() > limit || p.1.unsigned_abs() > limit {
+            return false;
+        }
+        let walls = map.sector_walls(sector);
+        let Some(last) = walls.last() else {
+            return true;
+        };
+        // Each wall starts where the one before it ends: one vertex read per wall.
+        let mut a = vertex_bits(map, last.end);
+        walls.iter().all(|wall| {
+            let b = vertex_bits(map, wall.end);
+            let side = cross_near(a, b, p);
+            a = b;
+            side > 0
+        })
     }
-    let walls = map.sector_walls(sector);
-    let Some(last) = walls.last() else {
-        return true;
-    };
-    // Each wall starts where the one before it ends: one vertex read per wall.
-    let mut a = vertex_bits(map, last.end);
-    walls.iter().all(|wall| {
-        let b = vertex_bits(map, wall.end);
-        let side = cross_near(a, b, p);
-        a = b;
-        side > 0
-    })
 }
 
 /// The two ends of a wall, in world coordinates.

@@ -158,13 +158,6 @@ impl Player {
     }
 
     /// One tick (1/60 s) of `intent` on `map`.
-    ///
-    /// In IWRAM on the GBA, with what it inlines (the turn, the acceleration, the vertical
-    /// motion): the cartridge's fetches made this part of every tick cost about three times as
-    /// much. The step's walk over nearby walls is in IWRAM too (`collide`); the rarer paths
-    /// (pushes, portal crossings) stay in ROM.
-    #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram.player_tick")]
     pub fn tick(&mut self, intent: &Intent, map: &MapTables) {
         if intent.toggle_fly {
             self.toggle_fly();
@@ -242,8 +235,6 @@ impl Player {
             // Diagonal: each part by 1/√2 (181/256), so it is no faster than straight.
             acceleration = acceleration * 181 / 256;
         }
-        let (sin, cos) = self.angle.sin_cos();
-        let (sin, cos) = (sin.to_bits(), cos.to_bits());
         let forward = i32::from(intent.forward);
         let strafe = i32::from(intent.strafe);
         // Forward (cos, sin), right (−sin, cos); sine and cosine are 16.16 (±65536).
@@ -252,7 +243,13 @@ impl Player {
             let y = (forward * unit_y + strafe * unit_x) * acceleration;
             ((x + 32768) >> 16, (y + 32768) >> 16)
         };
-        let (ax, ay) = along(cos, sin);
+        // Without the d-pad `along` is (0, 0) whatever the angle: no sine and cosine needed.
+        let (ax, ay) = if forward == 0 && strafe == 0 {
+            (0, 0)
+        } else {
+            let (sin, cos) = self.angle.sin_cos();
+            along(cos.to_bits(), sin.to_bits())
+        };
         self.velocity = (
             (vx + ax).clamp(-SPEED_LIMIT, SPEED_LIMIT),
             (vy + ay).clamp(-SPEED_LIMIT, SPEED_LIMIT),

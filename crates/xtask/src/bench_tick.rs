@@ -4,7 +4,7 @@
 //! most [`TARGET_WORST`] for any tick.
 //!
 //! The ROM times each tick alone and prints, on every frame's `player` line, how many ticks ran
-//! before that frame (`ticks_run=`), their cycles added up (`tick_cycles=`) and the longest
+//! before that frame (`ticks=`), their cycles added up (`tick_cycles=`) and the longest
 //! (`tick_max_cycles=`); what the two timer reads cost with nothing between them
 //! (`timer_cycles=` on the `play start` line) is taken off each tick. [`tick_section`] plays [`KEYS_FILE`] and turns the lines into the
 //! "Game tick" section of docs/BENCH.md, which `cargo bench-report` writes; `cargo bench-tick`
@@ -114,13 +114,13 @@ fn parse(log: &str) -> TaskResult<TickFigures> {
                 })
         };
         figures.frames += 1;
-        figures.ticks += number("ticks_run")?;
+        figures.ticks += number("ticks")?;
         figures.cycles += number("tick_cycles")?;
         figures.worst = figures.worst.max(number("tick_max_cycles")?);
     }
     if figures.ticks == 0 {
         return Err(TaskError(format!(
-            "the ROM ran no game tick over {KEYS_FILE} (no `player` line with ticks_run > 0)"
+            "the ROM ran no game tick over {KEYS_FILE} (no `player` line with ticks above 0)"
         )));
     }
     Ok(figures)
@@ -167,11 +167,11 @@ mod tests {
 
     const LOG: &str = "portalcast boot waitcnt=0x4317\n\
         play start vblank=3\n\
-        player frame=0 tick=1 ticks_run=1 tick_cycles=900 tick_max_cycles=900\n\
+        player frame=0 tick=1 ticks=1 tick_cycles=900 tick_max_cycles=900\n\
         render map=bench frame=0 cycles=200000\n\
         input vblank=5 keys=0x040\n\
-        player frame=1 tick=3 ticks_run=2 tick_cycles=20100 tick_max_cycles=12000\n\
-        player frame=2 tick=3 ticks_run=0 tick_cycles=0 tick_max_cycles=0\n";
+        player frame=1 tick=3 ticks=2 tick_cycles=20100 tick_max_cycles=12000\n\
+        player frame=2 tick=3 ticks=0 tick_cycles=0 tick_max_cycles=0\n";
 
     #[test]
     fn adds_up_every_frame_s_ticks() {
@@ -201,7 +201,7 @@ mod tests {
     #[test]
     fn a_rom_without_the_tick_fields_is_refused() {
         let error = parse("player frame=0 tick=1 game_cycles=5\n").unwrap_err();
-        assert!(error.0.contains("ticks_run"), "{error}");
+        assert!(error.0.contains("ticks"), "{error}");
         assert!(parse("render map=bench\n").is_err());
     }
 
