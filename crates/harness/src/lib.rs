@@ -30,6 +30,7 @@
 
 mod ffi;
 mod keys;
+pub mod symbols;
 
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -8,10 +8,10 @@
 #![forbid(unsafe_code)]
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
-use object::{Object, ObjectSection, ObjectSymbol, SymbolKind};
+use portalcast_harness::symbols::FunctionSymbols;
 use portalcast_harness::{Emulator, KeyScript};
 
 const USAGE: &str =
@@ -104,69 +104,8 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
     Ok(options)
 }
 
-/// The linker script's section holding the math benchmark's IWRAM overlay: it runs at the same
-/// addresses as `.iwram_render` (the renderer's hot code), so only one of the two may name them.
-const MATH_OVERLAY_SECTION: &str = ".bench_iwram";
-/// The overlaid section: the renderer's IWRAM code.
-const RENDER_OVERLAY_SECTION: &str = ".iwram_render";
-
-/// Function symbols sorted by address: (start, end, name). Of the two sections sharing the
-/// IWRAM overlay's addresses, only one names them: the math benchmark's with `math_overlay`,
-/// the renderer's otherwise (what every scene but the math one runs).
-fn function_symbols(elf: &Path, math_overlay: bool) -> Result<Vec<(u32, u32, String)>, String> {
-    let data =
-        std::fs::read(elf).map_err(|error| format!("{}: cannot read: {error}", elf.display()))?;
-    let file = object::File::parse(&*data).map_err(|error| {
-        format!(
-            "{}: not an ELF ({error}); profile the ELF, the .gba has no symbols",
-            elf.display()
-        )
-    })?;
-    let mut symbols: Vec<(u32, u32, String)> = file
-        .symbols()
-        .filter(|symbol| symbol.kind() == SymbolKind::Text && symbol.size() > 0)
-        .filter(|symbol| {
-            let section = symbol
-                .section_index()
-                .and_then(|index| file.section_by_index(index).ok())
-                .and_then(|section| section.name().ok().map(str::to_owned));
-            let hidden = if math_overlay {
-                RENDER_OVERLAY_SECTION
-            } else {
-                MATH_OVERLAY_SECTION
-            };
-            section.as_deref() != Some(hidden)
-        })
-        .filter_map(|symbol| {
-            let start = (symbol.address() as u32) & !1;
-            let name = symbol.name().ok()?;
-            Some((start, start + symbol.size() as u32, demangle(name)))
-        })
-        .collect();
-    if symbols.is_empty() {
-        return Err(format!(
-            "{}: no function symbols (stripped?)",
-            elf.display()
-        ));
-    }
-    symbols.sort();
-    Ok(symbols)
-}
-
-/// A readable function name: demangled, without the crate hashes.
-fn demangle(name: &str) -> String {
-    format!("{:#}", rustc_demangle::demangle(name))
-}
-
-fn lookup(symbols: &[(u32, u32, String)], address: u32) -> Option<&str> {
-    let address = address & !1;
-    let index = symbols.partition_point(|(start, _, _)| *start <= address);
-    let (start, end, name) = symbols.get(index.checked_sub(1)?)?;
-    (address >= *start && address < *end).then_some(name.as_str())
-}
-
 fn run(options: &Options) -> Result<(), String> {
-    let symbols = function_symbols(&options.elf, options.math_overlay)?;
+    let symbols = FunctionSymbols::load(&options.elf, options.math_overlay)?;
     let script = match &options.keys {
         Some(path) => KeyScript::load(path).map_err(|error| error.to_string())?,
         None => KeyScript::new(),
@@ -187,11 +126,11 @@ fn run(options: &Options) -> Result<(), String> {
     let mut with_leaf_helpers: HashMap<&str, usize> = HashMap::new();
     let mut by_region: HashMap<&str, usize> = HashMap::new();
     for &(pc, lr) in &samples {
-        let name = lookup(&symbols, pc).unwrap_or("?");
+        let name = symbols.lookup(pc).unwrap_or("?");
         *own.entry(name).or_default() += 1;
         // Compiler helpers are leaves: the sample's cost belongs to whoever called them.
         let payer = if name.starts_with("__aeabi") || name.starts_with("__") {
-            lookup(&symbols, lr).unwrap_or(name)
+            symbols.lookup(lr).unwrap_or(name)
         } else {
             name
         };
@@ -255,7 +194,7 @@ fn run(options: &Options) -> Result<(), String> {
             println!(
                 "{:6.2}% 0x{address:08x}  {}",
                 count as f64 * 100.0 / total,
-                lookup(&symbols, address).unwrap_or("?")
+                symbols.lookup(address).unwrap_or("?")
             );
         }
     }

@@ -1,0 +1,48 @@
+//! The profiler's symbol lookup on the real ROM: the renderer's IWRAM code and the math
+//! benchmark's overlay share addresses (linker.ld's `OVERLAY`), and `pc-profile` must name each
+//! address by the code that runs there in the scene it profiles, or it charges the renderer's
+//! cycles to benchmark loops that never run in the game.
+
+use portalcast_harness::symbols::FunctionSymbols;
+
+/// IWRAM's address range.
+const IWRAM: std::ops::Range<u32> = 0x0300_0000..0x0300_8000;
+
+fn iwram_names(symbols: &FunctionSymbols) -> Vec<&str> {
+    symbols
+        .all()
+        .iter()
+        .filter(|(start, _, _)| IWRAM.contains(start))
+        .map(|(_, _, name)| name.as_str())
+        .collect()
+}
+
+#[test]
+fn iwram_addresses_are_named_by_the_code_the_profiled_scene_runs() {
+    portalcast_xtask::rom_for_tests();
+    let elf = portalcast_xtask::elf_path();
+    let game = FunctionSymbols::load(&elf, false).unwrap_or_else(|problem| panic!("{problem}"));
+    let math = FunctionSymbols::load(&elf, true).unwrap_or_else(|problem| panic!("{problem}"));
+    let is_math = |name: &&str| name.contains("math_bench") || name.starts_with("pc_mb_");
+    let is_render_walk = |name: &&str| name.contains("portalcast::render::walk::Renderer");
+
+    let game_names = iwram_names(&game);
+    assert!(game_names.iter().any(is_render_walk), "{game_names:?}");
+    assert!(!game_names.iter().any(is_math), "{game_names:?}");
+    let math_names = iwram_names(&math);
+    assert!(math_names.iter().any(is_math), "{math_names:?}");
+    assert!(!math_names.iter().any(is_render_walk), "{math_names:?}");
+
+    // The same address, the overlay's first instruction, under each name.
+    let (start, _, _) = game
+        .all()
+        .iter()
+        .find(|(_, _, name)| is_render_walk(&name.as_str()))
+        .expect("a walk function");
+    assert!(game
+        .lookup(*start)
+        .is_some_and(|name| name.contains("render")));
+    assert!(math
+        .lookup(*start)
+        .is_none_or(|name| !name.contains("render")));
+}
