@@ -81,7 +81,7 @@ fn wide(value: i32) -> i64 {
     i64::from(value)
 }
 
-/// [`cross`] of points whose differences fit 32 bits (map vertices and points within the
+/// [`crate::math::geometry::cross`] of points whose differences fit 32 bits (map vertices and points within the
 /// declared world: under 2^23 bits apart): two 32×32→64 products, where `cross` widens first
 /// and multiplies 64×64.
 fn cross_near(a: Bits, b: Bits, p: Bits) -> i64 {

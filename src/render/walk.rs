@@ -496,8 +496,8 @@ impl Renderer {
     }
 
     /// The walls and strips of a visit's columns `[first, end)`. Not inlined: its per-wall
-    /// state stays off the stack frame of [`visit`](Self::visit), which the portal recursion
-    /// repeats once per level.
+    /// state stays off the stack frame of [`draw_sector`](Self::draw_sector), its caller for
+    /// every visit.
     #[inline(never)]
     fn draw_walls(
         &mut self,
