@@ -134,18 +134,11 @@ pub struct WallProjector {
     cross: i64,
 }
 
-/// One column of a wall.
+/// One column of a wall: what its texture column needs (its rows come from [`WallRows`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct WallColumn {
     /// Eye-space depth, at least `NEAR_DEPTH`.
     pub depth: Fx24_8,
-    /// `1 / depth`.
-    pub inverse_depth: Fx2_30,
-    /// `1/z'` in units of 2^-30 before the near-plane clamp: equal to `inverse_depth` unless the
-    /// wall is closer than `NEAR_DEPTH`, where the wall's rows still need the true depth (an eye
-    /// 1/256 unit from a wall sees its edges far off screen, not where a wall 1 unit away would
-    /// put them).
-    pub near_inverse_depth: i64,
     /// Where the ray meets the wall, from its start (0) to its end (1), in 2.30.
     pub along: Fx2_30,
 }
@@ -181,12 +174,8 @@ impl WallProjector {
         };
         // 28 bits of fraction keep the shifted numerator below 2^62 at the declared limits.
         let along = (ratio(numerator << 28, denominator) << 2).clamp(0, 1 << 30);
-        let near_inverse_depth = ratio_shifted(denominator, 38, self.twice_focal * self.cross);
-        let inverse_depth = depth.recip_fx2_30();
         WallColumn {
             depth,
-            inverse_depth,
-            near_inverse_depth: near_inverse_depth.max(i64::from(inverse_depth.to_bits())),
             along: Fx2_30::from_bits(along as i32),
         }
     }
@@ -247,22 +236,9 @@ impl WallProjector {
 }
 
 impl WallStepper {
-    /// The current column's depth and position along the wall; then steps to the next column.
-    pub fn next_column(&mut self) -> WallColumn {
-        let (inverse_depth, near_inverse_depth) = self.rows();
-        let (depth, along) = self.texturing();
-        self.step();
-        WallColumn {
-            depth,
-            inverse_depth,
-            near_inverse_depth,
-            along,
-        }
-    }
-
-    /// The current column's `1/z'`, clamped to the near plane and the far limit, and before
-    /// the near-plane clamp ([`WallColumn::inverse_depth`], [`WallColumn::near_inverse_depth`]):
-    /// what the wall's rows need. No reciprocal.
+    /// The current column's `1/z'` (units of 2^-30), clamped to the near plane and the far
+    /// limit, and clamped only at the far limit: closer than the near plane the texture position
+    /// needs the true `1/z'` (an eye 1/256 unit from a wall). No reciprocal.
     #[inline]
     pub fn rows(&self) -> (Fx2_30, i64) {
         let near_inverse_depth = self.inverse_depth.max(i64::from(SMALLEST_INVERSE_DEPTH));
@@ -312,14 +288,12 @@ impl WallStepper {
         };
         WallColumn {
             depth,
-            inverse_depth,
-            near_inverse_depth: exact_inverse_depth,
             along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
         }
     }
 
     /// `1/z'` in units of 2^-30, `columns` after the current column, clamped only at the far
-    /// limit (see [`WallColumn::near_inverse_depth`]).
+    /// limit (see [`WallStepper::rows`]).
     pub fn near_inverse_depth_ahead(&self, columns: i32) -> i64 {
         (self.inverse_depth + self.inverse_depth_step * i64::from(columns))
             .max(i64::from(SMALLEST_INVERSE_DEPTH))
@@ -572,7 +546,8 @@ mod tests {
             let projector = WallProjector::new(&viewport, a, b);
             let mut stepper = projector.stepper(start);
             for column in start..stop {
-                let stepped = stepper.next_column();
+                let (stepped_inverse_depth, _) = stepper.rows();
+                stepper.step();
                 // The exact 1/z' from the geometry, in f64, in units of 2^-30.
                 let q = f64::from(2 * (column - viewport.centre_x()) + 1);
                 let d2 = f64::from(2 * viewport.focal_x);
@@ -585,7 +560,7 @@ mod tests {
                 let cross = fa_z * dx - fa_x * dz;
                 let exact = (denominator / (d2 * cross) * 2f64.powi(38)).min(f64::from(1 << 30));
                 let steps = f64::from(column - start);
-                let error = (f64::from(stepped.inverse_depth.to_bits()) - exact).abs();
+                let error = (f64::from(stepped_inverse_depth.to_bits()) - exact).abs();
                 assert!(
                     error <= steps / 2.0 + 2.0 + exact * 2f64.powi(-27),
                     "wall {a:?}-{b:?} column {column}: 1/z off by {error}"
