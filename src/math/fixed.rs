@@ -444,24 +444,6 @@ impl Fx24_8 {
         Fx16_16(saturate(div_round_nearest(num, den)))
     }
 
-    /// Exact-division path: `self / den` as a 24.8 ratio, correctly rounded (ties toward +∞)
-    /// and clamped to the 24.8 range. One 64-bit divide. `den ≠ 0`.
-    #[inline]
-    #[track_caller]
-    pub const fn saturating_ratio_fx24_8(self, den: Fx24_8) -> Fx24_8 {
-        let (num, den) = positive_denominator((self.0 as i64) << 8, den.0 as i64);
-        Fx24_8(saturate(div_round_nearest(num, den)))
-    }
-
-    /// `self / den` as a 24.8 ratio truncated toward zero, as C's division does (the thesis'
-    /// `DivFX`: `(a << 8) / b`), clamped to the 24.8 range. One 64-bit divide. `den ≠ 0`.
-    #[inline]
-    #[track_caller]
-    pub const fn saturating_truncated_ratio_fx24_8(self, den: Fx24_8) -> Fx24_8 {
-        debug_assert!(den.0 != 0, "division by zero");
-        Fx24_8(saturate(((self.0 as i64) << 8) / den.0 as i64))
-    }
-
     /// Exact-division path: `self / den` as a 2.30 ratio (a parameter `t`), correctly rounded.
     /// One 64-bit divide. `den ≠ 0`; panics in debug if `|self / den| ≥ 2`.
     #[inline]

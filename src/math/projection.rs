@@ -261,12 +261,6 @@ impl Viewport {
         clamp(x.first_pixel_at_or_after(), 0, self.width)
     }
 
-    /// [`first_column_at_or_after_x`](Self::first_column_at_or_after_x) for an `x` in 24.8.
-    #[inline]
-    pub const fn first_column_at_or_after_x_fx24_8(&self, x: Fx24_8) -> i32 {
-        clamp(x.first_pixel_at_or_after(), 0, self.width)
-    }
-
     /// The first row at or below the continuous screen `y` (`ceil(y − ½)`), clamped to
     /// `[0, height]`: a vertical span `[y0, y1)` owns rows `first(y0) .. first(y1)`.
     #[inline]
