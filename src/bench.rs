@@ -148,17 +148,25 @@ pub struct BenchLine<'l> {
     pub stats: &'l FrameStats,
 }
 
-impl fmt::Display for BenchLine<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl BenchLine<'_> {
+    /// The line after its first word: `map=NAME <settings> frame=N cycles=C <stages>`.
+    fn write_body(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "bench map={} {} frame={} cycles={}{}",
+            "map={} {} frame={} cycles={}{}",
             self.map,
             SettingsLabel(self.settings),
             self.frame,
             self.cycles,
             StageCycles(self.stats)
         )
+    }
+}
+
+impl fmt::Display for BenchLine<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("bench ")?;
+        self.write_body(f)
     }
 }
 
@@ -170,16 +178,12 @@ pub struct SetupLine<'l>(pub BenchLine<'l>);
 
 impl fmt::Display for SetupLine<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let line = &self.0;
-        let stats = line.stats;
+        let stats = self.0.stats;
+        write!(f, "{SETUP_WORD} ")?;
+        self.0.write_body(f)?;
         write!(
             f,
-            "{SETUP_WORD} map={} {} frame={} cycles={}{} cols={} strips={} spans={} wall_px={} plane_px={}",
-            line.map,
-            SettingsLabel(line.settings),
-            line.frame,
-            line.cycles,
-            StageCycles(stats),
+            " cols={} strips={} spans={} wall_px={} plane_px={}",
             stats.wall_columns,
             stats.strips,
             stats.spans,

@@ -231,17 +231,17 @@ mod rom {
         let renderer = memory::renderer_in_ewram(meter::now);
         for (map, settings) in bench::guard_runs() {
             let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-            bench_run(display, renderer, &render_assets, map, &settings);
+            bench_run(display, renderer, &render_assets, map, &settings, true);
         }
         log::info(format_args!("{}", bench::GUARD_DONE));
         if !guard_only {
             for (map, settings) in bench::report_runs() {
                 let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-                bench_run(display, renderer, &render_assets, map, &settings);
+                bench_run(display, renderer, &render_assets, map, &settings, true);
             }
             for (map, settings) in bench::setup_runs() {
                 let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-                setup_run(display, renderer, &render_assets, map, &settings);
+                bench_run(display, renderer, &render_assets, map, &settings, false);
             }
         }
         log_stack();
@@ -252,30 +252,10 @@ mod rom {
     }
 
     /// One setting of the benchmark. A first, unmeasured frame fills the renderer's per-resolution
-    /// tables (the column angles), so the figures are the steady per-frame cost.
+    /// tables (the column angles), so the figures are the steady per-frame cost. With `kernels`
+    /// false (the set-up runs) the frames go to a canvas that runs no kernel
+    /// ([`VramCanvas::without_kernels`]) and print as [`bench::SetupLine`]s.
     fn bench_run(
-        display: &mut Display,
-        renderer: &mut Renderer,
-        render_assets: &RenderAssets,
-        map: &MapTables,
-        settings: &Settings,
-    ) {
-        timed_run(display, renderer, render_assets, map, settings, true);
-    }
-
-    /// One setting of the benchmark's set-up runs: [`bench_run`]'s frames on a canvas that runs
-    /// no kernel ([`VramCanvas::without_kernels`]), printed as [`bench::SetupLine`]s.
-    fn setup_run(
-        display: &mut Display,
-        renderer: &mut Renderer,
-        render_assets: &RenderAssets,
-        map: &MapTables,
-        settings: &Settings,
-    ) {
-        timed_run(display, renderer, render_assets, map, settings, false);
-    }
-
-    fn timed_run(
         display: &mut Display,
         renderer: &mut Renderer,
         render_assets: &RenderAssets,
