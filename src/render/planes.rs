@@ -2,13 +2,14 @@
 //! spans (`spans::make_spans`), each drawn across a flat with one packed texture step; sky
 //! windows are drawn as panorama columns instead.
 
-use portalcast_format::Sector;
+use portalcast_format::{Colormap, Sector, Texture};
 
 use super::light::light_row;
 use super::spans::{make_spans, Window};
 use super::surface::Surface;
 use super::view::View;
-use super::walk::{is_sky, mip_level, FrameStats};
+use super::light::Lighting;
+use super::walk::{is_sky, mip_level_of_ratio, mip_ratio, FrameStats};
 use super::RenderAssets;
 use crate::math::{recip_small, Fx24_8};
 use crate::raster::column::ColumnTexture;
@@ -83,13 +84,7 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
     ];
     for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
         canvas.set_surface(*surface);
-        let plane = Plane {
-            view,
-            assets,
-            sector,
-            height: *height,
-            texture: *texture,
-        };
+        let plane = PlaneSpans::new(view, assets, sector, *height, *texture);
         make_spans(windows, first, span_start, |row, start, end| {
             stats.span_pixels += (end - start) as u32;
             stats.spans += 1;
@@ -98,26 +93,81 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
     }
 }
 
-struct Plane<'r> {
-    view: &'r View,
-    assets: &'r RenderAssets<'r>,
-    sector: &'r Sector,
-    height: i32,
-    texture: u16,
+/// One plane's constants, set up once per visit and surface so that a span computes only what
+/// depends on its row and its first column (Doom's `R_MapPlane` after `R_DrawPlanes`).
+struct PlaneSpans<'r> {
+    /// `|eye − plane|·2·d_y` in 24.8: a row's depth is this times `1/|2·(row − cy) + 1|`.
+    depth_numerator: Fx24_8,
+    /// The plane is below the eye (a floor seen from above): its rows are below the horizon.
+    below_eye: bool,
+    /// The eye is in the plane: no row shows it.
+    edge_on: bool,
+    horizon_y: i32,
+    centre_x: u32,
+    /// The flat, if the map's texture index names one.
+    texture: Option<&'r Texture<'r>>,
+    /// Smallest mip level the span kernels take (their flats are at most 64 texels a side).
+    smallest_kernel_level: u8,
+    /// `1/d_y` in 2.30 bits, for the mip rule.
+    inverse_focal_y: i64,
+    /// `1/(2·d_x)` in 2.30 bits.
+    inverse_twice_focal_x: i64,
+    sin: i64,
+    cos: i64,
+    /// The eye's map position in 16.16.
+    eye_x: i64,
+    eye_y: i64,
+    light: u8,
+    lighting: Lighting,
+    colormap: &'r Colormap,
 }
 
-impl Plane<'_> {
+impl<'r> PlaneSpans<'r> {
+    fn new(
+        view: &View,
+        assets: &'r RenderAssets<'r>,
+        sector: &Sector,
+        height: i32,
+        texture: u16,
+    ) -> PlaneSpans<'r> {
+        let eye_above_plane = view.eye_z - Fx24_8::from_int(height);
+        let texture = assets.textures.get(usize::from(texture));
+        let largest = texture.map_or(0, |t| t.width_log2.min(t.height_log2));
+        PlaneSpans {
+            depth_numerator: eye_above_plane.abs().mul_int(2 * view.viewport.focal_y),
+            below_eye: eye_above_plane.to_bits() > 0,
+            edge_on: eye_above_plane.to_bits() == 0,
+            horizon_y: view.viewport.horizon_y,
+            centre_x: view.viewport.centre_x() as u32,
+            texture,
+            smallest_kernel_level: largest.saturating_sub(*FLAT_LOG2_SIDES.end() as u8),
+            inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
+            inverse_twice_focal_x: i64::from(
+                recip_small(2 * view.viewport.focal_x as u32).to_bits(),
+            ),
+            sin: i64::from(view.eye.sin().to_bits()),
+            cos: i64::from(view.eye.cos().to_bits()),
+            eye_x: i64::from(view.eye.position.x.to_bits()) << 8,
+            eye_y: i64::from(view.eye.position.y.to_bits()) << 8,
+            light: sector.light,
+            lighting: view.lighting,
+            colormap: assets.colormap,
+        }
+    }
+
     /// Row `row`, columns `start..end`: the map point under each pixel centre is
-    /// `e + z'·f + z'·(x + ½ − cx)/d_x · r`, with `z'` the plane's depth on this row.
+    /// `e + z'·f + z'·(x + ½ − cx)/d_x · r`, with `z'` the plane's depth on this row
+    /// ([`Viewport::floor_depth_of_row`](crate::math::Viewport::floor_depth_of_row)'s rule).
     fn span(&self, canvas: &mut impl Canvas, row: usize, start: usize, end: usize) {
-        let view = self.view;
-        let eye_above_plane = view.eye_z - Fx24_8::from_int(self.height);
-        let Some(depth) = view
-            .viewport
-            .floor_depth_of_row(eye_above_plane, row as i32)
-        else {
-            // Rounding put a row of this window on the far side of the horizon: nothing of the
-            // plane is visible there; draw index 0 so the pixel is still written once.
+        let doubled_offset = 2 * (row as i32 - self.horizon_y) + 1;
+        let (Some(texture), false, true) = (
+            self.texture,
+            self.edge_on,
+            self.below_eye == (doubled_offset > 0),
+        ) else {
+            // Rounding put a row of this window on the far side of the horizon (nothing of the
+            // plane is visible there), or the map names no flat: draw index 0 so the pixel is
+            // still written once.
             let blank = FlatTexture {
                 texels: &BLANK_FLAT,
                 log2_side: 3,
@@ -128,61 +178,43 @@ impl Plane<'_> {
             canvas.flat(row, start, end - start, &blank);
             return;
         };
-        let Some(texture) = self.assets.textures.get(usize::from(self.texture)) else {
-            let blank = FlatTexture {
-                texels: &BLANK_FLAT,
-                log2_side: 3,
-                pos: PackedUv(0),
-                step: PackedUv(0),
-                colormap: None,
-            };
-            canvas.flat(row, start, end - start, &blank);
-            return;
-        };
+        let depth = self
+            .depth_numerator
+            .mul_fx2_30(recip_small(doubled_offset.unsigned_abs()));
         let largest = texture.width_log2.min(texture.height_log2);
-        let mut level = mip_level(
-            depth,
-            view.viewport.focal_y,
+        let level = mip_level_of_ratio(
+            mip_ratio(i64::from(depth.to_bits()), self.inverse_focal_y),
             texture.mip_count,
             largest,
             largest,
-        );
-        // The span kernels take flats of 8 to 64 texels a side.
-        level = level.max(largest.saturating_sub(*FLAT_LOG2_SIDES.end() as u8));
+        )
+        .max(self.smallest_kernel_level);
         let side_log2 = u32::from(texture.level_width_log2(level));
         let texels = texture.flat_level(level);
-        let (sin, cos) = (
-            i64::from(view.eye.sin().to_bits()),
-            i64::from(view.eye.cos().to_bits()),
-        );
         let depth_bits = i64::from(depth.to_bits());
         // w = z'/d_x in 16.16, through the 2.30 reciprocal of 2·d_x (a table entry, no divide).
-        let inverse_twice_focal =
-            i64::from(recip_small(2 * view.viewport.focal_x as u32).to_bits());
-        let w = (depth_bits * inverse_twice_focal) >> 21;
+        let w = (depth_bits * self.inverse_twice_focal_x) >> 21;
         // Lateral offset of the centre column's pixel centre, ½·w, in 16.16. The span's first
         // pixel is `start − cx` packed steps from it, as the kernel steps: every pixel of a row
         // gets the same coordinates whichever span it falls in, so how the walk splits a plane
         // into visits (the scene preprocessing merges them) changes no texel. From the centre,
         // the packed step's rounding drifts over at most half the row.
         let lateral = w >> 1;
+        let (sin, cos) = (self.sin, self.cos);
         // Map position in 16.16: e + z'·f + lateral·r, with r = (−sin, cos), f = (cos, sin).
-        let x = (i64::from(view.eye.position.x.to_bits()) << 8) + ((depth_bits * cos) >> 8)
-            - ((lateral * sin) >> 16);
-        let y = (i64::from(view.eye.position.y.to_bits()) << 8)
-            + ((depth_bits * sin) >> 8)
-            + ((lateral * cos) >> 16);
+        let x = self.eye_x + ((depth_bits * cos) >> 8) - ((lateral * sin) >> 16);
+        let y = self.eye_y + ((depth_bits * sin) >> 8) + ((lateral * cos) >> 16);
         // Per pixel: w·r.
         let step_x = -((w * sin) >> 16);
         let step_y = (w * cos) >> 16;
         // Texture coordinates wrap, so keeping the low 32 bits of each is exact.
         let at_level = |value: i64| (value >> level) as i32;
 
-        let colormap = light_row(self.sector.light, depth.to_int_floor(), view.lighting)
-            .map(|row| &self.assets.colormap[row]);
+        let colormap = light_row(self.light, depth.to_int_floor(), self.lighting)
+            .map(|row| &self.colormap[row]);
         let centre = PackedUv::pack(at_level(x), at_level(y), side_log2);
         let step = PackedUv::pack(at_level(step_x), at_level(step_y), side_log2);
-        let steps_from_centre = (start as u32).wrapping_sub(view.viewport.centre_x() as u32);
+        let steps_from_centre = (start as u32).wrapping_sub(self.centre_x);
         let flat = FlatTexture {
             texels,
             log2_side: side_log2,

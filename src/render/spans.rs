@@ -31,48 +31,59 @@ pub fn make_spans(
     mut emit: impl FnMut(usize, usize, usize),
 ) {
     let mut old = Window::EMPTY;
-    for offset in 0..=windows.len() {
-        let x = first_column + offset;
-        let new = match windows.get(offset) {
-            Some(window) if !window.is_empty() => *window,
-            _ => Window::EMPTY,
-        };
-        if new == old {
-            // The same rows as the column before (or no rows, as before): no span ends or
-            // starts here.
-            continue;
-        }
-        let (mut top, mut bottom) = if old.is_empty() {
-            (0, 0)
+    let mut x = first_column;
+    for &window in windows {
+        let new = if window.is_empty() {
+            Window::EMPTY
         } else {
-            (old.top, old.bottom)
+            window
         };
-        let outside = |row: i16| row < new.top || row >= new.bottom;
-        // Rows that leave the window end their span at this column.
-        while top < bottom && outside(top) {
-            emit(top as usize, span_start[top as usize] as usize, x);
-            top += 1;
+        // Most columns have the rows of the column before, or none as before: no span ends or
+        // starts there, and the scan moves on at once.
+        if new != old {
+            change_rows(old, new, x, span_start, &mut emit);
+            old = new;
         }
-        while bottom > top && outside(bottom - 1) {
-            bottom -= 1;
-            emit(bottom as usize, span_start[bottom as usize] as usize, x);
-        }
-        // Rows that enter start a span here; what remains of the old window is inside the new.
-        if new.is_empty() {
-            old = Window::EMPTY;
-            continue;
-        }
-        if top >= bottom {
-            top = new.bottom;
-            bottom = new.bottom;
-        }
-        for row in new.top..top {
-            span_start[row as usize] = x as i16;
-        }
-        for row in bottom..new.bottom {
-            span_start[row as usize] = x as i16;
-        }
-        old = new;
+        x += 1;
+    }
+    change_rows(old, Window::EMPTY, x, span_start, &mut emit);
+}
+
+/// Column `x`'s window is `new` where the column before had `old` (both normalised: an empty
+/// window is [`Window::EMPTY`]): ends the spans of the rows that leave and starts those of the
+/// rows that enter.
+#[inline(always)]
+fn change_rows(
+    old: Window,
+    new: Window,
+    x: usize,
+    span_start: &mut [i16],
+    emit: &mut impl FnMut(usize, usize, usize),
+) {
+    let (mut top, mut bottom) = (old.top, old.bottom);
+    let outside = |row: i16| row < new.top || row >= new.bottom;
+    // Rows that leave the window end their span at this column.
+    while top < bottom && outside(top) {
+        emit(top as usize, span_start[top as usize] as usize, x);
+        top += 1;
+    }
+    while bottom > top && outside(bottom - 1) {
+        bottom -= 1;
+        emit(bottom as usize, span_start[bottom as usize] as usize, x);
+    }
+    // Rows that enter start a span here; what remains of the old window is inside the new.
+    if new.is_empty() {
+        return;
+    }
+    if top >= bottom {
+        top = new.bottom;
+        bottom = new.bottom;
+    }
+    for row in new.top..top {
+        span_start[row as usize] = x as i16;
+    }
+    for row in bottom..new.bottom {
+        span_start[row as usize] = x as i16;
     }
 }
 

@@ -1034,13 +1034,13 @@ pub fn mip_level(
 /// `floor(depth / focal_y)` for the mip rule, from the depth's 24.8 bits and the 2.30
 /// reciprocal of `focal_y` (its bits): no divide.
 #[inline(always)]
-fn mip_ratio(depth_bits: i64, inverse_focal_y: i64) -> i32 {
+pub(crate) fn mip_ratio(depth_bits: i64, inverse_focal_y: i64) -> i32 {
     ((depth_bits * inverse_focal_y) >> 38) as i32
 }
 
 /// [`mip_level`] from its [`mip_ratio`].
 #[inline(always)]
-fn mip_level_of_ratio(ratio: i32, mip_count: u8, width_log2: u8, height_log2: u8) -> u8 {
+pub(crate) fn mip_level_of_ratio(ratio: i32, mip_count: u8, width_log2: u8, height_log2: u8) -> u8 {
     let mut level = 0u8;
     while (ratio >> (level + 1)) > 0 {
         level += 1;
