@@ -604,18 +604,18 @@ impl Renderer {
     ) {
         stats.wall_columns += 1;
         let x = column as usize;
-        let [ceiling, floor, neighbour_ceiling, neighbour_floor] = rows;
+        // Rows in i32 from here: i16 arithmetic would sign-extend after every operation.
+        let [ceiling, floor, neighbour_ceiling, neighbour_floor] = rows.map(i32::from);
         let clip = self.clip[x];
-        let ceiling_row = ceiling.max(clip.top);
-        let floor_row = floor.min(clip.bottom);
-        self.ceiling[x] = Window {
-            top: clip.top,
-            bottom: ceiling_row.min(clip.bottom),
+        let (clip_top, clip_bottom) = (i32::from(clip.top), i32::from(clip.bottom));
+        let ceiling_row = ceiling.max(clip_top);
+        let floor_row = floor.min(clip_bottom);
+        let window = |top: i32, bottom: i32| Window {
+            top: top as i16,
+            bottom: bottom as i16,
         };
-        self.floor[x] = Window {
-            top: floor_row.max(clip.top),
-            bottom: clip.bottom,
-        };
+        self.ceiling[x] = window(clip_top, ceiling_row.min(clip_bottom));
+        self.floor[x] = window(floor_row.max(clip_top), clip_bottom);
         // The rows of the column's strips (`job.strips`, empty where not drawn), and the clip
         // window the column leaves for the sectors behind it.
         let rows = match &job.portal {
@@ -624,10 +624,12 @@ impl Renderer {
                 [(ceiling_row, floor_row), (0, 0)]
             }
             Some(portal) => {
-                let neighbour_ceiling_row =
-                    neighbour_ceiling.clamp(ceiling_row, floor_row.max(ceiling_row));
-                let neighbour_floor_row =
-                    neighbour_floor.clamp(neighbour_ceiling_row.min(floor_row), floor_row);
+                let neighbour_ceiling_row = neighbour_ceiling
+                    .max(ceiling_row)
+                    .min(floor_row.max(ceiling_row));
+                let neighbour_floor_row = neighbour_floor
+                    .max(neighbour_ceiling_row.min(floor_row))
+                    .min(floor_row);
                 // Where no upper strip is drawn (the neighbour's ceiling is not lower, or both
                 // show the sky), the neighbour gets the rows down from this sector's ceiling
                 // line: its own ceiling (sky) fills them, and no row between the two ceiling
@@ -642,10 +644,7 @@ impl Renderer {
                 } else {
                     floor_row
                 };
-                self.clip[x] = Window {
-                    top: opening_top,
-                    bottom: opening_bottom.max(opening_top),
-                };
+                self.clip[x] = window(opening_top, opening_bottom.max(opening_top));
                 [
                     if portal.upper_drawn {
                         (ceiling_row, neighbour_ceiling_row)
@@ -698,8 +697,8 @@ impl Renderer {
         stats: &mut FrameStats,
         strip: &StripColumn,
         texture: &StripTexture,
-        top: i16,
-        bottom: i16,
+        top: i32,
+        bottom: i32,
     ) {
         if top >= bottom {
             return;
