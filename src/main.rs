@@ -22,7 +22,7 @@ mod rom {
     use portalcast::player::input::Buttons;
     use portalcast::render::demo;
     use portalcast::render::view::{Settings, View};
-    use portalcast::render::walk::Renderer;
+    use portalcast::hw::memory::GbaRenderer;
     use portalcast::render::RenderAssets;
     use portalcast::{assets, kernel_check, testpic};
     use portalcast_format::MapTables;
@@ -257,7 +257,7 @@ mod rom {
     /// ([`VramCanvas::without_kernels`]) and print as [`bench::SetupLine`]s.
     fn bench_run(
         display: &mut Display,
-        renderer: &mut Renderer,
+        renderer: &mut GbaRenderer,
         render_assets: &RenderAssets,
         map: &MapTables,
         settings: &Settings,

@@ -81,26 +81,74 @@ pub fn stack_high_water() -> usize {
     STACK_TOP - address
 }
 
-use crate::render::walk::Renderer;
+use crate::render::walk::{ColumnWindows, Renderer, WindowStore};
 use core::mem::MaybeUninit;
 
+/// The renderer the ROM draws with: its column windows in VRAM ([`VramWindows`]), the rest in
+/// EWRAM.
+pub type GbaRenderer = Renderer<VramWindows>;
+
 #[link_section = ".ewram_bss"]
-static mut RENDERER: MaybeUninit<Renderer> = MaybeUninit::uninit();
+static mut RENDERER: MaybeUninit<GbaRenderer> = MaybeUninit::uninit();
 static mut RENDERER_TAKEN: bool = false;
 
-/// The renderer's working memory (clip and plane windows, the portal walk's levels: about
-/// 6 KB), placed in EWRAM, timing its stages with `clock`. Built in place from the constant
-/// empty renderer: passed in by value it would go through the stack first, whose whole room is
-/// about that size. Hands it out once.
-pub fn renderer_in_ewram(clock: fn() -> u32) -> &'static mut Renderer {
+/// The renderer's [`ColumnWindows`] in the OBJ VRAM that Mode 4 leaves free, after the
+/// colormap ([`colormap_in_vram`]). Every wall column reads a clip window and writes three
+/// windows, and `make_spans` reads two per column and a span start per row: VRAM answers a
+/// halfword in 1 cycle, EWRAM in 3, and IWRAM has no room. VRAM ignores byte stores to OBJ
+/// tiles; the renderer stores these arrays as halfwords and words only (an `i16` or a
+/// [`Window`](crate::render::spans::Window) at a time), and the ROM-versus-host pixel tests
+/// would see a lost store.
+///
+/// A token with no data: [`renderer_in_ewram`] makes the only one, so the one `&mut` it hands
+/// out at a time is the only reference to that memory.
+pub struct VramWindows(());
+
+/// Where [`VramWindows`] keeps the windows.
+const WINDOWS_VRAM: usize = FREE_OBJ_VRAM + core::mem::size_of::<portalcast_format::Colormap>();
+
+impl WindowStore for VramWindows {
+    #[inline(always)]
+    fn windows(&mut self) -> &mut ColumnWindows {
+        const {
+            assert!(
+                WINDOWS_VRAM + core::mem::size_of::<ColumnWindows>()
+                    <= FREE_OBJ_VRAM + FREE_OBJ_VRAM_BYTES
+            );
+            assert!(WINDOWS_VRAM % core::mem::align_of::<ColumnWindows>() == 0);
+        };
+        // SAFETY: the address is in the free OBJ VRAM (asserted above), used for nothing else,
+        // aligned, and holds a valid `ColumnWindows` (`renderer_in_ewram` wrote one before
+        // making the only token); the `&mut self` borrow makes this the only reference.
+        unsafe { &mut *(WINDOWS_VRAM as *mut ColumnWindows) }
+    }
+}
+
+/// The empty windows, copied to VRAM word by word (VRAM takes no byte stores).
+static EMPTY_WINDOWS: ColumnWindows = ColumnWindows::new();
+
+/// The renderer's working memory: the column windows in VRAM ([`VramWindows`]), the rest (the
+/// portal walk's levels, the visit plan, the vertex cache) in EWRAM, timing its stages with
+/// `clock`. Built in place from the constant empty renderer: passed in by value it would go
+/// through the stack first, which has no room for it. Hands it out once.
+pub fn renderer_in_ewram(clock: fn() -> u32) -> &'static mut GbaRenderer {
     // SAFETY: single-threaded, and the flag makes this the only reference ever made to the
-    // static; the interrupt handler never touches either.
+    // static and the only `VramWindows` token; the interrupt handler never touches either. The
+    // windows' words lie in the free OBJ VRAM (`VramWindows::windows` asserts it).
     unsafe {
         let taken = &raw mut RENDERER_TAKEN;
         assert!(!*taken, "the renderer's memory is handed out once");
         *taken = true;
-        let slot: *mut Renderer = (&raw mut RENDERER).cast();
-        slot.write(const { Renderer::new() });
+        const WORDS: usize = core::mem::size_of::<ColumnWindows>() / 4;
+        let source = (&raw const EMPTY_WINDOWS).cast::<u32>();
+        let destination = WINDOWS_VRAM as *mut u32;
+        for word in 0..WORDS {
+            destination
+                .add(word)
+                .write_volatile(source.add(word).read());
+        }
+        let slot: *mut GbaRenderer = (&raw mut RENDERER).cast();
+        slot.write(const { Renderer::with_windows(VramWindows(())) });
         let renderer = &mut *slot;
         renderer.set_clock(clock);
         renderer

@@ -66,13 +66,57 @@ pub struct FrameStats {
     pub plane_ticks: u32,
 }
 
-/// The renderer's per-frame working memory: clip windows, plane windows, span starts.
-pub struct Renderer {
+/// The renderer's per-column and per-row working memory: the clip and plane windows every wall
+/// column reads and writes, the span starts `make_spans` keeps, the sky's column angles. It is
+/// touched at every column and every span, so the ROM keeps it where a halfword costs one
+/// cycle (`hw::memory::VramWindows`). All zeros is the empty state.
+#[repr(C, align(4))]
+pub struct ColumnWindows {
     clip: [Window; MAX_COLUMNS],
     ceiling: [Window; MAX_COLUMNS],
     floor: [Window; MAX_COLUMNS],
     span_start: [i16; MAX_ROWS],
     column_angles: [i16; MAX_COLUMNS],
+}
+
+impl ColumnWindows {
+    /// Empty windows (all zeros).
+    pub const fn new() -> ColumnWindows {
+        ColumnWindows {
+            clip: [Window::EMPTY; MAX_COLUMNS],
+            ceiling: [Window::EMPTY; MAX_COLUMNS],
+            floor: [Window::EMPTY; MAX_COLUMNS],
+            span_start: [0; MAX_ROWS],
+            column_angles: [0; MAX_COLUMNS],
+        }
+    }
+}
+
+impl Default for ColumnWindows {
+    fn default() -> Self {
+        ColumnWindows::new()
+    }
+}
+
+/// Where a [`Renderer`] keeps its [`ColumnWindows`]: in itself on the host, at a fixed address
+/// in fast memory on the GBA.
+pub trait WindowStore {
+    /// The windows.
+    fn windows(&mut self) -> &mut ColumnWindows;
+}
+
+impl WindowStore for ColumnWindows {
+    #[inline(always)]
+    fn windows(&mut self) -> &mut ColumnWindows {
+        self
+    }
+}
+
+/// The renderer's per-frame working memory: the column windows (in `W`), the portal walk's
+/// levels, the visit plan and the vertex cache.
+pub struct Renderer<W: WindowStore = ColumnWindows> {
+    windows: W,
+    /// The viewport width [`ColumnWindows::column_angles`] were computed for.
     column_angles_width: i32,
     clock: fn() -> u32,
     visited: [u32; VISITS_TRACKED / 32],
@@ -164,7 +208,7 @@ fn no_clock() -> u32 {
     0
 }
 
-impl Default for Renderer {
+impl Default for Renderer<ColumnWindows> {
     fn default() -> Self {
         Renderer::new()
     }
@@ -214,21 +258,25 @@ impl VertexCache {
     }
 }
 
-impl Renderer {
+impl Renderer<ColumnWindows> {
+    /// A renderer with empty working memory.
+    pub const fn new() -> Renderer<ColumnWindows> {
+        Renderer::with_windows(ColumnWindows::new())
+    }
+}
+
+impl<W: WindowStore> Renderer<W> {
     /// Times the wall and plane stages with `clock` (a free-running counter, e.g. the ROM's
     /// cycle meter), reported in [`FrameStats`].
     pub fn set_clock(&mut self, clock: fn() -> u32) {
         self.clock = clock;
     }
 
-    /// A renderer with empty working memory.
-    pub const fn new() -> Renderer {
+    /// A renderer with empty working memory, its column windows in `windows` (which must hold
+    /// empty windows).
+    pub const fn with_windows(windows: W) -> Renderer<W> {
         Renderer {
-            clip: [Window::EMPTY; MAX_COLUMNS],
-            ceiling: [Window::EMPTY; MAX_COLUMNS],
-            floor: [Window::EMPTY; MAX_COLUMNS],
-            span_start: [0; MAX_ROWS],
-            column_angles: [0; MAX_COLUMNS],
+            windows,
             column_angles_width: 0,
             visited: [0; VISITS_TRACKED / 32],
             clock: no_clock,
@@ -269,7 +317,7 @@ impl Renderer {
         if self.column_angles_width != view.viewport.width {
             self.fill_column_angles(&view.viewport);
         }
-        for window in &mut self.clip[..width] {
+        for window in &mut self.windows.windows().clip[..width] {
             *window = Window {
                 top: 0,
                 bottom: height,
@@ -299,7 +347,10 @@ impl Renderer {
     #[link_section = ".text.rom.render_fill_column_angles"]
     fn fill_column_angles(&mut self, viewport: &crate::math::Viewport) {
         let width = viewport.width as usize;
-        for (column, angle) in self.column_angles[..width].iter_mut().enumerate() {
+        for (column, angle) in self.windows.windows().column_angles[..width]
+            .iter_mut()
+            .enumerate()
+        {
             *angle = column_angle(
                 2 * (column as i32 - viewport.centre_x()) + 1,
                 2 * viewport.focal_x,
@@ -477,13 +528,15 @@ impl Renderer {
         // tests) mark the windows unset and check that every one was set.
         let range = first as usize..end as usize;
         if cfg!(debug_assertions) {
-            self.ceiling[range.clone()].fill(UNSET);
-            self.floor[range.clone()].fill(UNSET);
+            let windows = self.windows.windows();
+            windows.ceiling[range.clone()].fill(UNSET);
+            windows.floor[range.clone()].fill(UNSET);
         }
         let walls_started = (self.clock)();
         self.draw_walls(scene, canvas, stats, sector, first, end);
         debug_assert!(
-            !self.ceiling[range.clone()].contains(&UNSET) && !self.floor[range].contains(&UNSET),
+            !self.windows.windows().ceiling[range.clone()].contains(&UNSET)
+                && !self.windows.windows().floor[range].contains(&UNSET),
             "a column of sector {sector_index} owned by none of its walls"
         );
         let planes_started = (self.clock)();
@@ -575,17 +628,18 @@ impl Renderer {
         first: i32,
         end: i32,
     ) -> planes::PlaneJob<'r> {
+        let windows = self.windows.windows();
         planes::PlaneJob {
             view: scene.view,
             assets: scene.assets,
             sector,
             sector_index,
             first: first as usize,
-            ceiling: &self.ceiling[first as usize..end as usize],
-            floor: &self.floor[first as usize..end as usize],
-            span_start: &mut self.span_start,
+            ceiling: &windows.ceiling[first as usize..end as usize],
+            floor: &windows.floor[first as usize..end as usize],
+            span_start: &mut windows.span_start,
             stats,
-            column_angles: &self.column_angles,
+            column_angles: &windows.column_angles,
         }
     }
 
@@ -604,9 +658,10 @@ impl Renderer {
     ) {
         stats.wall_columns += 1;
         let x = column as usize;
+        let windows = self.windows.windows();
         // Rows in i32 from here: i16 arithmetic would sign-extend after every operation.
         let [ceiling, floor, neighbour_ceiling, neighbour_floor] = rows.map(i32::from);
-        let clip = self.clip[x];
+        let clip = windows.clip[x];
         let (clip_top, clip_bottom) = (i32::from(clip.top), i32::from(clip.bottom));
         let ceiling_row = ceiling.max(clip_top);
         let floor_row = floor.min(clip_bottom);
@@ -614,13 +669,13 @@ impl Renderer {
             top: top as i16,
             bottom: bottom as i16,
         };
-        self.ceiling[x] = window(clip_top, ceiling_row.min(clip_bottom));
-        self.floor[x] = window(floor_row.max(clip_top), clip_bottom);
+        windows.ceiling[x] = window(clip_top, ceiling_row.min(clip_bottom));
+        windows.floor[x] = window(floor_row.max(clip_top), clip_bottom);
         // The rows of the column's strips (`job.strips`, empty where not drawn), and the clip
         // window the column leaves for the sectors behind it.
         let rows = match &job.portal {
             None => {
-                self.clip[x] = Window::EMPTY;
+                windows.clip[x] = Window::EMPTY;
                 [(ceiling_row, floor_row), (0, 0)]
             }
             Some(portal) => {
@@ -644,7 +699,7 @@ impl Renderer {
                 } else {
                     floor_row
                 };
-                self.clip[x] = window(opening_top, opening_bottom.max(opening_top));
+                windows.clip[x] = window(opening_top, opening_bottom.max(opening_top));
                 [
                     if portal.upper_drawn {
                         (ceiling_row, neighbour_ceiling_row)
