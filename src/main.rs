@@ -17,12 +17,12 @@ mod rom {
     use portalcast::frame::Resolution;
     use portalcast::game::Game;
     use portalcast::hw::kernels::{VramCanvas, VramPage};
+    use portalcast::hw::memory::GbaRenderer;
     use portalcast::hw::{self, input, log, memory, meter, video::Display};
     use portalcast::menu::{self, MenuColours};
     use portalcast::player::input::Buttons;
     use portalcast::render::demo;
     use portalcast::render::view::{Settings, View};
-    use portalcast::hw::memory::GbaRenderer;
     use portalcast::render::RenderAssets;
     use portalcast::{assets, kernel_check, testpic};
     use portalcast_format::MapTables;

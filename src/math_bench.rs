@@ -398,8 +398,8 @@ fn run(inputs: &[Pair], rounds: u32, op: impl Fn(i32, i32) -> i32) -> i32 {
     sum
 }
 
-/// One `#[inline(never)]` loop per operation and a dispatcher. Expanded twice: the module's
-/// name is what the linker script places (ROM or the IWRAM overlay), so the two copies run the
+/// One `#[inline(never)]` loop per operation and a dispatcher. Expanded twice, each copy's loops
+/// in its own section (`$section`: ROM or the IWRAM overlay), so the two copies run the
 /// same instructions from different memories. The contexts (eye, viewport) go through
 /// `black_box` so they are run-time values, as in the renderer.
 ///
@@ -407,7 +407,7 @@ fn run(inputs: &[Pair], rounds: u32, op: impl Fn(i32, i32) -> i32) -> i32 {
 /// the linker will put them), which would send both placements to one copy. Every loop passes
 /// `$place` through `black_box` once, before its loop, so the copies differ by one constant.
 macro_rules! bench_loops {
-    ($place:expr) => {
+    ($place:expr, $section:literal) => {
         use super::{ops, Op, Pair, BENCH_EYE, BENCH_VIEWPORT};
         use core::hint::black_box;
 
@@ -421,95 +421,115 @@ macro_rules! bench_loops {
         /// Runs `op`'s loop: `rounds` passes over `inputs`, returning the sum of the results.
         pub fn run_op(op: Op, inputs: &[Pair], rounds: u32) -> i32 {
             match op {
-                Op::Loop => add(inputs, rounds),
-                Op::MulFx24_8 => mul_fx24_8(inputs, rounds),
-                Op::MulFx16_16 => mul_fx16_16(inputs, rounds),
-                Op::Recip => recip(inputs, rounds),
-                Op::RecipExact => recip_exact(inputs, rounds),
-                Op::DivSmall => div_small(inputs, rounds),
-                Op::DivTable => div_table(inputs, rounds),
-                Op::DivBios => div_bios(inputs, rounds),
-                Op::DivSoft => div_soft(inputs, rounds),
-                Op::SinCos => sin_cos(inputs, rounds),
-                Op::ToEye => to_eye(inputs, rounds),
-                Op::ProjectX => project_x(inputs, rounds),
-                Op::Column => column(inputs, rounds),
-                Op::ProjectY => project_y(inputs, rounds),
+                Op::Loop => Loops::add(inputs, rounds),
+                Op::MulFx24_8 => Loops::mul_fx24_8(inputs, rounds),
+                Op::MulFx16_16 => Loops::mul_fx16_16(inputs, rounds),
+                Op::Recip => Loops::recip(inputs, rounds),
+                Op::RecipExact => Loops::recip_exact(inputs, rounds),
+                Op::DivSmall => Loops::div_small(inputs, rounds),
+                Op::DivTable => Loops::div_table(inputs, rounds),
+                Op::DivBios => Loops::div_bios(inputs, rounds),
+                Op::DivSoft => Loops::div_soft(inputs, rounds),
+                Op::SinCos => Loops::sin_cos(inputs, rounds),
+                Op::ToEye => Loops::to_eye(inputs, rounds),
+                Op::ProjectX => Loops::project_x(inputs, rounds),
+                Op::Column => Loops::column(inputs, rounds),
+                Op::ProjectY => Loops::project_y(inputs, rounds),
             }
         }
 
-        #[inline(never)]
-        fn add(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, ops::add)
-        }
+        /// The loops, one per operation: methods, so that their section attribute is not
+        /// unsafe code (it is on a free function).
+        struct Loops;
 
-        #[inline(never)]
-        fn mul_fx24_8(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, ops::mul_fx24_8)
-        }
+        impl Loops {
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn add(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, ops::add)
+            }
 
-        #[inline(never)]
-        fn mul_fx16_16(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, ops::mul_fx16_16)
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn mul_fx24_8(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, ops::mul_fx24_8)
+            }
 
-        #[inline(never)]
-        fn recip(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, |a, _| ops::recip(a))
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn mul_fx16_16(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, ops::mul_fx16_16)
+            }
 
-        #[inline(never)]
-        fn recip_exact(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, |a, _| ops::recip_exact(a))
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn recip(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, |a, _| ops::recip(a))
+            }
 
-        #[inline(never)]
-        fn div_small(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, ops::div_small)
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn recip_exact(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, |a, _| ops::recip_exact(a))
+            }
 
-        #[inline(never)]
-        fn div_table(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, ops::div_table)
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn div_small(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, ops::div_small)
+            }
 
-        #[inline(never)]
-        fn div_bios(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, ops::div_bios)
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn div_table(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, ops::div_table)
+            }
 
-        #[inline(never)]
-        fn div_soft(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, ops::div_soft)
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn div_bios(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, ops::div_bios)
+            }
 
-        #[inline(never)]
-        fn sin_cos(inputs: &[Pair], rounds: u32) -> i32 {
-            run(inputs, rounds, |a, _| ops::sin_cos(a))
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn div_soft(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, ops::div_soft)
+            }
 
-        #[inline(never)]
-        fn to_eye(inputs: &[Pair], rounds: u32) -> i32 {
-            let eye = black_box(BENCH_EYE);
-            run(inputs, rounds, |a, b| ops::to_eye(&eye, a, b))
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn sin_cos(inputs: &[Pair], rounds: u32) -> i32 {
+                run(inputs, rounds, |a, _| ops::sin_cos(a))
+            }
 
-        #[inline(never)]
-        fn project_x(inputs: &[Pair], rounds: u32) -> i32 {
-            let viewport = black_box(BENCH_VIEWPORT);
-            run(inputs, rounds, |a, b| ops::project_x(&viewport, a, b))
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn to_eye(inputs: &[Pair], rounds: u32) -> i32 {
+                let eye = black_box(BENCH_EYE);
+                run(inputs, rounds, |a, b| ops::to_eye(&eye, a, b))
+            }
 
-        #[inline(never)]
-        fn column(inputs: &[Pair], rounds: u32) -> i32 {
-            let viewport = black_box(BENCH_VIEWPORT);
-            run(inputs, rounds, |a, b| ops::column(&viewport, a, b))
-        }
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn project_x(inputs: &[Pair], rounds: u32) -> i32 {
+                let viewport = black_box(BENCH_VIEWPORT);
+                run(inputs, rounds, |a, b| ops::project_x(&viewport, a, b))
+            }
 
-        #[inline(never)]
-        fn project_y(inputs: &[Pair], rounds: u32) -> i32 {
-            let viewport = black_box(BENCH_VIEWPORT);
-            run(inputs, rounds, |a, b| ops::project_y(&viewport, a, b))
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn column(inputs: &[Pair], rounds: u32) -> i32 {
+                let viewport = black_box(BENCH_VIEWPORT);
+                run(inputs, rounds, |a, b| ops::column(&viewport, a, b))
+            }
+
+            #[inline(never)]
+            #[cfg_attr(target_os = "none", link_section = $section)]
+            fn project_y(inputs: &[Pair], rounds: u32) -> i32 {
+                let viewport = black_box(BENCH_VIEWPORT);
+                run(inputs, rounds, |a, b| ops::project_y(&viewport, a, b))
+            }
         }
     };
 }
@@ -517,14 +537,14 @@ macro_rules! bench_loops {
 /// The loops placed in the cartridge ROM (the default `.text`): Thumb code paying the cart's
 /// wait states on every fetch.
 pub mod rom_loops {
-    bench_loops!(0x524f_4d00_u32);
+    bench_loops!(0x524f_4d00_u32, ".text.rom.math_bench_loops");
 }
 
-/// The same loops placed in the IWRAM overlay (`linker.ld` matches this module's name). They
+/// The same loops placed in the IWRAM overlay (their section, `.bench_iwram`). They
 /// are only valid once the overlay is loaded, so only `hw::math_bench` calls them.
 #[cfg(target_os = "none")]
 pub(crate) mod iwram_loops {
-    bench_loops!(0x4957_5241_u32);
+    bench_loops!(0x4957_5241_u32, ".bench_iwram.math_bench_loops");
 }
 
 #[cfg(test)]

@@ -245,6 +245,8 @@ impl Canvas for VramCanvas {
         self.resolution
     }
 
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.vram_canvas_column")]
     fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture) {
         assert!(
             x < self.resolution.width() && row + count <= self.resolution.height() && count > 0
@@ -273,6 +275,8 @@ impl Canvas for VramCanvas {
         }
     }
 
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.vram_canvas_flat")]
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
         assert!(
             row < self.resolution.height() && x + count <= self.resolution.width() && count > 0

@@ -5,10 +5,10 @@
 use portalcast_format::{Colormap, Sector, Texture};
 
 use super::light::light_row;
+use super::light::Lighting;
 use super::spans::{make_spans, Window};
 use super::surface::Surface;
 use super::view::View;
-use super::light::Lighting;
 use super::walk::{is_sky, mip_level_of_ratio, mip_ratio, FrameStats};
 use super::RenderAssets;
 use crate::math::{recip_small, Fx24_8};
@@ -40,56 +40,59 @@ pub struct PlaneJob<'r> {
     pub column_angles: &'r [i16],
 }
 
-/// Draws the visit's ceiling (or sky) and floor.
-#[inline(never)]
-pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
-    let PlaneJob {
-        view,
-        assets,
-        sector,
-        sector_index,
-        first,
-        ceiling,
-        floor,
-        span_start,
-        stats,
-        column_angles,
-    } = job;
-    let sky = is_sky(sector);
-    if sky {
-        canvas.set_surface(Surface::Sky);
-        for (offset, window) in ceiling.iter().enumerate() {
-            if !window.is_empty() {
-                stats.column_pixels += (window.bottom - window.top) as u32;
-                stats.sky_pixels += (window.bottom - window.top) as u32;
-                sky_column(view, assets, column_angles, canvas, first + offset, *window);
+impl PlaneJob<'_> {
+    /// Draws the visit's ceiling (or sky) and floor.
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.render_planes_draw")]
+    pub fn draw(self, canvas: &mut impl Canvas) {
+        let PlaneJob {
+            view,
+            assets,
+            sector,
+            sector_index,
+            first,
+            ceiling,
+            floor,
+            span_start,
+            stats,
+            column_angles,
+        } = self;
+        let sky = is_sky(sector);
+        if sky {
+            canvas.set_surface(Surface::Sky);
+            for (offset, window) in ceiling.iter().enumerate() {
+                if !window.is_empty() {
+                    stats.column_pixels += (window.bottom - window.top) as u32;
+                    stats.sky_pixels += (window.bottom - window.top) as u32;
+                    sky_column(view, assets, column_angles, canvas, first + offset, *window);
+                }
             }
         }
-    }
-    // The ceiling (unless it is sky), then the floor: one span loop for both, so that its code
-    // is in IWRAM once.
-    let planes = [
-        (
-            Surface::Ceiling(sector_index),
-            ceiling,
-            sector.ceil_z,
-            sector.ceil_texture,
-        ),
-        (
-            Surface::Floor(sector_index),
-            floor,
-            sector.floor_z,
-            sector.floor_texture,
-        ),
-    ];
-    for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
-        canvas.set_surface(*surface);
-        let plane = PlaneSpans::new(view, assets, sector, *height, *texture);
-        make_spans(windows, first, span_start, |row, start, end| {
-            stats.span_pixels += (end - start) as u32;
-            stats.spans += 1;
-            plane.span(canvas, row, start, end);
-        });
+        // The ceiling (unless it is sky), then the floor: one span loop for both, so that its code
+        // is in IWRAM once.
+        let planes = [
+            (
+                Surface::Ceiling(sector_index),
+                ceiling,
+                sector.ceil_z,
+                sector.ceil_texture,
+            ),
+            (
+                Surface::Floor(sector_index),
+                floor,
+                sector.floor_z,
+                sector.floor_texture,
+            ),
+        ];
+        for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
+            canvas.set_surface(*surface);
+            let plane = PlaneSpans::new(view, assets, sector, *height, *texture);
+            make_spans(windows, first, span_start, |row, start, end| {
+                stats.span_pixels += (end - start) as u32;
+                stats.spans += 1;
+                plane.span(canvas, row, start, end);
+            });
+        }
     }
 }
 
@@ -158,6 +161,8 @@ impl<'r> PlaneSpans<'r> {
     /// Row `row`, columns `start..end`: the map point under each pixel centre is
     /// `e + z'·f + z'·(x + ½ − cx)/d_x · r`, with `z'` the plane's depth on this row
     /// ([`Viewport::floor_depth_of_row`](crate::math::Viewport::floor_depth_of_row)'s rule).
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.render_plane_span")]
     fn span(&self, canvas: &mut impl Canvas, row: usize, start: usize, end: usize) {
         let doubled_offset = 2 * (row as i32 - self.horizon_y) + 1;
         let (Some(texture), false, true) = (

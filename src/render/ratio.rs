@@ -28,6 +28,7 @@ impl Divisor {
     /// `den != 0`. Out of line, as [`Divisor::ratio_shifted`]: IWRAM is short, and both are
     /// called per wall, not per column.
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.render_divisor_new")]
     pub fn new(den: i64) -> Divisor {
         debug_assert!(den != 0, "ratio with a zero divisor");
         let d = den.unsigned_abs();
@@ -47,6 +48,10 @@ impl Divisor {
 
     /// Approximately `num · 2^shift / self`, rounded to nearest: [`ratio_shifted`]'s result.
     #[inline(never)]
+    #[cfg_attr(
+        target_os = "none",
+        link_section = ".iwram.render_divisor_ratio_shifted"
+    )]
     pub fn ratio_shifted(&self, num: i64, shift: u32) -> i64 {
         let negative = (num < 0) != self.negative;
         // num · 2^shift / d = num · reciprocal / 2^(61 + exponent − shift).

@@ -342,9 +342,8 @@ impl<W: WindowStore> Renderer<W> {
     }
 
     /// The column angles of `viewport`'s columns, for the sky: computed when the resolution
-    /// changes, so from ROM (its own section, outside linker.ld's IWRAM patterns).
+    /// changes, so from ROM (no IWRAM section attribute).
     #[inline(never)]
-    #[link_section = ".text.rom.render_fill_column_angles"]
     fn fill_column_angles(&mut self, viewport: &crate::math::Viewport) {
         let width = viewport.width as usize;
         for (column, angle) in self.windows.windows().column_angles[..width]
@@ -362,7 +361,6 @@ impl<W: WindowStore> Renderer<W> {
     /// After 2^32 frames the vertex cache's stamps come round: every entry is forgotten. From
     /// ROM, like [`Renderer::fill_column_angles`].
     #[inline(never)]
-    #[link_section = ".text.rom.render_forget_vertices"]
     fn forget_vertices(&mut self) {
         for entry in &self.vertices.0 {
             entry.set(CachedVertex {
@@ -377,11 +375,10 @@ impl<W: WindowStore> Renderer<W> {
     /// drawing nothing, recording each visit in [`Renderer::plan`]. False if the plan
     /// overflowed ([`crate::render::visits::MAX_VISITS`]).
     ///
-    /// Run from ROM (its own section, outside linker.ld's IWRAM patterns), like
+    /// Run from ROM (no IWRAM section attribute), like
     /// [`Renderer::draw_plan`]: in IWRAM the two took 2.6 KB of the stack's room, which the
     /// kernel check scene's 4 KB texture on the stack needs.
     #[inline(never)]
-    #[link_section = ".text.rom.render_plan_visits"]
     fn plan_visits(
         &mut self,
         scene: &Scene,
@@ -412,7 +409,6 @@ impl<W: WindowStore> Renderer<W> {
     /// The scene preprocessing's second pass: each group of merged visits drawn once, every
     /// sector after the sectors in front of it.
     #[inline(never)]
-    #[link_section = ".text.rom.render_draw_plan"]
     fn draw_plan(&mut self, scene: &Scene, canvas: &mut impl Canvas, stats: &mut FrameStats) {
         while let Some((sector_index, first, end)) = self.plan.next_draw() {
             self.draw_sector(scene, canvas, stats, sector_index, first, end);
@@ -433,6 +429,7 @@ impl<W: WindowStore> Renderer<W> {
     /// Out of line, so that [`Renderer::render`]'s own set-up stays small enough to be inlined
     /// into its callers, outside IWRAM.
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.walk")]
     fn walk(
         &mut self,
         scene: &Scene,
@@ -504,6 +501,7 @@ impl<W: WindowStore> Renderer<W> {
     /// line: [`Renderer::walk`] calls it for every sector it enters, and the preprocessing's
     /// [`Renderer::draw_plan`] for every group.
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.draw_sector")]
     fn draw_sector(
         &mut self,
         scene: &Scene,
@@ -541,10 +539,8 @@ impl<W: WindowStore> Renderer<W> {
         );
         let planes_started = (self.clock)();
         stats.wall_ticks += planes_started.wrapping_sub(walls_started);
-        planes::draw(
-            self.plane_job(scene, stats, sector, sector_index, first, end),
-            canvas,
-        );
+        self.plane_job(scene, stats, sector, sector_index, first, end)
+            .draw(canvas);
         stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
     }
 
@@ -552,6 +548,7 @@ impl<W: WindowStore> Renderer<W> {
     /// state stays off the stack frame of [`draw_sector`](Self::draw_sector), its caller for
     /// every visit.
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.draw_walls")]
     fn draw_walls(
         &mut self,
         scene: &Scene,
@@ -646,6 +643,8 @@ impl<W: WindowStore> Renderer<W> {
     /// One column of a wall: its plane windows, the clip window it leaves, its strips.
     /// `rows` are the column's rows of the wall's heights ([`WallJob::heights`]).
     #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.wall_column")]
     fn wall_column(
         &mut self,
         scene: &Scene,
@@ -831,6 +830,7 @@ impl Ownership {
     /// Vertex `index` in eye space and its split of the columns. Out of line: the portal walk
     /// and the wall pass both call it, and a copy in each would not fit IWRAM.
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.ownership_vertex")]
     fn vertex(&self, scene: &Scene, vertices: &VertexCache, index: u16) -> (EyePoint, VertexSplit) {
         let (point, first_column) = vertices.get(scene, index);
         let split = if first_column == NO_COLUMN {
@@ -958,6 +958,8 @@ impl<'s> StripLevel<'s> {
     };
 
     /// The level [`mip_level_of_ratio`] picks for `ratio`, and the ratios that pick it too.
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.strip_level_of")]
     fn of(texture: &Texture<'s>, ratio: i32) -> StripLevel<'s> {
         let level = mip_level_of_ratio(
             ratio,

@@ -251,6 +251,7 @@ impl WallStepper {
     /// its multiplies: this is the exact setting's per-column path. Not inlined (IWRAM is
     /// short; it is called only where a strip is drawn).
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.stepper_texturing")]
     pub fn texturing(&self) -> (Fx24_8, Fx2_30) {
         let (inverse_depth, near_inverse_depth) = self.rows();
         let depth = inverse_depth.recip_fx24_8();
@@ -273,6 +274,7 @@ impl WallStepper {
     /// stepping. Not inlined (the interpolating knobs call it twice per interval; IWRAM is
     /// short).
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.stepper_ahead")]
     pub fn ahead(&self, columns: i32) -> WallColumn {
         let inverse_depth = self.inverse_depth_ahead(columns);
         let depth = inverse_depth.recip_fx24_8();
@@ -426,11 +428,10 @@ impl WallRows {
     }
 
     /// [`WallRows::next_column`] of [`WallRows::Exact`]: out of line, since the wall loops
-    /// inline the stepped path at each of their call sites, and run from ROM (its own section,
-    /// outside linker.ld's IWRAM patterns): only walls within a unit of the eye or at the far
+    /// inline the stepped path at each of their call sites, and run from ROM (no IWRAM section
+    /// attribute): only walls within a unit of the eye or at the far
     /// limit take it, and IWRAM is short.
     #[inline(never)]
-    #[link_section = ".text.rom.render_wall_rows_exact"]
     fn next_exact_column(&mut self) -> [i16; ROW_HEIGHTS] {
         let WallRows::Exact {
             inverse_depth,
