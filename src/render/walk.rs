@@ -30,6 +30,18 @@ pub const MAX_ROWS: usize = 160;
 /// Deepest chain of portals followed; deeper sectors are left undrawn and counted.
 pub const MAX_PORTAL_DEPTH: u32 = 64;
 
+/// Portals the walk keeps on record at once ([`Renderer::portals`]): those owning columns of
+/// the visits on its current path. A path that finds more has its visits' portals tested again.
+const PORTALS_RECORDED: usize = 256;
+
+/// A portal a visit's wall pass found owning columns `start..stop`, and the sector behind it.
+#[derive(Clone, Copy)]
+struct OwnedPortal {
+    sector: u16,
+    start: i16,
+    stop: i16,
+}
+
 /// Counters of one frame, for the benchmarks and the tests.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FrameStats {
@@ -123,6 +135,16 @@ pub struct Renderer<W: WindowStore = ColumnWindows> {
     /// The portal walk's levels: level `d` is the sector visited at depth `d` (see
     /// [`Renderer::walk`]).
     levels: [WalkLevel; MAX_PORTAL_DEPTH as usize + 1],
+    /// The portals each visit on the walk's path found owning columns (a stack: a visit's
+    /// entries sit above its parent's), so that the walk enters them without testing their
+    /// ownership a second time.
+    portals: [OwnedPortal; PORTALS_RECORDED],
+    /// Entries of [`Renderer::portals`] in use.
+    portals_used: u16,
+    /// Whether the wall pass records its portals: only while the walk draws a visit.
+    recording_portals: bool,
+    /// Whether the last visit drawn recorded all of its portals.
+    portals_recorded: bool,
     /// The scene preprocessing's visits ([`Preprocessing::On`]).
     plan: VisitPlan,
     /// Each vertex's eye-space position (and the precision knob's column) this frame.
@@ -162,6 +184,14 @@ struct WalkLevel {
     ownership: Ownership,
     /// The visit in the preprocessing's plan (its first pass only).
     visit: Option<VisitId>,
+    /// The portals the visit's wall pass found owning columns, in wall order: the next one's
+    /// index in [`Renderer::portals`] and one past its last. `None` where the wall pass did not
+    /// record them (the preprocessing's first pass draws nothing; or the record was full):
+    /// [`WalkLevel::next_portal`] then tests each portal's ownership again.
+    recorded: Option<(u16, u16)>,
+    /// [`Renderer::portals_used`] before the visit recorded its portals: where the record is cut
+    /// back to when the visit is done.
+    records_from: u16,
 }
 
 impl WalkLevel {
@@ -171,13 +201,37 @@ impl WalkLevel {
             next_wall: 0,
             ownership: Ownership::new(first, end),
             visit: None,
+            recorded: None,
+            records_from: 0,
         }
     }
 
     /// The next of the sector's portals that owns some of the level's columns: the sector
     /// behind it and those columns. Moves past it, so the next call finds the one after.
     #[inline(always)]
-    fn next_portal(&mut self, scene: &Scene, vertices: &VertexCache) -> Option<(u16, i32, i32)> {
+    fn next_portal(
+        &mut self,
+        scene: &Scene,
+        vertices: &VertexCache,
+        portals: &[OwnedPortal],
+    ) -> Option<(u16, i32, i32)> {
+        if let Some((next, end)) = self.recorded {
+            let portal = portals[usize::from(next)..usize::from(end)].first()?;
+            self.recorded = Some((next + 1, end));
+            return Some((portal.sector, portal.start.into(), portal.stop.into()));
+        }
+        self.next_portal_tested(scene, vertices)
+    }
+
+    /// [`WalkLevel::next_portal`] without a record: tests the ownership of each of the
+    /// sector's portals. Out of line and from ROM (no IWRAM section attribute): only the
+    /// preprocessing's first pass and a full record take it.
+    #[inline(never)]
+    fn next_portal_tested(
+        &mut self,
+        scene: &Scene,
+        vertices: &VertexCache,
+    ) -> Option<(u16, i32, i32)> {
         let walls = scene
             .map
             .sector_walls(&scene.map.sectors[usize::from(self.sector)]);
@@ -281,6 +335,14 @@ impl<W: WindowStore> Renderer<W> {
             visited: [0; VISITS_TRACKED / 32],
             clock: no_clock,
             levels: [WalkLevel::new(0, 0, 0); MAX_PORTAL_DEPTH as usize + 1],
+            portals: [OwnedPortal {
+                sector: 0,
+                start: 0,
+                stop: 0,
+            }; PORTALS_RECORDED],
+            portals_used: 0,
+            recording_portals: false,
+            portals_recorded: false,
             plan: VisitPlan::new(),
             vertices: VertexCache(
                 [const {
@@ -452,6 +514,41 @@ impl<W: WindowStore> Renderer<W> {
         );
     }
 
+    /// Enters `level`'s visit (`enter`: draws it, or plans it) with the wall pass recording the
+    /// portals it finds owning columns; notes the record in `level`.
+    #[inline(always)]
+    fn enter_recording<E>(
+        &mut self,
+        stats: &mut FrameStats,
+        level: &mut WalkLevel,
+        parent: Option<VisitId>,
+        enter: &mut impl FnMut(
+            &mut Self,
+            &mut FrameStats,
+            u16,
+            i32,
+            i32,
+            Option<VisitId>,
+        ) -> Result<Option<VisitId>, E>,
+    ) -> Result<Option<VisitId>, E> {
+        level.records_from = self.portals_used;
+        self.recording_portals = true;
+        self.portals_recorded = false;
+        let visit = enter(
+            self,
+            stats,
+            level.sector,
+            level.ownership.first,
+            level.ownership.end,
+            parent,
+        );
+        self.recording_portals = false;
+        level.recorded = self
+            .portals_recorded
+            .then_some((level.records_from, self.portals_used));
+        visit
+    }
+
     /// The portal walk's order, shared by the drawing walk and the preprocessing's plan:
     /// `enter` is called for `sector_index` in columns `first..end`, then, depth first and front
     /// to back, for every sector seen through its portals with the columns its portal owns and
@@ -473,25 +570,30 @@ impl<W: WindowStore> Renderer<W> {
             Option<VisitId>,
         ) -> Result<Option<VisitId>, E>,
     ) -> Result<(), E> {
-        let root = enter(self, stats, sector_index, first, end, None)?;
-        self.levels[0] = WalkLevel::new(sector_index, first, end);
-        self.levels[0].visit = root;
+        self.portals_used = 0;
+        let mut root = WalkLevel::new(sector_index, first, end);
+        root.visit = self.enter_recording(stats, &mut root, None, &mut enter)?;
+        self.levels[0] = root;
         let mut depth = 0;
         loop {
             // A copy in registers while its walls are tested; the levels live in EWRAM.
             let mut level = self.levels[depth];
-            let seen = level.next_portal(scene, &self.vertices);
+            let seen = level.next_portal(scene, &self.vertices, &self.portals);
             self.levels[depth] = level;
             match seen {
                 Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
                 Some((neighbour, start, stop)) => {
-                    let visit = enter(self, stats, neighbour, start, stop, level.visit)?;
+                    let mut next = WalkLevel::new(neighbour, start, stop);
+                    next.visit = self.enter_recording(stats, &mut next, level.visit, &mut enter)?;
                     depth += 1;
-                    self.levels[depth] = WalkLevel::new(neighbour, start, stop);
-                    self.levels[depth].visit = visit;
+                    self.levels[depth] = next;
                 }
                 None if depth == 0 => return Ok(()),
-                None => depth -= 1,
+                None => {
+                    // The visit's records are done with: its parent's are on top again.
+                    self.portals_used = level.records_from;
+                    depth -= 1;
+                }
             }
         }
     }
@@ -560,11 +662,27 @@ impl<W: WindowStore> Renderer<W> {
     ) {
         let walls = scene.map.sector_walls(sector);
         let mut ownership = Ownership::new(first, end);
+        // The portals owning columns, for the walk (`WalkLevel::recorded`); a full record
+        // stops recording, and the walk tests the visit's portals again instead.
+        let mut recording = self.recording_portals;
         for (offset, wall) in walls.iter().enumerate() {
             let wall_index = sector.first_wall + offset as u16;
             let Some((a, b, start, stop)) = ownership.wall(scene, &self.vertices, wall) else {
                 continue;
             };
+            if wall.portal != NO_PORTAL && recording {
+                match self.portals.get_mut(usize::from(self.portals_used)) {
+                    Some(entry) => {
+                        *entry = OwnedPortal {
+                            sector: wall.portal,
+                            start: start as i16,
+                            stop: stop as i16,
+                        };
+                        self.portals_used += 1;
+                    }
+                    None => recording = false,
+                }
+            }
             let projector = WallProjector::new(&scene.view.viewport, a, b);
             let job = WallJob::new(scene, sector, wall, wall_index);
             let mut stepper = projector.stepper(start);
@@ -614,6 +732,7 @@ impl<W: WindowStore> Renderer<W> {
                 left = right;
             }
         }
+        self.portals_recorded = recording;
     }
 
     fn plane_job<'r>(
