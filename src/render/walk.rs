@@ -684,7 +684,7 @@ impl<W: WindowStore> Renderer<W> {
                 }
             }
             let projector = WallProjector::new(&scene.view.viewport, a, b);
-            let job = WallJob::new(scene, sector, wall, wall_index);
+            let mut job = WallJob::new(scene, sector, wall, wall_index);
             let mut stepper = projector.stepper(start);
             let mut rows =
                 WallRows::new(&scene.view.viewport, job.heights(), &stepper, stop - start);
@@ -693,7 +693,7 @@ impl<W: WindowStore> Renderer<W> {
                 for column in start..stop {
                     let at = ColumnAt::Stepper(&stepper);
                     let column_rows = rows.next_column();
-                    self.wall_column(scene, canvas, stats, &job, &at, column_rows, column);
+                    self.wall_column(scene, canvas, stats, &mut job, &at, column_rows, column);
                     stepper.step();
                 }
                 continue;
@@ -708,7 +708,7 @@ impl<W: WindowStore> Renderer<W> {
                 if last == column {
                     let at = ColumnAt::Known(left.depth, left.along);
                     let column_rows = rows.next_column();
-                    self.wall_column(scene, canvas, stats, &job, &at, column_rows, column);
+                    self.wall_column(scene, canvas, stats, &mut job, &at, column_rows, column);
                     break;
                 }
                 let span = last - column;
@@ -721,7 +721,7 @@ impl<W: WindowStore> Renderer<W> {
                         scene,
                         canvas,
                         stats,
-                        &job,
+                        &mut job,
                         &at,
                         column_rows,
                         column + offset,
@@ -769,7 +769,7 @@ impl<W: WindowStore> Renderer<W> {
         scene: &Scene,
         canvas: &mut impl Canvas,
         stats: &mut FrameStats,
-        job: &WallJob,
+        job: &mut WallJob,
         at: &ColumnAt,
         rows: [i16; ROW_HEIGHTS],
         column: i32,
@@ -856,7 +856,7 @@ impl<W: WindowStore> Renderer<W> {
             colormap: light_row(job.sector.light, depth.to_int_floor(), scene.view.lighting)
                 .map(|row| &scene.assets.colormap[row]),
         };
-        for (texture, (top, bottom)) in job.strips.iter().zip(rows) {
+        for (texture, (top, bottom)) in job.strips.iter_mut().zip(rows) {
             self.draw_strip(scene, canvas, stats, &strip, texture, top, bottom);
         }
     }
@@ -869,7 +869,7 @@ impl<W: WindowStore> Renderer<W> {
         canvas: &mut impl Canvas,
         stats: &mut FrameStats,
         strip: &StripColumn,
-        texture: &StripTexture,
+        texture: &mut StripTexture,
         top: i32,
         bottom: i32,
     ) {
@@ -893,10 +893,9 @@ impl<W: WindowStore> Renderer<W> {
             canvas.column(strip.column, top as usize, count, &column);
             return;
         };
-        let mut cached = texture.level.get();
+        let cached = &mut texture.level;
         if !(cached.ratio_low..=cached.ratio_high).contains(&strip.mip_ratio) {
-            cached = StripLevel::of(texture_image, strip.mip_ratio);
-            texture.level.set(cached);
+            *cached = StripLevel::of(texture_image, strip.mip_ratio);
         }
         let StripLevel {
             level,
@@ -904,7 +903,7 @@ impl<W: WindowStore> Renderer<W> {
             height_log2,
             texels,
             ..
-        } = cached;
+        } = *cached;
         let u_texel = (strip.u.to_int_floor() >> level) & ((1 << width_log2) - 1);
         let column_texels =
             &texels[(u_texel as usize) << height_log2..((u_texel as usize) + 1) << height_log2];
@@ -1050,7 +1049,7 @@ struct StripTexture<'s> {
     eye_to_anchor: i64,
     /// The mip level the strip's last column took, reused while the columns' depth keeps
     /// within it (neighbouring columns mostly do).
-    level: Cell<StripLevel<'s>>,
+    level: StripLevel<'s>,
 }
 
 /// A strip's mip level and what its columns need of it, with the range of [`mip_ratio`]s that
@@ -1117,7 +1116,7 @@ impl<'s> WallJob<'s> {
             texture: scene.assets.textures.get(usize::from(texture)),
             surface,
             eye_to_anchor: i64::from(above_eye(anchor).to_bits()) + (i64::from(wall.y_offset) << 8),
-            level: Cell::new(StripLevel::NONE),
+            level: StripLevel::NONE,
         };
         let (strips, portal) = if wall.portal == NO_PORTAL {
             (
