@@ -13,7 +13,8 @@ use super::surface::Surface;
 use super::view::{Preprocessing, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
-    owned_columns_in, VertexSplit, WallLerp, WallProjector, WallRows, WallStepper, ROW_HEIGHTS,
+    owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector, WallRows, WallStepper,
+    ROW_HEIGHTS,
 };
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
@@ -689,47 +690,43 @@ impl<W: WindowStore> Renderer<W> {
             let mut rows =
                 WallRows::new(&scene.view.viewport, job.heights(), &stepper, stop - start);
             let interval = scene.view.perspective.interval();
-            if interval == 1 {
-                for column in start..stop {
-                    let at = ColumnAt::Stepper(&stepper);
-                    let column_rows = rows.next_column();
-                    self.wall_column(scene, canvas, stats, &mut job, &at, column_rows, column);
+            // The interpolating knobs' segments: exact at both ends, interpolated between. Each
+            // segment's right end is the next one's left (one exact column per interval), and
+            // the wall's last column is always exact. One loop for every knob, so the column's
+            // code is inlined once.
+            let mut left = WallColumn {
+                depth: Fx24_8::ZERO,
+                along: Fx2_30::ZERO,
+            };
+            if interval > 1 {
+                left = stepper.ahead(0);
+            }
+            let mut lerp = WallLerp::new(left, left, 1);
+            let (mut segment_start, mut segment_end) = (start, start);
+            for column in start..stop {
+                let at = if interval == 1 {
+                    ColumnAt::Stepper(&stepper)
+                } else if column < segment_end {
+                    ColumnAt::Lerp(&lerp, column - segment_start)
+                } else {
+                    let last = (column + interval).min(stop - 1);
+                    if last == column {
+                        ColumnAt::Known(left.depth, left.along)
+                    } else {
+                        let span = last - column;
+                        let right = stepper.ahead(span);
+                        lerp = WallLerp::new(left, right, span);
+                        stepper.advance(span);
+                        left = right;
+                        (segment_start, segment_end) = (column, last);
+                        ColumnAt::Lerp(&lerp, 0)
+                    }
+                };
+                let column_rows = rows.next_column();
+                self.wall_column(scene, canvas, stats, &mut job, &at, column_rows, column);
+                if interval == 1 {
                     stepper.step();
                 }
-                continue;
-            }
-            // Exact at `column` and at `last`, interpolated between; the wall's last column is
-            // always exact.
-            // Each interval's right end is the next one's left: one exact column per interval.
-            let mut column = start;
-            let mut left = stepper.ahead(0);
-            while column < stop {
-                let last = (column + interval).min(stop - 1);
-                if last == column {
-                    let at = ColumnAt::Known(left.depth, left.along);
-                    let column_rows = rows.next_column();
-                    self.wall_column(scene, canvas, stats, &mut job, &at, column_rows, column);
-                    break;
-                }
-                let span = last - column;
-                let right = stepper.ahead(span);
-                let lerp = WallLerp::new(left, right, span);
-                for offset in 0..span {
-                    let at = ColumnAt::Lerp(&lerp, offset);
-                    let column_rows = rows.next_column();
-                    self.wall_column(
-                        scene,
-                        canvas,
-                        stats,
-                        &mut job,
-                        &at,
-                        column_rows,
-                        column + offset,
-                    );
-                }
-                stepper.advance(span);
-                column = last;
-                left = right;
             }
         }
         self.portals_recorded = recording;
@@ -762,8 +759,7 @@ impl<W: WindowStore> Renderer<W> {
     /// One column of a wall: its plane windows, the clip window it leaves, its strips.
     /// `rows` are the column's rows of the wall's heights ([`WallJob::heights`]).
     #[allow(clippy::too_many_arguments)]
-    #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram_render.wall_column")]
+    #[inline(always)]
     fn wall_column(
         &mut self,
         scene: &Scene,
