@@ -689,6 +689,7 @@ impl<W: WindowStore> Renderer<W> {
             let mut stepper = projector.stepper(start);
             let mut rows =
                 WallRows::new(&scene.view.viewport, job.heights(), &stepper, stop - start);
+            stats.wall_columns += (stop - start) as u32;
             let interval = scene.view.perspective.interval();
             // The interpolating knobs' segments: exact at both ends, interpolated between. Each
             // segment's right end is the next one's left (one exact column per interval), and
@@ -770,7 +771,6 @@ impl<W: WindowStore> Renderer<W> {
         rows: [i16; ROW_HEIGHTS],
         column: i32,
     ) {
-        stats.wall_columns += 1;
         let x = column as usize;
         let windows = self.windows.windows();
         // Rows in i32 from here: i16 arithmetic would sign-extend after every operation.

@@ -248,10 +248,9 @@ impl WallStepper {
 
     /// The current column's depth and position along the wall ([`WallColumn::depth`],
     /// [`WallColumn::along`]): what its texture column needs, one reciprocal. `ahead(0)` without
-    /// its multiplies: this is the exact setting's per-column path. Not inlined (IWRAM is
-    /// short; it is called only where a strip is drawn).
-    #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram_render.stepper_texturing")]
+    /// its multiplies: this is the exact setting's per-column path, inlined into the wall's
+    /// column loop (its one caller).
+    #[inline(always)]
     pub fn texturing(&self) -> (Fx24_8, Fx2_30) {
         let (inverse_depth, near_inverse_depth) = self.rows();
         let depth = inverse_depth.recip_fx24_8();
