@@ -245,8 +245,7 @@ impl Canvas for VramCanvas {
         self.resolution
     }
 
-    #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram.vram_canvas_column")]
+    #[inline(always)]
     fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture) {
         assert!(
             x < self.resolution.width() && row + count <= self.resolution.height() && count > 0
