@@ -317,8 +317,10 @@ mod rom {
             let started = meter::now();
             let frames = self.frames.max(1);
             // Frames per second in hundredths: frames over the window's duration in seconds.
-            let fps_x100 =
-                u64::from(self.frames) * 100 * CPU_HZ / (u64::from(vblanks) * CYCLES_PER_VBLANK);
+            // Printed as a u32: core's u64 formatting is Thumb code that calls __aeabi_lmul,
+            // which linker.ld puts in IWRAM (88 bytes of the stack's room).
+            let fps_x100 = (u64::from(self.frames) * 100 * CPU_HZ
+                / (u64::from(vblanks) * CYCLES_PER_VBLANK)) as u32;
             log::info(format_args!(
                 "rate vblank={vblank} vblanks={vblanks} frames={} fps={}.{:02} mean_render_cycles={} mean_game_cycles={} mean_frame_lines_cycles={} mean_input_lines_cycles={} rate_line_cycles={}",
                 self.frames,
