@@ -33,6 +33,9 @@ mod rom {
     const KEY_LEFT: u16 = Buttons::LEFT.0;
     const KEY_R: u16 = Buttons::R.0;
     const KEY_L: u16 = Buttons::L.0;
+    /// Held at power-on (alone, or with keys no scene reads): the game writes its per-frame
+    /// `player` and `render` lines ([`play_scene`]).
+    const KEY_START: u16 = Buttons::START.0;
 
     /// Entered from gba's runtime after it copied IWRAM/EWRAM and zeroed .bss.
     #[allow(unsafe_code)]
@@ -78,19 +81,50 @@ mod rom {
             display.set_palette(&testpic::PALETTE);
             test_picture_scene(&mut display, held_at_boot);
         }
+        let frame_lines = held_at_boot & KEY_START != 0;
+        if frame_lines {
+            wait_for_release(&display, held_at_boot);
+        }
         display.set_palette(&assets::PALETTE);
-        play_scene(&mut display)
+        play_scene(&mut display, frame_lines)
+    }
+
+    /// Start held at power-on: waits, VBlank by VBlank, until it is let go, so the press that
+    /// chose the per-frame lines never reaches the game (it would open the menu). Then prints
+    /// `input boot keys=0x… released_vblank=K`: the sample of VBlank `K` was the first without
+    /// Start, so a replay that holds the boot keys on emulator frames `0..=K` leaves the wait on
+    /// the same VBlank and replays the game exactly (`KeyScript::from_rom_log` in the harness).
+    /// The test right after each VBlank, never before the first, is what makes `K` a function
+    /// of the frames Start was held on, not of where the boot code happened to be.
+    fn wait_for_release(display: &Display, held_at_boot: u16) {
+        loop {
+            display.wait_vblank();
+            if hw::keys_held() & KEY_START == 0 {
+                break;
+            }
+        }
+        log::info(format_args!(
+            "input boot keys=0x{held_at_boot:03x} released_vblank={}",
+            input::samples_written().wrapping_sub(1)
+        ));
     }
 
     /// The game: the player on the bench map (the menu switches maps and settings). The
     /// buttons are sampled at every VBlank and the game runs one tick per sample, so it runs at
     /// 60 ticks per second whatever the frame rate; then one frame shows the result.
     ///
-    /// Two lines per frame go to mGBA's log (one would pass the 256 bytes of its debug string
-    /// register): `player …` with the pose after the frame's ticks, then `render …`. Before
-    /// them, an `input vblank=… keys=…` line for every change of the buttons: a recording of
-    /// the game that a harness key script replays.
-    fn play_scene(display: &mut Display) -> ! {
+    /// What goes to mGBA's log:
+    /// - always, an `input vblank=… keys=…` line for every change of the buttons: a recording of
+    ///   the game that a harness key script replays (a player can send one with a bug report;
+    ///   it costs only when the buttons change);
+    /// - always, about once a second, a `rate …` line ([`RateWindow`]): the frame rate the
+    ///   player gets and what the frame's parts and the log lines cost;
+    /// - with `frame_lines` (Start held at power-on), two lines per frame (one would pass the
+    ///   256 bytes of mGBA's debug string register): `player …` with the pose after the
+    ///   frame's ticks, then `render …`. The emulator tests and the soak read them; formatting
+    ///   them costs tens of thousands of cycles a frame, which a player should not pay, so
+    ///   without the switch they are not formatted at all.
+    fn play_scene(display: &mut Display, frame_lines: bool) -> ! {
         let renderer = memory::renderer_in_ewram(meter::now);
         let colours = MenuColours::from_palette(&assets::PALETTE);
         let mut game = Game::new(assets::MAPS);
@@ -102,10 +136,12 @@ mod rom {
             meter::cycles_since(started)
         };
         log::info(format_args!(
-            "play start vblank={} map={} timer_cycles={timer_cycles}",
+            "play start vblank={} map={} timer_cycles={timer_cycles} frame_lines={}",
             sampler.next_index(),
-            game.map().name
+            game.map().name,
+            u8::from(frame_lines)
         ));
+        let mut rate = RateWindow::new(sampler.next_index());
         let mut frame: u32 = 0;
         let mut stack_reported = 0;
         loop {
@@ -115,7 +151,9 @@ mod rom {
                 // The recording: every change of the buttons, which replays the game exactly
                 // (`KeyScript::from_rom_log` in the harness).
                 if held != game.held().0 {
+                    let started = meter::now();
                     log::info(format_args!("input vblank={vblank} keys=0x{held:03x}"));
+                    rate.input_lines_cycles += meter::cycles_since(started);
                 }
                 // Each tick timed alone, so the figures leave out the recording's log lines
                 // and the frame's other work.
@@ -125,10 +163,81 @@ mod rom {
             });
             let game_cycles = meter::cycles_since(game_started);
             let camera = game.camera();
-            let player = &game.player;
-            log::info(format_args!(
-                "player frame={frame} vblank={} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} hud={} game_cycles={game_cycles} ticks={} tick_cycles={} tick_max_cycles={}",
-                sampler.next_index(),
+            if frame_lines {
+                let started = meter::now();
+                log_player_line(
+                    frame,
+                    sampler.next_index(),
+                    lost,
+                    &game,
+                    game_cycles,
+                    &ticks,
+                );
+                rate.frame_lines_cycles += meter::cycles_since(started);
+            }
+            let settings = game.settings;
+            let view = View::new(&camera, &settings);
+            let page = VramPage::back_of(display.shown_page());
+            let address = page.address();
+            let mut canvas = VramCanvas::new(page, settings.resolution);
+            let started = meter::now();
+            let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
+            let stats = renderer.render(game.map(), &render_assets, &view, &mut canvas);
+            let cycles = meter::cycles_since(started);
+            if game.hud {
+                menu::draw_hud(&mut canvas, &menu::hud_line(cycles), colours);
+            }
+            if let Some(text) = game.menu_text() {
+                menu::draw(&mut canvas, &text, colours);
+            }
+            display.flip_at_vblank(settings.resolution);
+            if frame_lines {
+                let started = meter::now();
+                log::info(format_args!(
+                    "render map={} frame={frame} res={} lighting={} persp={} tex={} prep={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
+                    game.map().name,
+                    settings.resolution.label(),
+                    demo::lighting_label(settings.lighting),
+                    settings.perspective.label(),
+                    settings.textures.label(),
+                    settings.preprocessing.label(),
+                    stats.wall_ticks,
+                    stats.plane_ticks,
+                    stats.sector_visits,
+                    stats.wall_columns,
+                    stats.span_pixels,
+                    stats.column_pixels,
+                ));
+                rate.frame_lines_cycles += meter::cycles_since(started);
+            }
+            rate.add_frame(game_cycles, cycles);
+            frame = frame.wrapping_add(1);
+            if frame.is_multiple_of(STACK_CHECK_FRAMES) {
+                let used = memory::stack_high_water();
+                if used > stack_reported {
+                    stack_reported = used;
+                    log_stack();
+                }
+            }
+            rate.log_if_due(input::samples_written());
+        }
+    }
+
+    /// The `player …` line of a frame (see [`play_scene`]): the pose and state after the
+    /// frame's ticks, which the emulator tests compare with the host's replay, and the ticks'
+    /// cycles that `cargo bench-tick` adds up.
+    fn log_player_line(
+        frame: u32,
+        vblank: u32,
+        lost: u32,
+        game: &Game,
+        game_cycles: u32,
+        ticks: &TickCycles,
+    ) {
+        let camera = game.camera();
+        let player = &game.player;
+        log::info(format_args!(
+                "player frame={frame} vblank={vblank} tick={} lost={lost} keys=0x{:03x} x={} y={} z={} angle={} sector={} look={} ground={} crouch={} fly={} run={} menu={} hud={} game_cycles={game_cycles} ticks={} tick_cycles={} tick_max_cycles={}",
                 game.ticks(),
                 game.held().0,
                 camera.position.x.to_bits(),
@@ -147,45 +256,84 @@ mod rom {
                 ticks.total,
                 ticks.max,
             ));
-            let settings = game.settings;
-            let view = View::new(&camera, &settings);
-            let page = VramPage::back_of(display.shown_page());
-            let address = page.address();
-            let mut canvas = VramCanvas::new(page, settings.resolution);
+    }
+
+    /// VBlanks a [`RateWindow`] spans at least: one second of the GBA's 59.73 Hz display.
+    const RATE_VBLANKS: u32 = 60;
+
+    /// CPU cycles per second of the GBA (2^24), and per displayed frame (228 lines of 1232
+    /// cycles): the refresh rate is their ratio, 59.73 Hz.
+    const CPU_HZ: u64 = 1 << 24;
+    const CYCLES_PER_VBLANK: u64 = 280_896;
+
+    /// The frames drawn since the last `rate` line and what they cost. Once at least
+    /// [`RATE_VBLANKS`] VBlanks have passed, [`RateWindow::log_if_due`] prints
+    /// `rate vblank=V vblanks=N frames=F fps=X.XX` and the per-frame means of the render, the
+    /// game ticks and the two kinds of log lines, plus what the previous `rate` line cost: so a
+    /// player in mGBA reads the frame rate they get, `cargo play` prints it, and docs/BENCH.md
+    /// measures what the per-frame lines cost (`cargo bench-logging`). One line a second, not
+    /// a line a frame: its own cost is printed on the next one.
+    struct RateWindow {
+        /// The VBlank count ([`input::samples_written`]) the window started at.
+        since_vblank: u32,
+        frames: u32,
+        render_cycles: u32,
+        game_cycles: u32,
+        /// Cycles spent formatting and writing the `player` and `render` lines (0 without the
+        /// switch: they are not written).
+        frame_lines_cycles: u32,
+        /// Cycles spent on the recording's `input` lines.
+        input_lines_cycles: u32,
+        /// What the previous `rate` line cost.
+        last_line_cycles: u32,
+    }
+
+    impl RateWindow {
+        fn new(vblank: u32) -> RateWindow {
+            RateWindow {
+                since_vblank: vblank,
+                frames: 0,
+                render_cycles: 0,
+                game_cycles: 0,
+                frame_lines_cycles: 0,
+                input_lines_cycles: 0,
+                last_line_cycles: 0,
+            }
+        }
+
+        fn add_frame(&mut self, game_cycles: u32, render_cycles: u32) {
+            self.frames += 1;
+            self.game_cycles = self.game_cycles.wrapping_add(game_cycles);
+            self.render_cycles = self.render_cycles.wrapping_add(render_cycles);
+        }
+
+        /// Prints the `rate` line and starts a new window if the window spans
+        /// [`RATE_VBLANKS`] by `vblank` (the VBlanks sampled so far).
+        fn log_if_due(&mut self, vblank: u32) {
+            let vblanks = vblank.wrapping_sub(self.since_vblank);
+            if vblanks < RATE_VBLANKS {
+                return;
+            }
             let started = meter::now();
-            let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-            let stats = renderer.render(game.map(), &render_assets, &view, &mut canvas);
-            let cycles = meter::cycles_since(started);
-            if game.hud {
-                menu::draw_hud(&mut canvas, &menu::hud_line(cycles), colours);
-            }
-            if let Some(text) = game.menu_text() {
-                menu::draw(&mut canvas, &text, colours);
-            }
-            display.flip_at_vblank(settings.resolution);
+            let frames = self.frames.max(1);
+            // Frames per second in hundredths: frames over the window's duration in seconds.
+            // Printed as a u32: core's u64 formatting is Thumb code that calls __aeabi_lmul,
+            // which linker.ld puts in IWRAM (88 bytes of the stack's room).
+            let fps_x100 = (u64::from(self.frames) * 100 * CPU_HZ
+                / (u64::from(vblanks) * CYCLES_PER_VBLANK)) as u32;
             log::info(format_args!(
-                "render map={} frame={frame} res={} lighting={} persp={} tex={} prep={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
-                game.map().name,
-                settings.resolution.label(),
-                demo::lighting_label(settings.lighting),
-                settings.perspective.label(),
-                settings.textures.label(),
-                settings.preprocessing.label(),
-                stats.wall_ticks,
-                stats.plane_ticks,
-                stats.sector_visits,
-                stats.wall_columns,
-                stats.span_pixels,
-                stats.column_pixels,
+                "rate vblank={vblank} vblanks={vblanks} frames={} fps={}.{:02} mean_render_cycles={} mean_game_cycles={} mean_frame_lines_cycles={} mean_input_lines_cycles={} rate_line_cycles={}",
+                self.frames,
+                fps_x100 / 100,
+                fps_x100 % 100,
+                self.render_cycles / frames,
+                self.game_cycles / frames,
+                self.frame_lines_cycles / frames,
+                self.input_lines_cycles / frames,
+                self.last_line_cycles,
             ));
-            frame = frame.wrapping_add(1);
-            if frame.is_multiple_of(STACK_CHECK_FRAMES) {
-                let used = memory::stack_high_water();
-                if used > stack_reported {
-                    stack_reported = used;
-                    log_stack();
-                }
-            }
+            *self = RateWindow::new(vblank);
+            self.last_line_cycles = meter::cycles_since(started);
         }
     }
 

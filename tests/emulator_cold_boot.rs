@@ -3,11 +3,12 @@
 //! (`assets/demo/play.keys`), started once on mGBA's zeroed memory and once on memory filled with
 //! random bytes, must print the same lines (poses and cycle counts included) and show the same
 //! frames, from the first frame the ROM runs in on: until its first picture is ready it shows a
-//! black backdrop, never the power-on contents of VRAM.
+//! black backdrop, never the power-on contents of VRAM. The game's per-frame lines are switched
+//! on (Start held at power-on), so the poses of every frame are compared too.
 
 mod common;
 
-use common::boot;
+use common::{boot, with_frame_lines};
 use portalcast_harness::{Emulator, KeyScript};
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
@@ -33,10 +34,12 @@ struct Run {
 }
 
 fn play_demo(mut emulator: Emulator) -> Run {
-    let script = KeyScript::load(
-        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/demo/play.keys"),
-    )
-    .unwrap_or_else(|error| panic!("{error}"));
+    let script = with_frame_lines(
+        &KeyScript::load(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/demo/play.keys"),
+        )
+        .unwrap_or_else(|error| panic!("{error}")),
+    );
     let mut frames = Vec::new();
     for frame in 0..FRAMES {
         emulator.set_keys(script.keys_at(frame));

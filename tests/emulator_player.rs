@@ -51,8 +51,10 @@ fn play(script: &str, frames: u32) -> RomRun {
     )
 }
 
-/// [`play`] with a parsed script.
+/// [`play`] with a parsed script, the ROM's per-frame lines switched on (the poses are read from
+/// its `player` lines).
 fn play_script(script: &KeyScript, frames: u32) -> RomRun {
+    let script = &with_frame_lines(script);
     let mut emulator = boot();
     let mut screens = Vec::new();
     for frame in 0..frames {
@@ -319,7 +321,8 @@ fn the_same_demo_twice_and_its_recording_give_the_same_poses_and_frames() {
     let second = play(script, 320);
     assert_eq!(first.log, second.log, "the logs differ");
     assert_eq!(first.screens, second.screens, "the screens differ");
-    // The ROM's recording of its buttons (`input` lines) replays the same game.
+    // The ROM's recording of its buttons (`input` lines, and the boot keys that switched its
+    // per-frame lines on) replays the same game.
     let recorded = KeyScript::from_rom_log(first.log.iter().map(String::as_str));
     let original = KeyScript::parse(script).unwrap();
     for frame in first.start + 1..320 {

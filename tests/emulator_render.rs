@@ -223,6 +223,10 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         compared: Vec::new(),
         screenshots: BTreeSet::new(),
     };
+    // The poses and settings come from the ROM's per-frame lines: switched on at power-on.
+    for _ in FRAME_LINES_HOLD {
+        checker.step(FRAME_LINES_KEY);
+    }
     let (start, up, down, left, right) =
         (Keys::START, Keys::UP, Keys::DOWN, Keys::LEFT, Keys::RIGHT);
     // Each phase: menu presses (the cursor stays where it was left), then keys held until two

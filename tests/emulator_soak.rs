@@ -26,7 +26,7 @@ mod common;
 
 use common::demos::PlayerLine;
 use common::player::check_tick;
-use common::{boot, field, number};
+use common::{boot, field, number, FRAME_LINES_HOLD, FRAME_LINES_KEY};
 use portalcast::game::Game;
 use portalcast::menu::{Entry, ENTRIES};
 use portalcast::player::input::Buttons;
@@ -301,9 +301,15 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
     ))
 }
 
-/// Runs frames without keys until the ROM starts the game; returns the VBlank it started at.
+/// Runs frames until the ROM starts the game, with its per-frame lines switched on (the soak
+/// reads every `player` and `render` line) and no other key; returns the VBlank it started at.
 fn run_until_game_starts(emulator: &mut Emulator) -> Result<u32, String> {
-    for _ in 0..120 {
+    for frame in 0..120 {
+        emulator.set_keys(if FRAME_LINES_HOLD.contains(&frame) {
+            FRAME_LINES_KEY
+        } else {
+            Keys::NONE
+        });
         emulator.run_frame().map_err(|error| error.to_string())?;
         if let Some(line) = emulator
             .debug_lines()

@@ -7,8 +7,23 @@ pub mod player;
 
 use portalcast::frame::{shown_index, Resolution, PAGE_HALFWORDS, PAGE_HEIGHT, PAGE_WIDTH};
 use portalcast::raster::HostPage;
-use portalcast_harness::Emulator;
+use portalcast_harness::{Emulator, KeyScript, Keys};
+use std::ops::RangeInclusive;
 use std::path::PathBuf;
+
+/// Held at power-on, the key that switches on the game's per-frame `player` and `render` lines
+/// (src/main.rs): without it the ROM writes none, as a player runs it. The ROM waits for it to
+/// be let go before the game starts, so it never reaches the game.
+pub const FRAME_LINES_KEY: Keys = Keys::START;
+
+/// The emulator frames, from power-on, a test holds [`FRAME_LINES_KEY`] on: the ROM reads the
+/// keys held at boot within them (the bench scene's tests hold R on the same frames).
+pub const FRAME_LINES_HOLD: RangeInclusive<u32> = 0..=3;
+
+/// `script` with the game's per-frame lines switched on at power-on.
+pub fn with_frame_lines(script: &KeyScript) -> KeyScript {
+    script.clone().hold(FRAME_LINES_HOLD, FRAME_LINES_KEY)
+}
 
 /// The ROM, loaded in a fresh mGBA core (built first if the test command did not).
 pub fn boot() -> Emulator {

@@ -300,18 +300,39 @@ impl KeyScript {
 
     /// The key script that replays the buttons a portalcast ROM recorded in its log: its
     /// `input vblank=K keys=0x…` lines (other lines are skipped), see
-    /// [`KeyScript::from_changes`].
+    /// [`KeyScript::from_changes`], and its `input boot keys=0x… released_vblank=K` line if it
+    /// has one: the keys held at power-on that switched the ROM's per-frame lines on. The ROM
+    /// waited for them to be let go and the sample of VBlank `K` was the first without them, so
+    /// they are held on frames `0..=K` (the sample of VBlank `K` holds frame `K + 1`'s keys).
     pub fn from_rom_log<'a>(lines: impl IntoIterator<Item = &'a str>) -> KeyScript {
         let field = |line: &'a str, key: &str| {
             line.split_whitespace()
                 .find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
         };
-        KeyScript::from_changes(lines.into_iter().filter_map(|line| {
-            let rest = line.strip_prefix("input ")?;
-            let vblank: u32 = field(rest, "vblank")?.parse().ok()?;
-            let keys = u16::from_str_radix(field(rest, "keys")?.strip_prefix("0x")?, 16).ok()?;
-            Some((vblank + 1, Keys::from_bits_truncate(keys)))
-        }))
+        let keys_of = |line: &'a str| {
+            u16::from_str_radix(field(line, "keys")?.strip_prefix("0x")?, 16)
+                .ok()
+                .map(Keys::from_bits_truncate)
+        };
+        let mut boot = None;
+        let mut changes = Vec::new();
+        for line in lines {
+            if let Some(rest) = line.strip_prefix("input boot ") {
+                let released: Option<u32> =
+                    field(rest, "released_vblank").and_then(|v| v.parse().ok());
+                boot = released.zip(keys_of(rest));
+            } else if let Some(rest) = line.strip_prefix("input ") {
+                let vblank: Option<u32> = field(rest, "vblank").and_then(|v| v.parse().ok());
+                if let Some((vblank, keys)) = vblank.zip(keys_of(rest)) {
+                    changes.push((vblank + 1, keys));
+                }
+            }
+        }
+        let script = KeyScript::from_changes(changes);
+        match boot {
+            Some((released, keys)) if !keys.is_empty() => script.hold(0..=released, keys),
+            _ => script,
+        }
     }
 
     /// The keys held on `frame` (0 = the first frame of the run).

@@ -135,3 +135,20 @@ fn a_rom_recording_becomes_the_script_that_replays_it() {
         assert_eq!(script.keys_at(frame), expected, "frame {frame}");
     }
 }
+
+#[test]
+fn a_recording_with_keys_held_at_boot_holds_them_until_the_rom_saw_them_go() {
+    // Start held at power-on (the ROM's per-frame lines), let go before the sample of VBlank 4:
+    // the replay holds it on frames 0 to 4, then the game's own changes follow.
+    let log = [
+        "portalcast boot waitcnt=0x4317",
+        "input boot keys=0x008 released_vblank=4",
+        "play start vblank=6 map=bench",
+        "input vblank=9 keys=0x040",
+        "input vblank=20 keys=0x000",
+    ];
+    let script = KeyScript::from_rom_log(log);
+    assert_eq!(script, "10-20: UP\n0-4: START\n".parse().unwrap());
+    assert_eq!(script.keys_at(4), Keys::START);
+    assert_eq!(script.keys_at(5), Keys::NONE);
+}

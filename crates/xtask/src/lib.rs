@@ -6,6 +6,7 @@
 
 pub mod baseline;
 pub mod bench_log;
+pub mod bench_logging;
 pub mod bench_math;
 pub mod bench_tick;
 pub mod extreme_maps;

@@ -1,11 +1,12 @@
 //! `cargo rom`, `cargo play`, `cargo xtest`, `cargo bench-rom`, `cargo bench-report`,
-//! `cargo bench-math` and `cargo bench-tick` (aliases in .cargo/config.toml).
+//! `cargo bench-math`, `cargo bench-tick` and `cargo bench-logging` (aliases in
+//! .cargo/config.toml).
 use portalcast_xtask::{build_rom, ensure_setup, workspace_root, TaskError, TaskResult};
 use std::process::{Command, ExitCode};
 
 mod report;
 
-const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math | cargo bench-tick";
+const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math | cargo bench-tick | cargo bench-logging";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -17,6 +18,7 @@ fn main() -> ExitCode {
         Some("report") => report::bench_report(&args[1..]),
         Some("bench-math") => portalcast_xtask::bench_math::run(),
         Some("bench-tick") => portalcast_xtask::bench_tick::run(),
+        Some("bench-logging") => portalcast_xtask::bench_logging::run(),
         _ => Err(TaskError(USAGE.to_string())),
     };
     match result {

@@ -24,8 +24,9 @@ Runs a GBA ROM (or ELF) headless in mGBA.
   --png-every K     write every K-th frame as a PNG; 0 = only the last (default 60)
   --out DIR         where the PNGs go (default target/frames/)
   --until TEXT      stop after the frame in which a debug print contains TEXT
-  --summary         at the end, print frames and CPU cycles run, and min/mean/max of every
-                    `NAME=NUMBER` field whose name ends in `cycles` in the debug lines
+  --summary         at the end, print frames and CPU cycles run, the frame rate the ROM's
+                    `rate` lines add up to, and min/mean/max of every `NAME=NUMBER` field
+                    whose name ends in `cycles` in the debug lines
 
 The ROM's debug prints (mGBA \"GBA Debug\" lines) go to stdout; mGBA errors to stderr.
 The last frame is always written, also when the ROM fails.";
@@ -162,6 +163,13 @@ fn save_frame(emulator: &Emulator, dir: &Path, frame: u64) -> Result<(), Harness
 #[derive(Default)]
 struct CycleFields {
     by_name: BTreeMap<String, FieldStats>,
+    /// The portalcast game's `rate` lines (one about every second): frames drawn and VBlanks
+    /// passed, added up, for the frame rate a player gets.
+    rate_frames: u64,
+    rate_vblanks: u64,
+    rate_lines: u64,
+    /// `frame_lines=` of the game's `play start` line: whether its per-frame lines were on.
+    frame_lines: Option<bool>,
 }
 
 struct FieldStats {
@@ -173,6 +181,20 @@ struct FieldStats {
 
 impl CycleFields {
     fn record(&mut self, text: &str) {
+        let number = |key: &str| {
+            text.split_whitespace()
+                .find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
+                .and_then(|value| value.parse::<u64>().ok())
+        };
+        if text.starts_with("rate ") {
+            if let (Some(frames), Some(vblanks)) = (number("frames"), number("vblanks")) {
+                self.rate_frames += frames;
+                self.rate_vblanks += vblanks;
+                self.rate_lines += 1;
+            }
+        } else if text.starts_with("play start ") {
+            self.frame_lines = number("frame_lines").map(|on| on != 0);
+        }
         for token in text.split_whitespace() {
             let Some((name, value)) = token.split_once('=') else {
                 continue;
@@ -204,6 +226,22 @@ impl CycleFields {
             emulator.frames_run(),
             emulator.cycles()
         );
+        if self.rate_vblanks > 0 {
+            // The GBA shows 2^24 / 280,896 = 59.73 frames a second.
+            let seconds = self.rate_vblanks as f64 * FRAME_CYCLES / 16_777_216.0;
+            let lines = match self.frame_lines {
+                Some(true) => ", per-frame log lines on (Start held at power-on)",
+                Some(false) => ", per-frame log lines off (as a player runs it)",
+                None => "",
+            };
+            println!(
+                "  frame rate: {:.2} fps ({} frames drawn in {} VBlanks, {} `rate` lines{lines})",
+                self.rate_frames as f64 / seconds,
+                self.rate_frames,
+                self.rate_vblanks,
+                self.rate_lines
+            );
+        }
         if self.by_name.is_empty() {
             println!("  no `...cycles=N` fields in the debug output");
         }

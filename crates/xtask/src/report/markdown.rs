@@ -229,6 +229,9 @@ pub fn write(measurements: &Measurements) -> String {
     // The section brings its own heading (`cargo bench-tick` prints the same block).
     doc.push_str(&measurements.tick_section);
     doc.push('\n');
+    // The same again for the log lines' section (`cargo bench-logging`).
+    doc.push_str(&measurements.logging_section);
+    doc.push('\n');
     // The section brings its own heading (`cargo bench-math` writes the same block).
     doc.push_str(&measurements.math_section);
     doc.push_str("\n\n");

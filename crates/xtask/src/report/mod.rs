@@ -2,8 +2,8 @@
 //! from nothing. `--check` regenerates both in memory and fails if they differ from the
 //! committed files; `--update-baseline` also rewrites the regression guard's baseline.
 //!
-//! The steps: build the ROM (Thumb, and the ARM knob), run its bench scene, kernel check and the
-//! game tick's walk in the real mGBA core through `pc-run`, run the host's accuracy comparison (`bench-accuracy`
+//! The steps: build the ROM (Thumb, and the ARM knob), run its bench scene, kernel check, the
+//! game tick's walk and the play demo (the log lines' cost) in the real mGBA core through `pc-run`, run the host's accuracy comparison (`bench-accuracy`
 //! in crates/oracle), read the sizes from the ELF, then draw and write. The engine is not a
 //! dependency of this crate (its commands must build before any setup, and must not rebuild
 //! whenever the engine changes), so the ROM and the accuracy pass run as separate programs and
@@ -72,6 +72,8 @@ pub struct Measurements {
     pub math_section: String,
     /// The game tick's section (`cargo bench-tick` prints the same).
     pub tick_section: String,
+    /// The log lines' section (`cargo bench-logging` prints the same).
+    pub logging_section: String,
 }
 
 impl Measurements {
@@ -167,6 +169,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         baseline,
         math_section: math_section(&gba)?,
         tick_section: portalcast_xtask::bench_tick::tick_section(&gba)?,
+        logging_section: portalcast_xtask::bench_logging::logging_section(&gba)?,
     };
     let doc = markdown::write(&measurements);
     let chart = chart::draw(&chart_panels(&measurements))?;
