@@ -687,8 +687,13 @@ impl<W: WindowStore> Renderer<W> {
             let projector = WallProjector::new(&scene.view.viewport, a, b);
             let mut job = WallJob::new(scene, sector, wall, wall_index);
             let mut stepper = projector.stepper(start);
-            let mut rows =
-                WallRows::new(&scene.view.viewport, job.heights(), &stepper, stop - start);
+            let mut rows = WallRows::new(
+                &scene.view.viewport,
+                job.heights(),
+                job.portal.is_some(),
+                &stepper,
+                stop - start,
+            );
             stats.wall_columns += (stop - start) as u32;
             let interval = scene.view.perspective.interval();
             // The interpolating knobs' segments: exact at both ends, interpolated between. Each

@@ -345,6 +345,8 @@ pub enum WallRows {
         horizon: i32,
         /// The viewport's height: rows are clamped to `[0, height]`.
         height: i32,
+        /// Whether the wall is a portal, whose neighbour's heights (the last two) are read.
+        neighbour: bool,
     },
     /// Each column's rows from its clamped `1/z'`.
     Exact {
@@ -360,10 +362,13 @@ pub enum WallRows {
 }
 
 impl WallRows {
-    /// The rows of `heights` (above the eye) on the `columns ≥ 1` columns the stepper starts at.
+    /// The rows of `heights` (above the eye) on the `columns ≥ 1` columns the stepper starts at;
+    /// without a `neighbour` (a solid wall), only the first two are computed (the last two
+    /// read 0).
     pub fn new(
         viewport: &Viewport,
         heights: [Fx24_8; ROW_HEIGHTS],
+        neighbour: bool,
         stepper: &WallStepper,
         columns: i32,
     ) -> WallRows {
@@ -393,6 +398,7 @@ impl WallRows {
             scales: heights.map(scale),
             horizon: (viewport.horizon_y << 8) + 127,
             height: viewport.height,
+            neighbour,
         }
     }
 
@@ -406,16 +412,22 @@ impl WallRows {
                 scales,
                 horizon,
                 height,
+                neighbour,
             } => {
-                let mut rows = [0; ROW_HEIGHTS];
-                for (row, scale) in rows.iter_mut().zip(scales) {
+                let row = |scale: i32| {
                     // d_y·h·(1/z') + ½ in 24.8 × 2^30: below 2^59. The offset in 24.8 is below
                     // 2^29 in magnitude.
                     let offset =
-                        ((i64::from(*scale) * i64::from(*inverse_depth) + (1 << 29)) >> 30) as i32;
+                        ((i64::from(scale) * i64::from(*inverse_depth) + (1 << 29)) >> 30) as i32;
                     let y = *horizon - offset;
                     // max then min: `clamp` would carry a panic path for a bound it cannot miss.
-                    *row = (y >> 8).max(0).min(*height) as i16;
+                    (y >> 8).max(0).min(*height) as i16
+                };
+                let mut rows = [row(scales[0]), row(scales[1]), 0, 0];
+                // A solid wall has no neighbour: its last two heights are never read.
+                if *neighbour {
+                    rows[2] = row(scales[2]);
+                    rows[3] = row(scales[3]);
                 }
                 // Past the wall's last column the sum may leave i32 (by at most 2^30); it is
                 // never read then.
@@ -658,7 +670,7 @@ mod row_tests {
             let projector = WallProjector::new(&viewport, a, b);
             let stepper = projector.stepper(start);
             let heights = heights.map(Fx24_8::from_bits);
-            let mut rows = WallRows::new(&viewport, heights, &stepper, stop - start);
+            let mut rows = WallRows::new(&viewport, heights, true, &stepper, stop - start);
             let mut exact = WallRows::Exact {
                 inverse_depth: stepper.inverse_depth,
                 inverse_depth_step: stepper.inverse_depth_step,
