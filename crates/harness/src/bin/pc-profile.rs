@@ -14,15 +14,20 @@ use std::process::ExitCode;
 use portalcast_harness::symbols::FunctionSymbols;
 use portalcast_harness::{Emulator, KeyScript};
 
-const USAGE: &str =
-    "usage: pc-profile ELF [--keys SCRIPTFILE] [--skip N] [--frames N] [--period CYCLES] [--top K] [--math-overlay]";
+const USAGE: &str = "usage: pc-profile ELF [--keys SCRIPTFILE] [--skip N] [--frames N] [--from TEXT] \
+[--until TEXT] [--per-line TEXT] [--period CYCLES] [--top K] [--math-overlay]";
 
 const HELP: &str = "\
 Profiles a GBA ELF (it needs the symbols; the .gba has none) headless in mGBA.
 
   --keys FILE       key script, as for pc-run (e.g. `0-3: R` starts the bench scene)
   --skip N          frames to run before sampling starts (default 60)
-  --frames N        frames to sample (default 120)
+  --frames N        frames to sample (default 120; with --until, the most to sample)
+  --from TEXT       start sampling after the frame in which a debug print contains TEXT
+                    (instead of after --skip frames)
+  --until TEXT      stop sampling after the frame in which a debug print contains TEXT
+  --per-line TEXT   give cycles per debug print that contains TEXT (e.g. one per frame the
+                    ROM draws) instead of per emulated frame
   --period CYCLES   cycles between samples (default 97, a prime)
   --top K           rows to print (default 40)
   --addresses K     also print the K most sampled instruction addresses (for llvm-addr2line)
@@ -38,7 +43,13 @@ struct Options {
     top: usize,
     addresses: usize,
     math_overlay: bool,
+    from: Option<String>,
+    until: Option<String>,
+    per_line: Option<String>,
 }
+
+/// Frames `--from` runs at most before giving up: minutes of emulated time.
+const MAX_FRAMES_TO_FROM: u32 = 36_000;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -72,6 +83,9 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         top: 40,
         addresses: 0,
         math_overlay: false,
+        from: None,
+        until: None,
+        per_line: None,
     };
     let mut elf = None;
     let mut args = args.iter();
@@ -95,6 +109,9 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                 options.addresses = number("--addresses", value("--addresses")?)? as usize
             }
             "--math-overlay" => options.math_overlay = true,
+            "--from" => options.from = Some(value("--from")?),
+            "--until" => options.until = Some(value("--until")?),
+            "--per-line" => options.per_line = Some(value("--per-line")?),
             flag if flag.starts_with("--") => return Err(format!("unknown option {flag}")),
             path if elf.is_none() => elf = Some(PathBuf::from(path)),
             extra => return Err(format!("unexpected argument `{extra}`")),
@@ -111,15 +128,43 @@ fn run(options: &Options) -> Result<(), String> {
         None => KeyScript::new(),
     };
     let mut emulator = Emulator::load(&options.elf).map_err(|error| error.to_string())?;
-    emulator
-        .run_script(&script, options.skip)
-        .map_err(|error| error.to_string())?;
-    emulator.profile_start(options.period);
-    for frame in options.skip..options.skip + options.frames {
-        emulator.set_keys(script.keys_at(frame));
+    let mut frame = 0;
+    let step = |emulator: &mut Emulator, frame: &mut u32| -> Result<Vec<String>, String> {
+        emulator.set_keys(script.keys_at(*frame));
         emulator.run_frame().map_err(|error| error.to_string())?;
+        *frame += 1;
+        Ok(emulator.drain_log().into_iter().map(|line| line.text).collect())
+    };
+    match &options.from {
+        Some(text) => loop {
+            if step(&mut emulator, &mut frame)?.iter().any(|line| line.contains(text)) {
+                break;
+            }
+            if frame >= MAX_FRAMES_TO_FROM {
+                return Err(format!("no debug print contained {text:?} in {frame} frames"));
+            }
+        },
+        None => {
+            while frame < options.skip {
+                step(&mut emulator, &mut frame)?;
+            }
+        }
+    }
+    emulator.profile_start(options.period);
+    let (first_sampled, mut counted_lines) = (frame, 0usize);
+    while frame - first_sampled < options.frames {
+        let lines = step(&mut emulator, &mut frame)?;
+        if let Some(text) = &options.per_line {
+            counted_lines += lines.iter().filter(|line| line.contains(text)).count();
+        }
+        if let Some(text) = &options.until {
+            if lines.iter().any(|line| line.contains(text)) {
+                break;
+            }
+        }
     }
     emulator.profile_stop();
+    let sampled_frames = frame - first_sampled;
     let samples = emulator.profile_take();
     let total = samples.len().max(1) as f64;
     let mut own: HashMap<&str, usize> = HashMap::new();
@@ -155,24 +200,33 @@ fn run(options: &Options) -> Result<(), String> {
             })
             .or_default() += 1;
     }
-    let cycles_per_frame =
-        samples.len() as f64 * f64::from(options.period) / f64::from(options.frames.max(1));
+    // What one row's cycles are counted per: an emulated frame, or a matching print.
+    let (per, unit) = match &options.per_line {
+        Some(text) if counted_lines == 0 => {
+            return Err(format!("no debug print contained {text:?} while sampling"))
+        }
+        Some(_) => (counted_lines as f64, "line"),
+        None => (f64::from(sampled_frames.max(1)), "frame"),
+    };
     println!(
-        "{} samples every {} cycles over {} frames (~{:.0} cycles a frame sampled)",
+        "{} samples every {} cycles over {} frames (~{:.0} cycles a {unit} sampled)",
         samples.len(),
         options.period,
-        options.frames,
-        cycles_per_frame
+        sampled_frames,
+        samples.len() as f64 * f64::from(options.period) / per
     );
+    if options.per_line.is_some() {
+        println!("{counted_lines} matching lines");
+    }
     let print = |title: &str, table: &HashMap<&str, usize>| {
         let mut rows: Vec<(&&str, &usize)> = table.iter().collect();
         rows.sort_by(|a, b| b.1.cmp(a.1).then(a.0.cmp(b.0)));
         println!("\n{title}");
         for (name, count) in rows.into_iter().take(options.top) {
             println!(
-                "{:6.2}% {:>9.0}/frame  {name}",
+                "{:6.2}% {:>9.0}/{unit}  {name}",
                 *count as f64 * 100.0 / total,
-                *count as f64 * f64::from(options.period) / f64::from(options.frames.max(1))
+                *count as f64 * f64::from(options.period) / per
             );
         }
     };
