@@ -5,10 +5,10 @@
 use portalcast_format::{Colormap, Sector, Texture};
 
 use super::light::light_row;
+use super::light::Lighting;
 use super::spans::{make_spans, Window};
 use super::surface::Surface;
 use super::view::View;
-use super::light::Lighting;
 use super::walk::{is_sky, mip_level_of_ratio, mip_ratio, FrameStats};
 use super::RenderAssets;
 use crate::math::{recip_small, Fx24_8};
@@ -82,6 +82,7 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
             sector.floor_texture,
         ),
     ];
+    canvas.set_halved_flats(view.halved_floors);
     for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
         canvas.set_surface(*surface);
         let plane = PlaneSpans::new(view, assets, sector, *height, *texture);
@@ -91,6 +92,7 @@ pub fn draw(job: PlaneJob, canvas: &mut impl Canvas) {
             plane.span(canvas, row, start, end);
         });
     }
+    canvas.set_halved_flats(false);
 }
 
 /// One plane's constants, set up once per visit and surface so that a span computes only what
