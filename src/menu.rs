@@ -67,7 +67,7 @@ impl Entry {
             Entry::Perspective => "PERSP",
             Entry::Textures => "TEX",
             Entry::Preprocessing => "PREP",
-            Entry::Floors => "FLOORS",
+            Entry::Floors => "FLOOR",
             Entry::Hud => "HUD",
         }
     }
