@@ -16,7 +16,7 @@ use crate::assets;
 use crate::frame::Resolution;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Perspective, Preprocessing, Settings, TexturePlacement};
+use crate::render::view::{Floors, Perspective, Preprocessing, Settings, TexturePlacement};
 use crate::render::walk::FrameStats;
 
 /// Frames measured per setting along the [`crate::flight`] path.
@@ -50,7 +50,8 @@ pub const fn default_settings(resolution: Resolution) -> Settings {
 }
 
 /// The settings measured at `resolution`: the defaults first, then each knob's other values,
-/// one knob at a time. A new knob is one `.chain(…)` line.
+/// one knob at a time. A new knob is one `.chain(…)` line. Half-width floors only where they are
+/// offered (240 wide): at 120 wide they would draw the same pixels as the defaults.
 pub fn knob_variants(resolution: Resolution) -> impl Iterator<Item = Settings> {
     let base = default_settings(resolution);
     core::iter::once(base)
@@ -73,6 +74,10 @@ pub fn knob_variants(resolution: Resolution) -> impl Iterator<Item = Settings> {
         }))
         .chain(core::iter::once(Settings {
             preprocessing: Preprocessing::On,
+            ..base
+        }))
+        .chain(Floors::offered_at(resolution).then_some(Settings {
+            floors: Floors::Half,
             ..base
         }))
 }
@@ -127,6 +132,7 @@ impl fmt::Display for SettingsLabel<'_> {
         write!(f, " persp={}", settings.perspective.label())?;
         write!(f, " tex={}", settings.textures.label())?;
         write!(f, " prep={}", settings.preprocessing.label())?;
+        write!(f, " floors={}", settings.floors.label())?;
         Ok(())
     }
 }
@@ -220,7 +226,7 @@ mod tests {
         assert_eq!(distinct.len(), labels.len(), "{labels:?}");
         assert_eq!(
             labels[0],
-            "map=bench res=120x80 lighting=depth persp=exact tex=ewram prep=off"
+            "map=bench res=120x80 lighting=depth persp=exact tex=ewram prep=off floors=full"
         );
         assert_eq!(guard_runs().count(), Resolution::ALL.len());
     }

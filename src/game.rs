@@ -13,8 +13,8 @@ use crate::player::input::{Buttons, Controls};
 use crate::player::Player;
 use crate::render::demo::DEMO_MAP;
 use crate::render::light::Lighting;
-use crate::render::view::TexturePlacement;
 use crate::render::view::{Camera, Settings};
+use crate::render::view::{Floors, TexturePlacement};
 
 /// The state of a game.
 #[derive(Clone, Copy, Debug)]
@@ -88,6 +88,7 @@ impl<'m> Game<'m> {
             perspective: self.settings.perspective,
             textures: self.settings.textures,
             preprocessing: self.settings.preprocessing,
+            floors: self.settings.floors,
         }
     }
 
@@ -140,6 +141,11 @@ impl<'m> Game<'m> {
                 for _ in 0..steps {
                     self.settings.resolution = self.settings.resolution.next();
                 }
+                // Half-width floors exist only at 240 wide: elsewhere the setting says full,
+                // as the pixels are.
+                if !Floors::offered_at(self.settings.resolution) {
+                    self.settings.floors = Floors::Full;
+                }
             }
             Entry::Lighting => {
                 const CYCLE: [Lighting; 3] =
@@ -169,6 +175,11 @@ impl<'m> Game<'m> {
             Entry::Perspective => self.settings.perspective = self.settings.perspective.next(),
             Entry::Preprocessing => {
                 self.settings.preprocessing = self.settings.preprocessing.next();
+            }
+            Entry::Floors => {
+                if Floors::offered_at(self.settings.resolution) {
+                    self.settings.floors = self.settings.floors.next();
+                }
             }
             Entry::Hud => self.hud = !self.hud,
             Entry::Textures => {

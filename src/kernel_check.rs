@@ -90,6 +90,9 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             step: PackedUv::pack(step(&mut rng), step(&mut rng), log2_side),
             colormap: if job % 3 == 1 { None } else { Some(&COLORMAP) },
         };
+        // Half the spans halved (every flat size, lit and unlit): at 240 wide they take the
+        // doubled kernels with a doubled step, and odd ends step back.
+        canvas.set_halved_flats((job / 4) % 2 == 1);
         canvas.flat(
             rng.below(height) as usize,
             x as usize,
@@ -97,4 +100,5 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             &flat,
         );
     }
+    canvas.set_halved_flats(false);
 }

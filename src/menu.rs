@@ -14,7 +14,7 @@ use crate::raster::flat::{FlatTexture, PackedUv};
 use crate::raster::Canvas;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Perspective, Preprocessing, TexturePlacement};
+use crate::render::view::{Floors, Perspective, Preprocessing, TexturePlacement};
 
 /// One line of the menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -35,12 +35,14 @@ pub enum Entry {
     Textures,
     /// The thesis' scene preprocessing (merged sector visits), on or off.
     Preprocessing,
+    /// Floors and ceilings at full or half horizontal resolution (240 wide only).
+    Floors,
     /// The heads-up display: frame rate and cycles of the last frame.
     Hud,
 }
 
 /// The menu's entries, top to bottom.
-pub const ENTRIES: [Entry; 9] = [
+pub const ENTRIES: [Entry; 10] = [
     Entry::Resolution,
     Entry::Lighting,
     Entry::Map,
@@ -49,6 +51,7 @@ pub const ENTRIES: [Entry; 9] = [
     Entry::Perspective,
     Entry::Textures,
     Entry::Preprocessing,
+    Entry::Floors,
     Entry::Hud,
 ];
 
@@ -64,6 +67,7 @@ impl Entry {
             Entry::Perspective => "PERSP",
             Entry::Textures => "TEX",
             Entry::Preprocessing => "PREP",
+            Entry::Floors => "FLOOR",
             Entry::Hud => "HUD",
         }
     }
@@ -90,6 +94,8 @@ pub struct Shown<'a> {
     pub textures: TexturePlacement,
     /// Scene preprocessing.
     pub preprocessing: Preprocessing,
+    /// Floor resolution.
+    pub floors: Floors,
 }
 
 impl Entry {
@@ -105,6 +111,9 @@ impl Entry {
             Entry::Perspective => shown.perspective.label(),
             Entry::Textures => shown.textures.label(),
             Entry::Preprocessing => shown.preprocessing.label(),
+            // Not offered at 120 wide, where floors already have one texel per halfword.
+            Entry::Floors if !Floors::offered_at(shown.resolution) => "-",
+            Entry::Floors => shown.floors.label(),
             Entry::Hud => on_off(shown.hud),
         }
     }

@@ -148,6 +148,7 @@ fn asm_kernels_write_the_same_vram_as_their_twins() {
                 &mut HostCanvas {
                     page: &mut twin,
                     resolution,
+                    halved_flats: false,
                 },
                 seed,
             );

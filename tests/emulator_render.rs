@@ -3,7 +3,8 @@
 //! shipped map, at every resolution and lighting setting, with the Start menu drawn over the
 //! view too. The host renders the pose the ROM logged (its `player` line) with the settings of
 //! its `render` line. Key presses drive the ROM: the menu switches the settings, the d-pad
-//! moves the player so the poses vary. Prints the ROM's cycles per frame.
+//! moves the player so the poses vary. Prints the ROM's cycles per frame. Every value of every
+//! knob is compared, half-width floors at 240×160 among them.
 
 mod common;
 
@@ -15,7 +16,7 @@ use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
 use portalcast::render::view::{
-    Camera, Perspective, Preprocessing, Settings, TexturePlacement, View,
+    Camera, Floors, Perspective, Preprocessing, Settings, TexturePlacement, View,
 };
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
@@ -30,6 +31,7 @@ struct Compared {
     perspective: Perspective,
     textures: TexturePlacement,
     preprocessing: Preprocessing,
+    floors: Floors,
     hud: bool,
     menu: bool,
     cycles: u64,
@@ -94,17 +96,20 @@ impl Checker {
         let perspective = Perspective::from_label(field(text, "persp").unwrap()).unwrap();
         let textures = TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap();
         let preprocessing = Preprocessing::from_label(field(text, "prep").unwrap()).unwrap();
+        let floors = Floors::from_label(field(text, "floors").unwrap()).unwrap();
         let settings = Settings {
             resolution,
             lighting,
             perspective,
             textures,
             preprocessing,
+            floors,
         };
         let mut page = HostPage::new();
         let mut canvas = HostCanvas {
             page: &mut page,
             resolution,
+            halved_flats: false,
         };
         self.renderer.render(
             &map,
@@ -128,6 +133,7 @@ impl Checker {
                 perspective,
                 textures,
                 preprocessing,
+                floors,
             };
             menu::draw(
                 &mut canvas,
@@ -179,6 +185,7 @@ impl Checker {
             perspective,
             textures,
             preprocessing,
+            floors,
             hud: player.hud,
             menu: menu_open,
             cycles: number(text, "cycles"),
@@ -255,11 +262,13 @@ fn rom_frames_are_identical_to_the_host_renderer() {
     }
     checker.hold_until_compared(right, 2, false);
     // The quality knobs at the end of the menu: perspective every 16, the textures from the
-    // cartridge, then the scene preprocessing.
-    let knob_phases: [&[Keys]; 4] = [
+    // cartridge, the scene preprocessing, then half-width floors, which need 240×160 (down
+    // from the preprocessing wraps to the resolution, two up is the floors).
+    let knob_phases: [&[Keys]; 5] = [
         &[start, down, down, down, right, start],
         &[start, down, right, start],
         &[start, down, right, start],
+        &[start, down, down, down, right, up, up, right, start],
         // The HUD on: its figures are this frame's cycles, which the host reads from the line.
         &[start, down, right, start],
     ];
@@ -293,6 +302,14 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         assert!(
             compared.iter().any(|c| c.preprocessing == preprocessing),
             "preprocessing {preprocessing:?} never compared"
+        );
+    }
+    for floors in Floors::ALL {
+        assert!(
+            compared
+                .iter()
+                .any(|c| c.floors == floors && c.resolution == Resolution::R240x160),
+            "floors {floors:?} never compared at 240x160"
         );
     }
     assert!(

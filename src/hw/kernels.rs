@@ -191,6 +191,8 @@ pub struct VramCanvas {
     /// False for the benchmark's set-up measurement: every call is prepared as usual, up to
     /// the kernel's argument block, and the kernel is not run.
     kernels: bool,
+    /// Flats at half horizontal resolution ([`Canvas::set_halved_flats`]).
+    halved_flats: bool,
 }
 
 impl VramCanvas {
@@ -200,6 +202,7 @@ impl VramCanvas {
             page,
             resolution,
             kernels: true,
+            halved_flats: false,
         }
     }
 
@@ -289,7 +292,14 @@ impl Canvas for VramCanvas {
             // Whole halfwords go to the pair kernel; a pixel sharing its halfword with a
             // neighbour outside the span is written here with the twin's arithmetic.
             if x % 2 == 1 {
-                let index = texture.indices(1).next().unwrap_or(0);
+                // Halved floors show the halfword's even pixel's texel, one step back
+                // (`u32::MAX` steps wrap to minus one).
+                let source = if self.halved_flats {
+                    texture.advanced(u32::MAX)
+                } else {
+                    texture
+                };
+                let index = source.indices(1).next().unwrap_or(0);
                 if self.kernels {
                     self.put_native(x, row, index);
                 }
@@ -312,9 +322,12 @@ impl Canvas for VramCanvas {
                 return;
             }
         }
-        let (pairs, dst_halfword, halfwords) = match self.resolution.pixels_per_halfword() {
-            1 => (0, x, count),
-            _ => (1, x / 2, count / 2),
+        // Halved floors at 240 wide: one texel per halfword, the even pixel's, so the doubled
+        // kernel (whose byte store VRAM mirrors into both bytes) steps two pixels at a time.
+        let (pairs, dst_halfword, halfwords, step) = match self.resolution.pixels_per_halfword() {
+            1 => (0, x, count, texture.step.0),
+            _ if self.halved_flats => (0, x / 2, count / 2, texture.step.0.wrapping_mul(2)),
+            _ => (1, x / 2, count / 2, texture.step.0),
         };
         let job = FlatJob {
             dst: self
@@ -323,7 +336,7 @@ impl Canvas for VramCanvas {
                 .wrapping_add(dst_halfword),
             texels: texture.texels.as_ptr(),
             pos: texture.pos.0,
-            step: texture.step.0,
+            step,
             count: halfwords as u32,
             colormap: colormap_pointer(texture.colormap),
         };
@@ -333,5 +346,9 @@ impl Canvas for VramCanvas {
             // texels and the kernel's index is below that by construction of its masks.
             unsafe { kernel(&job) };
         }
+    }
+
+    fn set_halved_flats(&mut self, halved: bool) {
+        self.halved_flats = halved;
     }
 }

@@ -69,6 +69,38 @@ impl FlatTexture<'_> {
         })
     }
 
+    /// The palette indices of `count` pixels from logical column `x`, left to right:
+    /// [`FlatTexture::indices`], or with `halved` (half-width floors at 240 wide,
+    /// [`crate::render::view::Floors::Half`]) each pixel shows the texel of its VRAM halfword's
+    /// even pixel, one step back for an odd column, so a halfword holds one texel twice. The
+    /// host canvases draw through this; the GBA's kernels step the even pixels by a doubled
+    /// step, which wraps to the same positions.
+    pub fn indices_from(
+        &self,
+        x: usize,
+        count: usize,
+        halved: bool,
+    ) -> impl Iterator<Item = u8> + '_ {
+        (x..x + count).scan(self.pos.0, move |pos, column| {
+            let back = if halved && column % 2 == 1 {
+                self.step.0
+            } else {
+                0
+            };
+            let at = pos.wrapping_sub(back);
+            *pos = pos.wrapping_add(self.step.0);
+            Some(self.index_at(PackedUv(at)))
+        })
+    }
+
+    fn index_at(&self, pos: PackedUv) -> u8 {
+        let texel = self.texels[pos.texel_index(self.log2_side)];
+        match self.colormap {
+            Some(colormap) => colormap[usize::from(texel)],
+            None => texel,
+        }
+    }
+
     /// The same span started `skip` pixels further right: what the GBA wrapper uses when it
     /// draws an odd leading pixel itself and hands the rest to the pair kernel.
     pub fn advanced(&self, skip: u32) -> Self {

@@ -68,6 +68,12 @@ pub trait Canvas {
     fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture);
     /// Draws `count` logical pixels of row `row`, from logical column `x` rightwards.
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture);
+    /// Whether the next flats are drawn at half horizontal resolution where a VRAM halfword
+    /// holds two pixels (240 wide; [`FlatTexture::indices_from`]'s rule, ignored at 120 wide).
+    /// The planes stage sets it around a plane's spans from the view; anything else (the menu,
+    /// the HUD) draws full. Per plane rather than per span, so the default costs no span a
+    /// thing.
+    fn set_halved_flats(&mut self, halved: bool);
     /// Names the surface the next calls draw: recorded by the host's coverage checks, ignored
     /// on the GBA.
     #[inline]
@@ -82,6 +88,8 @@ pub struct HostCanvas<'a> {
     pub page: &'a mut HostPage,
     /// The resolution drawn at.
     pub resolution: Resolution,
+    /// Flats at half horizontal resolution ([`Canvas::set_halved_flats`]).
+    pub halved_flats: bool,
 }
 
 impl HostCanvas<'_> {
@@ -110,8 +118,14 @@ impl Canvas for HostCanvas<'_> {
 
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
         assert!(row < self.resolution.height() && x + count <= self.resolution.width());
-        for (offset, index) in texture.indices(count).enumerate() {
+        let halved = self.halved_flats && self.resolution.pixels_per_halfword() == 2;
+        let indices = texture.indices_from(x, count, halved);
+        for (offset, index) in indices.enumerate() {
             self.put(x + offset, row, index);
         }
+    }
+
+    fn set_halved_flats(&mut self, halved: bool) {
+        self.halved_flats = halved;
     }
 }

@@ -84,6 +84,7 @@ impl PlaneJob<'_> {
                 sector.floor_texture,
             ),
         ];
+        canvas.set_halved_flats(view.halved_floors);
         for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
             canvas.set_surface(*surface);
             let plane = PlaneSpans::new(view, assets, sector, *height, *texture);
@@ -93,6 +94,7 @@ impl PlaneJob<'_> {
                 plane.span(canvas, row, start, end);
             });
         }
+        canvas.set_halved_flats(false);
     }
 }
 

@@ -39,6 +39,8 @@ pub struct Settings {
     pub textures: TexturePlacement,
     /// Whether the visits of a sector seen through neighbouring portals are merged first.
     pub preprocessing: Preprocessing,
+    /// Horizontal resolution of floors and ceilings under 240-wide walls.
+    pub floors: Floors,
 }
 
 /// The thesis' scene preprocessing knob (its §3.4, ×1.7 on its scenes): a first pass over the
@@ -118,6 +120,7 @@ impl Settings {
         perspective: Perspective::Exact,
         textures: TexturePlacement::Ewram,
         preprocessing: Preprocessing::Off,
+        floors: Floors::Full,
     };
 }
 
@@ -178,6 +181,55 @@ impl Perspective {
     }
 }
 
+/// The floor resolution knob: floors and ceilings at the walls' horizontal resolution, or at half
+/// of it under 240-wide walls (the Southpaw engine's trade in Doom II and Duke Nukem Advance on
+/// the GBA: full-width walls, half-width planes). Half, each VRAM halfword of a span shows one
+/// texel, its even pixel's, written to both bytes by the 120-wide span kernels with a doubled
+/// step: half the texel fetches and light look-ups of a plane pixel. The 120-wide resolutions
+/// already draw one texel per halfword, so there the knob changes nothing and is not offered: the
+/// menu shows `-` and the benchmark measures it at 240×160 only.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Floors {
+    /// One texel per pixel.
+    Full,
+    /// One texel per VRAM halfword (two pixels) at 240 wide.
+    Half,
+}
+
+impl Floors {
+    /// Both settings, full first.
+    pub const ALL: [Floors; 2] = [Floors::Full, Floors::Half];
+
+    /// The label the ROM prints and the benchmarks read.
+    pub const fn label(self) -> &'static str {
+        match self {
+            Floors::Full => "full",
+            Floors::Half => "half",
+        }
+    }
+
+    /// Parses [`Floors::label`].
+    pub fn from_label(label: &str) -> Option<Floors> {
+        Floors::ALL
+            .into_iter()
+            .find(|floors| floors.label() == label)
+    }
+
+    /// The other setting (the menu toggles it).
+    pub const fn next(self) -> Floors {
+        match self {
+            Floors::Full => Floors::Half,
+            Floors::Half => Floors::Full,
+        }
+    }
+
+    /// Whether `resolution` offers the half setting: only 240 wide has two pixels per halfword
+    /// to share a texel.
+    pub const fn offered_at(resolution: Resolution) -> bool {
+        resolution.pixels_per_halfword() == 2
+    }
+}
+
 /// Everything per frame that follows from the camera and the settings.
 #[derive(Clone, Copy, Debug)]
 pub struct View {
@@ -195,6 +247,8 @@ pub struct View {
     pub perspective: Perspective,
     /// Whether sector visits are planned and merged before drawing.
     pub preprocessing: Preprocessing,
+    /// Floors and ceilings at half the horizontal resolution (only ever true at 240 wide).
+    pub halved_floors: bool,
 }
 
 impl View {
@@ -212,6 +266,7 @@ impl View {
             lighting: settings.lighting,
             perspective: settings.perspective,
             preprocessing: settings.preprocessing,
+            halved_floors: settings.floors == Floors::Half && Floors::offered_at(resolution),
         }
     }
 }

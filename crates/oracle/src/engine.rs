@@ -30,6 +30,7 @@ pub struct RecordingCanvas {
     /// Palette index per logical pixel.
     pub indices: Vec<u8>,
     current: Surface,
+    halved_flats: bool,
 }
 
 impl RecordingCanvas {
@@ -43,6 +44,7 @@ impl RecordingCanvas {
             writes: vec![0; pixels],
             indices: vec![0; pixels],
             current: Surface::None,
+            halved_flats: false,
         }
     }
 
@@ -78,20 +80,27 @@ impl Canvas for RecordingCanvas {
         HostCanvas {
             page: &mut self.page,
             resolution: self.resolution,
+            halved_flats: false,
         }
         .column(x, row, count, texture);
     }
 
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
-        let indices: Vec<u8> = texture.indices(count).collect();
+        let halved = self.halved_flats && self.resolution.pixels_per_halfword() == 2;
+        let indices: Vec<u8> = texture.indices_from(x, count, halved).collect();
         for (offset, index) in indices.into_iter().enumerate() {
             self.record(x + offset, row, index);
         }
         HostCanvas {
             page: &mut self.page,
             resolution: self.resolution,
+            halved_flats: self.halved_flats,
         }
         .flat(row, x, count, texture);
+    }
+
+    fn set_halved_flats(&mut self, halved: bool) {
+        self.halved_flats = halved;
     }
 
     fn set_surface(&mut self, surface: Surface) {

@@ -14,7 +14,8 @@ use std::process::ExitCode;
 use portalcast_harness::symbols::FunctionSymbols;
 use portalcast_harness::{Emulator, KeyScript};
 
-const USAGE: &str = "usage: pc-profile ELF [--keys SCRIPTFILE] [--skip N] [--frames N] [--from TEXT] \
+const USAGE: &str =
+    "usage: pc-profile ELF [--keys SCRIPTFILE] [--skip N] [--frames N] [--from TEXT] \
 [--until TEXT] [--per-line TEXT] [--period CYCLES] [--top K] [--math-overlay]";
 
 const HELP: &str = "\
@@ -133,15 +134,24 @@ fn run(options: &Options) -> Result<(), String> {
         emulator.set_keys(script.keys_at(*frame));
         emulator.run_frame().map_err(|error| error.to_string())?;
         *frame += 1;
-        Ok(emulator.drain_log().into_iter().map(|line| line.text).collect())
+        Ok(emulator
+            .drain_log()
+            .into_iter()
+            .map(|line| line.text)
+            .collect())
     };
     match &options.from {
         Some(text) => loop {
-            if step(&mut emulator, &mut frame)?.iter().any(|line| line.contains(text)) {
+            if step(&mut emulator, &mut frame)?
+                .iter()
+                .any(|line| line.contains(text))
+            {
                 break;
             }
             if frame >= MAX_FRAMES_TO_FROM {
-                return Err(format!("no debug print contained {text:?} in {frame} frames"));
+                return Err(format!(
+                    "no debug print contained {text:?} in {frame} frames"
+                ));
             }
         },
         None => {

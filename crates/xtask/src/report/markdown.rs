@@ -425,7 +425,13 @@ fn knobs(doc: &mut String, measurements: &Measurements) {
          - `tex`: texels read from the EWRAM copy (`ewram`) or the cartridge (`rom`);\n\
          - `prep`: the thesis' scene preprocessing: `on` plans the portal walk first and draws \
            each sector once over the touching columns of its visits (`src/render/visits.rs`), \
-           `off` draws each visit as the walk reaches it.\n\n\
+           `off` draws each visit as the walk reaches it;\n\
+         - `floors`: floors and ceilings at the walls' horizontal resolution (`full`), or at \
+           half of it under 240-wide walls (`half`, the Southpaw engine's trade in Doom II and \
+           Duke Nukem Advance): each VRAM halfword of a span shows one texel, its even pixel's, \
+           drawn by the 120-wide span kernels with a doubled step. Measured at 240×160 only: at \
+           120 wide a halfword already holds one texel, so the value would change nothing and \
+           is not offered there (the menu shows `-`).\n\n\
          Which wall owns a column is always decided exactly, from cross products of each vertex \
          against the column rays, once per vertex and frame. A precision knob rounded each \
          vertex's screen `x` to 16.16 or 24.8 instead (the thesis' way missed sectors: this \
@@ -442,6 +448,108 @@ fn knobs(doc: &mut String, measurements: &Measurements) {
         );
         knob_table(doc, measurements, base);
     }
+    half_floors(doc, measurements);
+}
+
+/// The `floors=half` run against the defaults at 240×160, and both against the 30 fps target.
+fn half_floors(doc: &mut String, measurements: &Measurements) {
+    let resolution = "240x160";
+    let Some(base) = measurements
+        .guard()
+        .iter()
+        .find(|run| run.setting("res") == Some(resolution))
+    else {
+        return;
+    };
+    let Some(half) = measurements
+        .runs
+        .iter()
+        .find(|run| run.map == base.map && differences(base, run) == ["floors=half".to_string()])
+    else {
+        return;
+    };
+    let Some((target_fps, budget)) = target(resolution) else {
+        return;
+    };
+    let (full_summary, half_summary) = (base.summary(), half.summary());
+    let plane = |summary: &Summary| {
+        summary
+            .stage_means
+            .iter()
+            .find(|(stage, _)| stage == "plane")
+            .map_or(0, |(_, cycles)| *cycles)
+    };
+    let saved = |before: u64, after: u64| 100.0 * (before as f64 - after as f64) / before as f64;
+    let over = |cycles: u64| {
+        if cycles <= budget {
+            "within it".to_string()
+        } else {
+            format!(
+                "{} cycles over ({:.1}× the budget)",
+                group_digits(cycles - budget),
+                cycles as f64 / budget as f64
+            )
+        }
+    };
+    let accuracy = |run: &Run| {
+        measurements.accuracy_of(run).map_or_else(
+            || "— / —".to_string(),
+            |accuracy| {
+                format!(
+                    "{:.2} % / {:.3} %",
+                    accuracy.percent_of_pixels("texel_mismatches"),
+                    accuracy.percent_of_pixels("surface_mismatches")
+                )
+            },
+        )
+    };
+    let _ = write!(
+        doc,
+        "### Half-width floors at {name}\n\n\
+         At {name} the bench map's mean is {full_mean} cycles a frame with full-width floors and \
+         {half_mean} with `floors=half` ({mean_saved:.1} % less; max {full_max} → {half_max}, \
+         {max_saved:.1} % less), the plane stage {full_plane} → {half_plane} ({plane_saved:.1} % \
+         less: the span set-up per span stays, the kernels' texel work halves). Against the \
+         oracle, texel % / surface % go from {full_accuracy} to {half_accuracy}: every odd \
+         column of a floor repeats its left neighbour's texel.\n\n\
+         The {target_fps} fps target is {budget} cycles a frame. With full-width floors the mean \
+         is {full_gap} and the max {full_max_gap}; with half-width floors the mean is still \
+         {half_gap} and the max {half_max_gap}. {verdict}\n\n",
+        name = resolution_name(resolution),
+        full_mean = group_digits(full_summary.mean),
+        half_mean = group_digits(half_summary.mean),
+        mean_saved = saved(full_summary.mean, half_summary.mean),
+        full_max = group_digits(full_summary.max),
+        half_max = group_digits(half_summary.max),
+        max_saved = saved(full_summary.max, half_summary.max),
+        full_plane = group_digits(plane(&full_summary)),
+        half_plane = group_digits(plane(&half_summary)),
+        plane_saved = saved(plane(&full_summary), plane(&half_summary)),
+        full_accuracy = accuracy(base),
+        half_accuracy = accuracy(half),
+        budget = group_digits(budget),
+        full_gap = over(full_summary.mean),
+        full_max_gap = over(full_summary.max),
+        half_gap = over(half_summary.mean),
+        half_max_gap = over(half_summary.max),
+        verdict = if half_summary.max <= budget {
+            format!(
+                "Half-width floors reach {target_fps} fps at {} on every frame.",
+                resolution_name(resolution)
+            )
+        } else {
+            format!(
+                "Half-width floors do not reach {target_fps} fps at {} yet: every frame within the \
+                 target needs the slowest one {} cycles ({:.1} %) cheaper still, the mean {} \
+                 ({:.1} %).",
+                resolution_name(resolution),
+                group_digits(half_summary.max - budget),
+                saved(half_summary.max, budget),
+                group_digits(half_summary.mean.saturating_sub(budget)),
+                saved(half_summary.mean, budget).max(0.0),
+            )
+        },
+    );
 }
 
 fn maps(doc: &mut String, measurements: &Measurements) {
