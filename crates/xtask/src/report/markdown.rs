@@ -224,6 +224,9 @@ pub fn write(measurements: &Measurements) -> String {
     instruction_set(&mut doc, measurements);
     kernels(&mut doc, measurements);
     set_up(&mut doc, measurements);
+    // The section brings its own heading.
+    doc.push_str(&measurements.profile_section);
+    doc.push('\n');
     accuracy(&mut doc, measurements);
     sizes(&mut doc, measurements);
     // The section brings its own heading (`cargo bench-tick` prints the same block).

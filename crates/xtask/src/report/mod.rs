@@ -2,7 +2,8 @@
 //! from nothing. `--check` regenerates both in memory and fails if they differ from the
 //! committed files; `--update-baseline` also rewrites the regression guard's baseline.
 //!
-//! The steps: build the ROM (Thumb, and the ARM knob), run its bench scene, kernel check, the
+//! The steps: build the ROM (Thumb, and the ARM knob), run its bench scene, profile its default
+//! 120×80 frames (`pc-profile`), run its kernel check, the
 //! game tick's walk and the play demo (the log lines' cost) in the real mGBA core through `pc-run`, run the host's accuracy comparison (`bench-accuracy`
 //! in crates/oracle), read the sizes from the ELF, then draw and write. The engine is not a
 //! dependency of this crate (its commands must build before any setup, and must not rebuild
@@ -11,6 +12,7 @@
 
 mod chart;
 mod markdown;
+mod profile;
 mod sizes;
 
 use std::path::{Path, PathBuf};
@@ -74,6 +76,8 @@ pub struct Measurements {
     pub tick_section: String,
     /// The log lines' section (`cargo bench-logging` prints the same).
     pub logging_section: String,
+    /// Where the default 120×80 frames' cycles go (`pc-profile`).
+    pub profile_section: String,
 }
 
 impl Measurements {
@@ -140,6 +144,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         .ok_or_else(|| TaskError("the kernel check printed no cycles".to_string()))?;
     let boot = bench_log::numbers_of_line(&bench_log, BOOT_LINE).unwrap_or_default();
     let sizes = sizes::measure(&elf_path_for(EngineIsa::Arm), &gba)?;
+    let profile_section = profile::section(&profile::measure(&elf_path_for(EngineIsa::Arm))?);
 
     let thumb_gba = rom_path(EngineIsa::Thumb);
     build_rom_for(EngineIsa::Thumb, &thumb_gba)?;
@@ -170,6 +175,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         math_section: math_section(&gba)?,
         tick_section: portalcast_xtask::bench_tick::tick_section(&gba)?,
         logging_section: portalcast_xtask::bench_logging::logging_section(&gba)?,
+        profile_section,
     };
     let doc = markdown::write(&measurements);
     let chart = chart::draw(&chart_panels(&measurements))?;

@@ -1,0 +1,218 @@
+//! The report's profile: where the bench map's default 120×80 frames spend their cycles, by
+//! function, as `pc-profile` samples them in the real mGBA core. It is the "what is left" of
+//! the speed targets, measured rather than estimated.
+
+use std::path::Path;
+
+use portalcast_xtask::{rom_target_dir, TaskError, TaskResult};
+
+use super::{cargo, write_file};
+
+/// Where sampling starts: the first frame line of the bench map's default 120×80 run (the
+/// regression guard's first run).
+pub const FROM: &str = "bench map=bench res=120x80 lighting=depth persp=exact";
+/// Where it stops: the next run's first line.
+const UNTIL: &str = "res=120x160";
+/// Rows of the function table.
+const ROWS: usize = 16;
+
+/// One row of `pc-profile`'s tables: a name and its cycles per drawn frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// Function (or memory region) name; `?` is an address outside every symbol.
+    pub name: String,
+    /// Cycles per frame the ROM drew.
+    pub cycles: f64,
+}
+
+/// A parsed `pc-profile --per-line` output.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Profile {
+    /// Frames drawn while sampling.
+    pub frames: u64,
+    /// "where the CPU runs": memory region and instruction set.
+    pub regions: Vec<Row>,
+    /// "own cycles": each function's own samples.
+    pub functions: Vec<Row>,
+}
+
+/// Reads `pc-profile`'s output (run with `--per-line`).
+pub fn parse(output: &str) -> Result<Profile, String> {
+    let frames = output
+        .lines()
+        .find_map(|line| line.strip_suffix(" matching lines"))
+        .and_then(|count| count.trim().parse().ok())
+        .ok_or("pc-profile printed no count of matching lines")?;
+    let table = |title: &str| -> Result<Vec<Row>, String> {
+        let mut lines = output.lines().skip_while(|line| *line != title).skip(1);
+        let mut rows = Vec::new();
+        for line in lines.by_ref().take_while(|line| !line.trim().is_empty()) {
+            // `  12.34%    123456/line  name`
+            let mut fields = line.split_whitespace();
+            let (_share, cycles) = (fields.next(), fields.next());
+            let name = fields.collect::<Vec<_>>().join(" ");
+            let cycles = cycles
+                .and_then(|field| field.strip_suffix("/line"))
+                .and_then(|field| field.parse().ok())
+                .ok_or_else(|| format!("pc-profile: unreadable row {line:?}"))?;
+            rows.push(Row { name, cycles });
+        }
+        if rows.is_empty() {
+            return Err(format!("pc-profile printed no {title:?} table"));
+        }
+        Ok(rows)
+    };
+    Ok(Profile {
+        frames,
+        regions: table("where the CPU runs:")?,
+        functions: table("own cycles:")?,
+    })
+}
+
+/// Profiles the shipped ROM's ELF `elf` over the bench map's default 120×80 run.
+pub fn measure(elf: &Path) -> TaskResult<Profile> {
+    eprintln!(
+        "== profile of the bench map's default 120x80 run ({})",
+        elf.display()
+    );
+    let script = rom_target_dir().join("bench-profile.keys");
+    write_file(&script, b"0-3: R\n")?;
+    let output = cargo()
+        .args(["run", "--quiet", "--release", "-p", "portalcast-harness"])
+        .args(["--bin", "pc-profile", "--"])
+        .arg(elf)
+        .arg("--keys")
+        .arg(&script)
+        .args(["--from", FROM, "--until", UNTIL, "--per-line", FROM])
+        .args(["--frames", "100000", "--top", "1000"])
+        .output()
+        .map_err(|error| TaskError(format!("running pc-profile: {error}")))?;
+    if !output.status.success() {
+        return Err(TaskError(format!(
+            "pc-profile failed: {}",
+            String::from_utf8_lossy(&output.stderr).trim()
+        )));
+    }
+    parse(&String::from_utf8_lossy(&output.stdout)).map_err(TaskError)
+}
+
+/// The stage a function belongs to, for the summary line: by the module path in its name.
+fn stage(name: &str) -> &'static str {
+    if name.starts_with("pc_col") || name.starts_with("pc_flat") || name.starts_with("pc_span") {
+        "kernels"
+    } else if name.contains("render::planes")
+        || name.contains("as portalcast::raster::Canvas>::flat")
+    {
+        "plane set-up"
+    } else if name.contains("render::") || name.contains("as portalcast::raster::Canvas>::column") {
+        "wall set-up and the portal walk"
+    } else if name == "?" {
+        "BIOS (the wait for VBlank)"
+    } else {
+        "the bench scene, its log lines and the rest"
+    }
+}
+
+/// The section of docs/BENCH.md.
+pub fn section(profile: &Profile) -> String {
+    let mut doc = String::new();
+    doc.push_str("## Where the cycles go: a profile of the default 120×80 frames\n\n");
+    let total: f64 = profile.regions.iter().map(|row| row.cycles).sum();
+    doc.push_str(&format!(
+        "`pc-profile` (crates/harness) samples the CPU every 97 cycles in the same mGBA core while the bench scene draws the bench map at 120×80 with the default settings ({} frames, from the run's first frame line to the next run's), and names each sample by the ELF's function symbols. Cycles are per frame drawn, {:.0} in all with the wait for VBlank and the scene's own work around `Renderer::render` (its log line, the flight path). `cargo bench-report` runs it; by hand: `cargo run --release -p portalcast-harness --bin pc-profile -- target/rom/thumbv4t-none-eabi/rom/portalcast --keys FILE --from '{FROM}' --until {UNTIL} --per-line '{FROM}'` with `0-3: R` in FILE.\n\n",
+        profile.frames, total
+    ));
+    let mut stages: Vec<(&str, f64)> = Vec::new();
+    for row in &profile.functions {
+        let name = stage(&row.name);
+        match stages.iter_mut().find(|(stage, _)| *stage == name) {
+            Some((_, cycles)) => *cycles += row.cycles,
+            None => stages.push((name, row.cycles)),
+        }
+    }
+    stages.sort_by(|a, b| b.1.total_cmp(&a.1));
+    doc.push_str("| stage | cycles per frame | share |\n|---|---|---|\n");
+    for (name, cycles) in &stages {
+        doc.push_str(&format!(
+            "| {name} | {} | {:.1} % |\n",
+            thousands(*cycles),
+            cycles * 100.0 / total
+        ));
+    }
+    doc.push_str(&format!(
+        "\nThe {ROWS} functions with the most cycles of their own (inlined code counts where it was inlined: the wall column's whole loop is in `draw_walls`):\n\n| function | cycles per frame | share |\n|---|---|---|\n"
+    ));
+    for row in profile.functions.iter().take(ROWS) {
+        doc.push_str(&format!(
+            "| `{}` | {} | {:.1} % |\n",
+            row.name.replace('|', "\\|"),
+            thousands(row.cycles),
+            row.cycles * 100.0 / total
+        ));
+    }
+    doc
+}
+
+/// `1234567.8` as `1,234,568`.
+fn thousands(value: f64) -> String {
+    let digits = format!("{:.0}", value.max(0.0));
+    let mut out = String::new();
+    for (index, digit) in digits.chars().enumerate() {
+        if index > 0 && (digits.len() - index) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(digit);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const OUTPUT: &str = "\
+1000 samples every 97 cycles over 163 frames (~1000 cycles a line sampled)
+63 matching lines
+
+where the CPU runs:
+ 74.05%    538164/line  IWRAM ARM
+ 21.04%    152929/line  BIOS
+
+own cycles:
+ 34.70%    252182/line  <portalcast::render::walk::Renderer<W>>::draw_walls::<C>
+ 21.11%    153408/line  ?
+  5.58%     40569/line  pc_flat_dbl_lit_k6
+
+cycles with compiler helpers charged to their caller:
+ 34.70%    252182/line  x
+";
+
+    #[test]
+    fn reads_the_tables_and_the_frame_count() {
+        let profile = parse(OUTPUT).unwrap();
+        assert_eq!(profile.frames, 63);
+        assert_eq!(profile.regions.len(), 2);
+        assert_eq!(profile.functions[0].cycles, 252_182.0);
+        assert_eq!(profile.functions[1].name, "?");
+        assert_eq!(profile.functions.len(), 3);
+    }
+
+    #[test]
+    fn the_section_groups_functions_by_stage() {
+        let section = section(&parse(OUTPUT).unwrap());
+        assert!(
+            section.contains("| wall set-up and the portal walk | 252,182 |"),
+            "{section}"
+        );
+        assert!(section.contains("| kernels | 40,569 |"), "{section}");
+        assert!(
+            section.contains("| BIOS (the wait for VBlank) | 153,408 |"),
+            "{section}"
+        );
+    }
+
+    #[test]
+    fn output_without_a_line_count_is_refused() {
+        assert!(parse("own cycles:\n 1.0% 5/line f\n").is_err());
+    }
+}
