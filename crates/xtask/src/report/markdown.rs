@@ -316,10 +316,17 @@ fn headline(doc: &mut String, measurements: &Measurements) {
     if let Some(run) = unlit {
         let summary = run.summary();
         let ratio = summary.mean as f64 / thesis_cycles as f64;
-        let comparison = if ratio >= 1.0 {
-            format!("**{ratio:.1}× slower than the thesis**")
-        } else {
-            format!("**{:.1}× faster than the thesis**", 1.0 / ratio)
+        // Within 10 % a ratio to one decimal reads "1.0×": give the percentage instead.
+        let comparison = match ratio {
+            r if r >= 1.1 => format!("**{r:.1}× slower than the thesis**"),
+            r if r >= 1.0 => format!("**{:.1} % slower than the thesis**", (r - 1.0) * 100.0),
+            r if r > 1.0 / 1.1 => {
+                format!(
+                    "**{:.1} % faster than the thesis**",
+                    (1.0 / r - 1.0) * 100.0
+                )
+            }
+            r => format!("**{:.1}× faster than the thesis**", 1.0 / r),
         };
         let _ = write!(
             doc,

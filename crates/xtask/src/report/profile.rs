@@ -119,8 +119,9 @@ pub fn section(profile: &Profile) -> String {
     doc.push_str("## Where the cycles go: a profile of the default 120×80 frames\n\n");
     let total: f64 = profile.regions.iter().map(|row| row.cycles).sum();
     doc.push_str(&format!(
-        "`pc-profile` (crates/harness) samples the CPU every 97 cycles in the same mGBA core while the bench scene draws the bench map at 120×80 with the default settings ({} frames, from the run's first frame line to the next run's), and names each sample by the ELF's function symbols. Cycles are per frame drawn, {:.0} in all with the wait for VBlank and the scene's own work around `Renderer::render` (its log line, the flight path). `cargo bench-report` runs it; by hand: `cargo run --release -p portalcast-harness --bin pc-profile -- target/rom/thumbv4t-none-eabi/rom/portalcast --keys FILE --from '{FROM}' --until {UNTIL} --per-line '{FROM}'` with `0-3: R` in FILE.\n\n",
-        profile.frames, total
+        "`pc-profile` (crates/harness) samples the CPU every 97 cycles in the same mGBA core while the bench scene draws the bench map at 120×80 with the default settings ({} frames, from the run's first frame line to the next run's), and names each sample by the ELF's function symbols. Cycles are per frame drawn, {} in all with the wait for VBlank and the scene's own work around `Renderer::render` (its log line, the flight path). `cargo bench-report` runs it; by hand: `cargo run --release -p portalcast-harness --bin pc-profile -- target/rom/thumbv4t-none-eabi/rom/portalcast --keys FILE --from '{FROM}' --until {UNTIL} --per-line '{FROM}'` with `0-3: R` in FILE.\n\n",
+        profile.frames,
+        thousands(total)
     ));
     let mut stages: Vec<(&str, f64)> = Vec::new();
     for row in &profile.functions {
@@ -144,8 +145,12 @@ pub fn section(profile: &Profile) -> String {
     ));
     for row in profile.functions.iter().take(ROWS) {
         doc.push_str(&format!(
-            "| `{}` | {} | {:.1} % |\n",
-            row.name.replace('|', "\\|"),
+            "| {} | {} | {:.1} % |\n",
+            if row.name == "?" {
+                "outside every symbol: the BIOS's wait for VBlank".to_string()
+            } else {
+                format!("`{}`", row.name.replace('|', "\\|"))
+            },
             thousands(row.cycles),
             row.cycles * 100.0 / total
         ));
