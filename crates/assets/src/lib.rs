@@ -212,6 +212,15 @@ pub fn compile_map_str(
     text: &str,
     catalog: &Catalog,
 ) -> Result<CompiledMap, CompileErrors> {
+    compile_map_with_flats(file_name, text, catalog).map(|(map, _)| map)
+}
+
+/// [`compile_map_str`], also returning where the map uses each texture as a floor or ceiling.
+fn compile_map_with_flats(
+    file_name: &str,
+    text: &str,
+    catalog: &Catalog,
+) -> Result<(CompiledMap, Vec<map_build::FlatUse>), CompileErrors> {
     let path = Path::new(file_name);
     let stem = path
         .file_stem()
@@ -291,6 +300,40 @@ impl Usage {
     }
 }
 
+/// Refuses a texture used as a floor or ceiling unless it is square: the span kernels (and
+/// their host twins) index a flat as a `side × side` tile, so a 32×64 flat would be read past
+/// its texels (`FLAT_LOG2_SIDES` in `src/raster/flat.rs`). Each use is reported where the map
+/// names the texture. Walls take any power-of-two rectangle.
+fn check_flat_shapes(
+    texture_images: &[(usize, &String, Option<RgbaImage>)],
+    flat_uses: &[(&Path, map_build::FlatUse)],
+    errors: &mut Vec<Diagnostic>,
+) {
+    for (map_path, used) in flat_uses {
+        let Some((_, name, Some(image))) = texture_images
+            .iter()
+            .find(|(index, _, _)| *index == usize::from(used.texture))
+        else {
+            continue;
+        };
+        let (width, height) = image.dimensions();
+        if width == height {
+            continue;
+        }
+        let side = width.min(height);
+        errors.push(Diagnostic::new(
+            map_path,
+            (
+                used.loc,
+                format!(
+                    "{} texture '{name}' is {width}x{height}; floors and ceilings need a square texture: resize {TEXTURES_DIR}/{name}.png to {side}x{side} (or another square power of two), or use a square texture here",
+                    used.what
+                ),
+            ),
+        ));
+    }
+}
+
 /// Compiles the asset directory `dir`: `textures/*.png`, `sprites/*.png`, `sky/sky.png` and
 /// `maps/*.map`, `maps/*.grid` (see `docs/MAP_FORMAT.md`). Only what some map uses is kept.
 /// Returns every error found, sorted by file and position.
@@ -344,6 +387,8 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
     }
 
     let mut maps: Vec<CompiledMap> = Vec::new();
+    // Each map's floor and ceiling textures with their places, checked once the images load.
+    let mut flat_uses: Vec<(&Path, map_build::FlatUse)> = Vec::new();
     for path in &map_files {
         files_read.push(path.clone());
         let text = match std::fs::read(path).map(String::from_utf8) {
@@ -366,8 +411,9 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
                 continue;
             }
         };
-        match compile_map_str(&path.to_string_lossy(), &text, &catalog) {
-            Ok(map) => {
+        match compile_map_with_flats(&path.to_string_lossy(), &text, &catalog) {
+            Ok((map, uses)) => {
+                flat_uses.extend(uses.into_iter().map(|used| (path.as_path(), used)));
                 if let Some(first) = maps.iter().find(|m| m.name == map.name) {
                     errors.push(Diagnostic::new(
                         path,
@@ -421,6 +467,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             left_out.push(format!("{SPRITES_DIR}/{name}.png"));
         }
     }
+    check_flat_shapes(&texture_images, &flat_uses, &mut errors);
     let sky_image = if usage.sky {
         load(&sky_path, images::check_sky, &mut errors)
     } else {

@@ -149,12 +149,26 @@ struct OrientedWall<'s> {
     source: &'s SourceWall,
 }
 
-/// Checks `source` and builds its tables. Texture and sprite indices refer to `catalog`.
+/// A texture a map uses as a floor or ceiling, and where: the images are checked against this
+/// use once they are loaded ([`crate::compile_dir`]), because the span kernels need a square
+/// flat while a wall may be any power-of-two rectangle.
+#[derive(Clone, Debug)]
+pub(crate) struct FlatUse {
+    /// Index in the catalog's texture list.
+    pub texture: u16,
+    /// Where the map names it.
+    pub loc: Loc,
+    /// "floor" or "ceiling".
+    pub what: &'static str,
+}
+
+/// Checks `source` and builds its tables. Texture and sprite indices refer to `catalog`. Also
+/// returns every use of a texture as a floor or ceiling, with its place in the file.
 pub(crate) fn build(
     name: &str,
     source: &SourceMap,
     catalog: &Catalog,
-) -> Result<CompiledMap, Vec<Located>> {
+) -> Result<(CompiledMap, Vec<FlatUse>), Vec<Located>> {
     let mut errors = Vec::new();
     check_values(source, catalog, &mut errors);
     if !errors.is_empty() {
@@ -191,14 +205,38 @@ pub(crate) fn build(
     if !errors.is_empty() {
         return Err(errors);
     }
-    Ok(tables(
-        name,
-        source,
-        catalog,
-        &outlines,
-        player_sector,
-        &thing_sectors,
+    Ok((
+        tables(
+            name,
+            source,
+            catalog,
+            &outlines,
+            player_sector,
+            &thing_sectors,
+        ),
+        flat_uses(source, catalog),
     ))
+}
+
+/// Every floor and ceiling texture of the map with the place that names it (a grid's sectors of
+/// one kind share their legend line's place; the caller's sorted diagnostics drop repeats).
+fn flat_uses(source: &SourceMap, catalog: &Catalog) -> Vec<FlatUse> {
+    let mut ignore = Vec::new();
+    let mut uses = Vec::new();
+    for sector in &source.sectors {
+        let ceiling = match &sector.ceiling {
+            CeilingSource::Texture(name) => Some(("ceiling", name)),
+            CeilingSource::Sky => None,
+        };
+        for (what, name) in std::iter::once(("floor", &sector.floor_texture)).chain(ceiling) {
+            uses.push(FlatUse {
+                texture: catalog.texture(name, &mut ignore),
+                loc: name.loc,
+                what,
+            });
+        }
+    }
+    uses
 }
 
 fn point(source: &SourceMap, vertex: usize) -> Point {

@@ -95,6 +95,48 @@ fn undecodable_png() {
 }
 
 #[test]
+fn non_square_flat_is_refused_where_the_map_uses_it() {
+    // The span kernels read a flat as a side x side tile: a 32x64 floor used to compile and
+    // then fail the flat kernels' assertion on the first frame (issue 16, defect 1).
+    let scratch = valid_assets("flat_shape", "stone");
+    scratch.png("textures/stone.png", &pattern(32, 64));
+    let errors = assert_error(
+        &scratch,
+        "maps/room.map",
+        5,
+        39,
+        "floor texture 'stone' is 32x64; floors and ceilings need a square texture: resize textures/stone.png to 32x32",
+    );
+    assert_error(
+        &scratch,
+        "maps/room.map",
+        5,
+        54,
+        "ceiling texture 'stone' is 32x64",
+    );
+    assert_eq!(errors.0.len(), 2, "{errors}");
+    // The same texture on a wall only is fine: walls take any power-of-two rectangle.
+    scratch.png("textures/brick.png", &pattern(8, 64));
+    scratch.png("textures/stone.png", &pattern(64, 64));
+    compile_dir(&scratch.dir).unwrap_or_else(|e| panic!("{e}"));
+    // A grid map reports it at its legend line, once for all the sectors of that kind.
+    scratch.png("textures/stone.png", &pattern(64, 16));
+    std::fs::remove_file(scratch.path("maps/room.map")).expect("remove map");
+    scratch.write(
+        "maps/cells.grid",
+        b"solid # tex=brick\nopen . floor=0 ceil=64 floor_tex=stone ceil_tex=sky\nplayer @ on=.\ngrid\n#####\n#@#.#\n#...#\n#####\n",
+    );
+    let errors = assert_error(
+        &scratch,
+        "maps/cells.grid",
+        2,
+        34,
+        "floor texture 'stone' is 64x16",
+    );
+    assert_eq!(errors.0.len(), 1, "{errors}");
+}
+
+#[test]
 fn sky_checks() {
     let scratch = valid_assets("sky", "sky");
     scratch.png("sky/sky.png", &pattern(100, 16));
