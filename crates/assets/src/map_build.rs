@@ -194,6 +194,9 @@ pub(crate) fn build(
         "player start",
         &mut errors,
     );
+    if player_sector != NO_PORTAL {
+        check_start_clearance(source, &outlines, &source.player, &mut errors);
+    }
     let thing_sectors: Vec<u16> = source
         .things
         .iter()
@@ -674,6 +677,77 @@ fn fx8(value: i64) -> String {
     text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
+/// How far the player's start must be from every solid wall, in world units: the player's
+/// radius. The game's collision keeps the eye this far from solid walls once it moves, and the
+/// renderer is exact only there: an eye within a 256th of a unit of a corner is drawn up to 29 %
+/// wrong (docs/RELIABILITY.md, "Known faults"), and the first frame is drawn from the start
+/// itself. docs/MAP_FORMAT.md states the same 16.
+pub(crate) const START_CLEARANCE: i64 = 16;
+
+/// Refuses a player start closer than [`START_CLEARANCE`] to a solid wall of any sector (a
+/// wall of a neighbour that near would push the player's disc too). Portal lines are not
+/// walls: the player crosses them. Exact integer arithmetic on the start's 24.8 position.
+fn check_start_clearance(
+    source: &SourceMap,
+    outlines: &[Outline<'_>],
+    place: &SourcePlace,
+    errors: &mut Vec<Located>,
+) {
+    let p = (i128::from(place.x_fx8.value), i128::from(place.y_fx8.value));
+    let clearance = i128::from(START_CLEARANCE) * 256;
+    let mut nearest: Option<(f64, &OrientedWall<'_>)> = None;
+    for wall in outlines.iter().flat_map(|o| &o.walls) {
+        if wall.source.portal.is_some() {
+            continue;
+        }
+        let scaled = |vertex: usize| {
+            let (x, y) = point(source, vertex);
+            (i128::from(x) * 256, i128::from(y) * 256)
+        };
+        let (a, b) = (scaled(wall.start), scaled(wall.end));
+        let (ab, ap, bp) = (
+            (b.0 - a.0, b.1 - a.1),
+            (p.0 - a.0, p.1 - a.1),
+            (p.0 - b.0, p.1 - b.1),
+        );
+        let along = ab.0 * ap.0 + ab.1 * ap.1;
+        let length_squared = ab.0 * ab.0 + ab.1 * ab.1;
+        // Squared distance to the segment as a fraction `numerator / denominator`.
+        let (numerator, denominator) = if along <= 0 {
+            (ap.0 * ap.0 + ap.1 * ap.1, 1)
+        } else if along >= length_squared {
+            (bp.0 * bp.0 + bp.1 * bp.1, 1)
+        } else {
+            let cross = ab.0 * ap.1 - ab.1 * ap.0;
+            (cross * cross, length_squared)
+        };
+        if numerator < clearance * clearance * denominator {
+            let distance = (numerator as f64 / denominator as f64).sqrt() / 256.0;
+            if nearest.is_none_or(|(d, _)| distance < d) {
+                nearest = Some((distance, wall));
+            }
+        }
+    }
+    if let Some((distance, wall)) = nearest {
+        let label = |vertex: usize| source.vertices[vertex].label.as_str();
+        // Rounded up to a 256th, the positions' resolution, so moving that far is enough.
+        let short = (START_CLEARANCE as f64 - distance) * 256.0;
+        errors.push((
+            place.loc,
+            format!(
+                "player start at ({}, {}) is {} from the solid wall from {} to {} (line {}); move it at least {} further from that wall: the start must be {START_CLEARANCE} or more from every solid wall (the player's radius)",
+                fx8(place.x_fx8.value),
+                fx8(place.y_fx8.value),
+                fx8((distance * 256.0).floor() as i64),
+                label(wall.start),
+                label(wall.end),
+                wall.source.loc.line,
+                fx8(short.ceil() as i64),
+            ),
+        ));
+    }
+}
+
 /// Finds the one sector strictly containing `place`.
 fn locate(
     source: &SourceMap,
@@ -702,12 +776,17 @@ fn locate(
         }
     }
     let at = format!("({}, {})", fx8(p.0), fx8(p.1));
+    let off_the_line = if what == "player start" {
+        format!("move it at least {START_CLEARANCE} from every solid wall")
+    } else {
+        "move it off the line".to_string()
+    };
     match (inside.as_slice(), on_line.as_slice()) {
         ([index], []) => return u16::try_from(*index).unwrap_or(NO_PORTAL),
         (_, [index, ..]) => errors.push((
             place.loc,
             format!(
-                "{what} at {at} lies on a wall line of {}; move it off the line (e.g. by .5)",
+                "{what} at {at} lies on a wall line of {}; {off_the_line}",
                 source.sectors[*index].label
             ),
         )),

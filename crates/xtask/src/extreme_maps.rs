@@ -310,6 +310,18 @@ fn chain() -> ExtremeMap {
                 .light((64 + (i * 37) % 160) as u8),
         );
     }
+    // A lead-in behind the first sector, last so the chain's sector numbers stay 0..=64: it
+    // turns the wall 8 units behind the start into a portal, and the compiler keeps a start 16
+    // from solid walls.
+    builder.sector(
+        SectorSpec::new(
+            rectangle(-32, 0, 0, 128, &[]),
+            0,
+            Ceiling::Texture(256, "ceiling"),
+        )
+        .textures("wood", "stone")
+        .light(100),
+    );
     ExtremeMap {
         name: "chain",
         extreme: "the deepest portal chain (65 sectors in view, depth 64)",
@@ -324,7 +336,7 @@ fn corners() -> ExtremeMap {
     let mut builder = MapBuilder::new(
         "Coordinates at the declared limits: the square of +-8192, cut by a diagonal portal\n\
          23170 units long; the player looks from one corner to the opposite one.",
-        ((-l + 2) * 256, (l - 2) * 256, 315),
+        ((-l + 16) * 256, (l - 16) * 256, 315),
     );
     builder.sector(
         SectorSpec::new(
@@ -353,7 +365,7 @@ fn longwall() -> ExtremeMap {
     let mut builder = MapBuilder::new(
         "The longest solid wall: the diagonal of the limits square, 23170 units, with the\n\
          largest texture offsets.",
-        ((-l + 2) * 256, (-l + 2) * 256, 45),
+        ((-l + 16) * 256, (-l + 16) * 256, 45),
     );
     let mut spec = SectorSpec::new(
         vec![(-l, -l), (l, -l), (-l, l)],
@@ -595,7 +607,7 @@ fn long() -> ExtremeMap {
     let l = LIMIT;
     let mut builder = MapBuilder::new(
         "A long corridor seen end to end: from x = -8192 to 8192, 256 units wide, in 16 sectors.",
-        ((-l + 2) * 256, 0, 0),
+        ((-l + 16) * 256, 0, 0),
     );
     for i in 0..16 {
         let x0 = -l + 1024 * i;
