@@ -300,28 +300,19 @@ impl MapBuilder {
 fn chain() -> ExtremeMap {
     let mut builder = MapBuilder::new(
         "The deepest portal chain the renderer draws whole: 65 sectors in a row, seen end to end.",
-        (8 * 256, 64 * 256, 0),
+        (0, 64 * 256, 0),
     );
     for i in 0..CHAIN_SECTORS as i32 {
         let ceiling = Ceiling::Texture(256 - 8 * (i % 2), "ceiling");
+        // The first sector reaches back to x = -16: the compiler keeps a start 16 from solid
+        // walls (and a sector behind would make the chain deeper than the renderer follows).
+        let x0 = if i == 0 { -16 } else { 16 * i };
         builder.sector(
-            SectorSpec::new(rectangle(16 * i, 0, 16 * i + 16, 128, &[]), 2 * i, ceiling)
+            SectorSpec::new(rectangle(x0, 0, 16 * i + 16, 128, &[]), 2 * i, ceiling)
                 .textures(if i % 2 == 0 { "tiles" } else { "wood" }, "stone")
                 .light((64 + (i * 37) % 160) as u8),
         );
     }
-    // A lead-in behind the first sector, last so the chain's sector numbers stay 0..=64: it
-    // turns the wall 8 units behind the start into a portal, and the compiler keeps a start 16
-    // from solid walls.
-    builder.sector(
-        SectorSpec::new(
-            rectangle(-32, 0, 0, 128, &[]),
-            0,
-            Ceiling::Texture(256, "ceiling"),
-        )
-        .textures("wood", "stone")
-        .light(100),
-    );
     ExtremeMap {
         name: "chain",
         extreme: "the deepest portal chain (65 sectors in view, depth 64)",
