@@ -188,7 +188,10 @@ fn the_kernel_check_stack_stays_in_its_reserve() {
         .run_frames(40)
         .unwrap_or_else(|error| panic!("{error}"));
     let lines = lines_starting(&emulator, "stack ");
-    assert!(lines.len() >= 2, "a stack line after the measurement and a round: {lines:?}");
+    assert!(
+        lines.len() >= 2,
+        "a stack line after the measurement and a round: {lines:?}"
+    );
     for line in &lines {
         let (used, room, reserve) = (
             number(line, "used"),
