@@ -227,7 +227,10 @@ fn compile_map_with_flats(
         .and_then(|s| s.to_str())
         .unwrap_or("map")
         .to_string();
-    let parsed = match path.extension().and_then(|e| e.to_str()) {
+    // A byte-order mark some editors put first is not part of the map (columns count from
+    // after it).
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let parsed = match map_format(path) {
         Some(GRID_MAP_EXTENSION) => map_grid::parse(text),
         Some(TEXT_MAP_EXTENSION) => map_text::parse(text),
         _ => Err(vec![(
@@ -238,6 +241,30 @@ fn compile_map_with_flats(
     parsed
         .and_then(|source| map_build::build(&stem, &source, catalog))
         .map_err(|errors| CompileErrors::in_file(path, errors))
+}
+
+/// The map format of `path` by its extension, in any case (`ROOM.MAP` is a text map):
+/// [`TEXT_MAP_EXTENSION`], [`GRID_MAP_EXTENSION`] or none.
+fn map_format(path: &Path) -> Option<&'static str> {
+    let extension = path.extension()?.to_str()?;
+    [TEXT_MAP_EXTENSION, GRID_MAP_EXTENSION]
+        .into_iter()
+        .find(|known| extension.eq_ignore_ascii_case(known))
+}
+
+/// Where the first byte that is not UTF-8 lies in `bytes` (1-based line and character column),
+/// and the byte.
+fn first_bad_byte(bytes: &[u8], error: &std::str::Utf8Error) -> (Loc, u8) {
+    let valid = &bytes[..error.valid_up_to()];
+    // The prefix is valid UTF-8 by the error's own account.
+    let text = std::str::from_utf8(valid).unwrap_or_default();
+    let line = text.matches('\n').count() + 1;
+    let column = text.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    let loc = Loc::new(
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(column).unwrap_or(u32::MAX),
+    );
+    (loc, bytes[error.valid_up_to()])
 }
 
 /// Names of the `*.png` files of a folder (missing folder: none), with their paths.
@@ -338,6 +365,20 @@ fn check_flat_shapes(
 /// `maps/*.map`, `maps/*.grid` (see `docs/MAP_FORMAT.md`). Only what some map uses is kept.
 /// Returns every error found, sorted by file and position.
 pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
+    if !dir.is_dir() {
+        let what = if dir.exists() {
+            "is not a directory"
+        } else {
+            "does not exist"
+        };
+        return Err(CompileErrors(vec![Diagnostic::new(
+            dir,
+            (
+                Loc::START,
+                format!("the asset directory {what}; check the path (PORTALCAST_ASSETS, if set) or create it with {MAPS_DIR}/ and {TEXTURES_DIR}/ inside"),
+            ),
+        )]));
+    }
     let mut errors: Vec<Diagnostic> = Vec::new();
     let mut files_read = vec![dir.to_path_buf()];
     let textures_dir = dir.join(TEXTURES_DIR);
@@ -369,17 +410,17 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             entries
                 .flatten()
                 .map(|e| e.path())
-                .filter(|p| {
-                    matches!(
-                        p.extension().and_then(|e| e.to_str()),
-                        Some(TEXT_MAP_EXTENSION | GRID_MAP_EXTENSION)
-                    )
-                })
+                .filter(|p| map_format(p).is_some())
                 .collect()
         })
         .unwrap_or_default();
     map_files.sort();
-    if map_files.is_empty() {
+    if !maps_dir.is_dir() {
+        errors.push(Diagnostic::new(
+            &maps_dir,
+            (Loc::START, format!("the asset directory has no {MAPS_DIR} folder; create it and put at least one *.{TEXT_MAP_EXTENSION} or *.{GRID_MAP_EXTENSION} file in it")),
+        ));
+    } else if map_files.is_empty() {
         errors.push(Diagnostic::new(
             &maps_dir,
             (Loc::START, format!("no maps found; add at least one *.{TEXT_MAP_EXTENSION} or *.{GRID_MAP_EXTENSION} file to this folder")),
@@ -393,12 +434,13 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
         files_read.push(path.clone());
         let text = match std::fs::read(path).map(String::from_utf8) {
             Ok(Ok(text)) => text,
-            Ok(Err(_)) => {
+            Ok(Err(error)) => {
+                let (loc, byte) = first_bad_byte(error.as_bytes(), &error.utf8_error());
                 errors.push(Diagnostic::new(
                     path,
                     (
-                        Loc::START,
-                        "the file is not UTF-8 text; save it as UTF-8".to_string(),
+                        loc,
+                        format!("byte 0x{byte:02X} is not UTF-8 text; save the file as UTF-8 (or remove the character here)"),
                     ),
                 ));
                 continue;

@@ -173,6 +173,13 @@ pub(crate) fn build(
 ) -> Result<(CompiledMap, Vec<FlatUse>), Vec<Located>> {
     let mut errors = Vec::new();
     check_values(source, catalog, &mut errors);
+    if source.sectors.is_empty() {
+        // Said so, rather than "the player start is in no sector".
+        errors.push((
+            Loc::START,
+            "the map has no sectors; add at least one `sector` line followed by its walls (docs/MAP_FORMAT.md)".to_string(),
+        ));
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
