@@ -115,7 +115,7 @@ impl WindowStore for VramWindows {
                 WINDOWS_VRAM + core::mem::size_of::<ColumnWindows>()
                     <= FREE_OBJ_VRAM + FREE_OBJ_VRAM_BYTES
             );
-            assert!(WINDOWS_VRAM % core::mem::align_of::<ColumnWindows>() == 0);
+            assert!(WINDOWS_VRAM.is_multiple_of(core::mem::align_of::<ColumnWindows>()));
         };
         // SAFETY: the address is in the free OBJ VRAM (asserted above), used for nothing else,
         // aligned, and holds a valid `ColumnWindows` (`renderer_in_ewram` wrote one before
