@@ -688,10 +688,10 @@ fn fx8(value: i64) -> String {
 }
 
 /// How far the player's start must be from every solid wall, in world units: the player's
-/// radius. The game's collision keeps the eye this far from solid walls once it moves, and the
-/// renderer is exact only there: an eye within a 256th of a unit of a corner is drawn up to 29 %
-/// wrong (docs/RELIABILITY.md, "Known faults"), and the first frame is drawn from the start
-/// itself. docs/MAP_FORMAT.md states the same 16.
+/// radius. The game's collision keeps the eye this far from solid walls once it moves, but the
+/// first frame is drawn from the start itself, and nearer a wall the renderer has known faults
+/// (an eye within a 256th of a unit of a corner is drawn up to 29 % wrong: docs/RELIABILITY.md,
+/// "Known faults"). docs/MAP_FORMAT.md states the same 16.
 pub(crate) const START_CLEARANCE: i64 = 16;
 
 /// Refuses a player start closer than [`START_CLEARANCE`] to a solid wall of any sector (a
