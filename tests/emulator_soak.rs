@@ -11,8 +11,9 @@
 //!   or a game error: byte stores to OAM or OBJ VRAM, bad memory accesses, …;
 //! - every `player` line the same pose and state as the host's replay at that tick;
 //! - the page on screen unchanged since the last flip: the renderer wrote only the back page;
-//! - guard regions unchanged: the VRAM between and after the two pages, OBJ VRAM, OAM, the
-//!   palette, and the EWRAM above what the ROM uses;
+//! - guard regions unchanged: the VRAM between and after the two pages, the colormap in OBJ VRAM
+//!   and the OBJ VRAM after the column windows, OAM, the palette, and the EWRAM above what the
+//!   ROM uses;
 //! - every frame's cycles within [`FRAME_CYCLES_BOUND`];
 //! - the stack: the ROM's `stack used=… room=…` lines, and the paint left in IWRAM read by the
 //!   host at the end, below the room the linker left.
@@ -30,6 +31,7 @@ use common::{boot, field, number, FRAME_LINES_HOLD, FRAME_LINES_KEY};
 use portalcast::game::Game;
 use portalcast::menu::{Entry, ENTRIES};
 use portalcast::player::input::Buttons;
+use portalcast::render::walk::ColumnWindows;
 use portalcast::stack::{IWRAM_START, STACK_PAINT, STACK_TOP};
 use portalcast_harness::{Emulator, KeyScript, Keys, LogLevel};
 // SplitMix64, seeded: the soak is the same run every time.
@@ -55,7 +57,7 @@ const PAGE_BYTES: u32 = 240 * 160;
 const PAGE_ADDRESSES: [u32; 2] = [0x0600_0000, 0x0600_A000];
 /// Memory the game never writes once it runs, as (what, address, bytes): checked against the
 /// contents seen when the game starts.
-const GUARDED: [(&str, u32, u32); 5] = [
+const GUARDED: [(&str, u32, u32); 6] = [
     (
         "VRAM between the pages",
         0x0600_0000 + PAGE_BYTES,
@@ -66,10 +68,21 @@ const GUARDED: [(&str, u32, u32); 5] = [
         0x0600_A000 + PAGE_BYTES,
         0xA000 - PAGE_BYTES,
     ),
-    ("OBJ VRAM", 0x0601_4000, 0x4000),
+    // The free OBJ VRAM holds the colormap, copied once at boot, then the renderer's column
+    // windows (`hw::memory::VramWindows`), which every frame writes; the rest stays untouched.
+    ("OBJ VRAM: the colormap", OBJ_VRAM, COLORMAP_BYTES),
+    (
+        "OBJ VRAM after the column windows",
+        OBJ_VRAM + COLORMAP_BYTES + WINDOWS_BYTES,
+        0x4000 - COLORMAP_BYTES - WINDOWS_BYTES,
+    ),
     ("OAM", 0x0700_0000, 0x400),
     ("the palette", 0x0500_0000, 0x400),
 ];
+/// The OBJ tile VRAM Mode 4 leaves free, and what the ROM keeps at its start.
+const OBJ_VRAM: u32 = 0x0601_4000;
+const COLORMAP_BYTES: u32 = core::mem::size_of::<portalcast_format::Colormap>() as u32;
+const WINDOWS_BYTES: u32 = core::mem::size_of::<ColumnWindows>() as u32;
 /// Guard regions are compared every this many frames (reading them costs host time).
 const GUARD_CHECK_FRAMES: u32 = 16;
 const EWRAM_START: u32 = 0x0200_0000;
