@@ -27,12 +27,13 @@ fn main() {
     let compiled = match portalcast_assets::compile_dir(&assets_dir) {
         Ok(compiled) => compiled,
         Err(errors) => {
-            // One line per problem, each naming the file and line; nothing was written.
-            eprintln!("{errors}");
+            // One line per problem, each naming the file and line, last so that they end the
+            // output; nothing was written.
             eprintln!(
-                "portalcast: the assets in {} did not compile (see above)",
+                "portalcast: the assets in {} did not compile:",
                 assets_dir.display()
             );
+            eprintln!("{errors}");
             std::process::exit(1);
         }
     };

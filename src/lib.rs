@@ -25,3 +25,10 @@ pub mod testpic;
 
 #[cfg(target_os = "none")]
 pub mod hw;
+
+// The map compiler refuses maps whose views pass more portals in a row than the walk follows;
+// it knows the walk's depth through the format crate's limit, which must be the walk's own.
+const _: () = assert!(
+    render::walk::MAX_PORTAL_DEPTH == portalcast_format::limits::PORTAL_DEPTH_MAX,
+    "the map compiler's portal depth limit differs from the walk's"
+);

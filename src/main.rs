@@ -496,6 +496,10 @@ mod rom {
         measure_kernels(display);
         let mut seed = 1u32;
         loop {
+            // How deep the measurement and the draws have taken the stack (the measurement's
+            // texels and colormap live on it), for tests/emulator_foundation.rs to hold against
+            // the linker's reserve: once after the measurement, then after each round.
+            log_stack();
             for resolution in Resolution::ALL {
                 let mut page = VramPage::back_of(display.shown_page());
                 page.clear();

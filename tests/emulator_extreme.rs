@@ -244,6 +244,12 @@ fn a_broken_user_map_stops_the_build_and_leaves_the_old_rom() {
         line.contains("convex"),
         "the message does not say what is wrong: {line:?}"
     );
+    // The compiler's lines end the error, after cargo's (issue 16: they were buried above it).
+    assert_eq!(
+        error.0.lines().last(),
+        Some(line),
+        "the located error is not last:\n{error}"
+    );
     assert_eq!(
         std::fs::read(&gba).expect("the old ROM is still there"),
         old_rom,

@@ -178,6 +178,32 @@ fn asm_kernels_write_the_same_vram_as_their_twins() {
     println!("kernel checks (resolution, seed, cycles): {checked:?}");
 }
 
+/// The kernel check keeps its measurement's texels and colormap on the stack (IWRAM, for the
+/// kernels' speed there): with the draws that follow, the scene stays inside the linker
+/// script's `STACK_RESERVE` (issue 16: a 4 KB flat there once left it less than the reserve).
+#[test]
+fn the_kernel_check_stack_stays_in_its_reserve() {
+    let mut emulator = boot();
+    emulator.set_keys(Keys::L | Keys::R);
+    emulator
+        .run_frames(40)
+        .unwrap_or_else(|error| panic!("{error}"));
+    let lines = lines_starting(&emulator, "stack ");
+    assert!(
+        lines.len() >= 2,
+        "a stack line after the measurement and a round: {lines:?}"
+    );
+    for line in &lines {
+        let (used, room, reserve) = (
+            number(line, "used"),
+            number(line, "room"),
+            number(line, "reserve"),
+        );
+        assert!(used > 0 && used < reserve && reserve <= room, "{line}");
+    }
+    println!("kernel check: {}", lines[lines.len() - 1]);
+}
+
 #[test]
 fn kernel_costs_are_measured_with_iwram_texels() {
     let mut emulator = boot();

@@ -312,6 +312,7 @@ fn check_compiled(
         return Err(format!("the map is called {:?}, not {stem:?}", tables.name));
     }
     validate(&tables, compiled)?;
+    start_clearance(&tables)?;
     match render(&tables, compiled) {
         Ok(()) => Ok(None),
         Err(fault) => match known_render_issue(&tables, &fault) {
@@ -319,6 +320,41 @@ fn check_compiled(
             None => Err(fault.message),
         },
     }
+}
+
+/// The player start is at least 16 units (the player's radius) from every solid wall: the rule
+/// of docs/MAP_FORMAT.md, checked on the tables in exact arithmetic (squared distances to each
+/// segment in units of 1/256). Kept out of [`validate`], which the regressions with a moved eye
+/// also run.
+fn start_clearance(map: &MapTables) -> Result<(), String> {
+    let start = map.player_start;
+    let p = (i128::from(start.x_fx8), i128::from(start.y_fx8));
+    let radius = 16 * 256i128;
+    for wall in map.walls.iter().filter(|wall| wall.portal == NO_PORTAL) {
+        let corner = |vertex: u16| {
+            let v = map.vertices[usize::from(vertex)];
+            (i128::from(v.x) * 256, i128::from(v.y) * 256)
+        };
+        let (a, b) = (corner(wall.start), corner(wall.end));
+        let length_squared = dot(a, b, b);
+        let along = dot(a, b, p);
+        let near = if along <= 0 {
+            dot(a, p, p) < radius * radius
+        } else if along >= length_squared {
+            dot(b, p, p) < radius * radius
+        } else {
+            let side = cross(a, b, p);
+            side * side < radius * radius * length_squared
+        };
+        if near {
+            return Err(format!(
+                "the start {:?} is nearer than 16 to the solid wall {:?}",
+                (start.x_fx8, start.y_fx8),
+                (a, b)
+            ));
+        }
+    }
+    Ok(())
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1946,6 +1982,43 @@ fn compile_and_render_strictly(file_name: &str, text: &str) -> Result<(), String
     render(&map, &compiled).map_err(|fault| fault.message)
 }
 
+/// [`compile_and_render_strictly`] with the eye moved to (`x`, `y`) (24.8 bits) after the
+/// compile: these regressions put the eye nearer a wall than the compiler lets a map's start be
+/// (16 units, issue 16), where the game's eye can still be (beside a portal, or rounding along a
+/// slanted wall), so the map is written with a start that compiles and the pose is set here.
+fn compile_and_render_strictly_at(
+    file_name: &str,
+    text: &str,
+    (x_fx8, y_fx8): (i32, i32),
+) -> Result<(), String> {
+    let workspace = Workspace::new("strict", true);
+    workspace.reset(file_name, text.as_bytes());
+    let compiled = compile_dir(&workspace.assets).map_err(|e| e.to_string())?;
+    let mut map = compiled.maps()[0].clone();
+    let eye = (i128::from(x_fx8), i128::from(y_fx8));
+    let tables = map.tables();
+    let inside = |sector: &portalcast_format::Sector| {
+        tables.sector_walls(sector).iter().all(|wall| {
+            let corner = |vertex: u16| {
+                let v = tables.vertices[usize::from(vertex)];
+                (i128::from(v.x) * 256, i128::from(v.y) * 256)
+            };
+            cross(corner(wall.start), corner(wall.end), eye) > 0
+        })
+    };
+    let sector = tables
+        .sectors
+        .iter()
+        .position(inside)
+        .ok_or("the eye is in no sector")?;
+    map.player_start.x_fx8 = x_fx8;
+    map.player_start.y_fx8 = y_fx8;
+    map.player_start.sector = sector as u16;
+    let map = map.tables();
+    validate(&map, &compiled)?;
+    render(&map, &compiled).map_err(|fault| fault.message)
+}
+
 /// Found by the fuzzer, fixed in the renderer. Both sectors show the sky,
 /// the yard's ceiling is lower, so the room's portal draws no upper strip, yet the yard was
 /// clipped to its own ceiling line: the rows between were drawn by no one. The portal's clip
@@ -1977,10 +2050,9 @@ player 32 32
     }
 }
 
-/// The wedge of [`EYE_ON_WALL_LINE`] with the player start at (`x`, `y`).
-fn wedge_map(x: &str, y: &str) -> String {
-    format!(
-        "\
+/// The wedge of [`EYE_ON_WALL_LINE`], its start near its incentre (22 units from its walls);
+/// the tests move the eye.
+const WEDGE_MAP: &str = "\
 vertex v0 0 0
 vertex v6 111 231
 vertex v7 13 135
@@ -1988,10 +2060,8 @@ sector wedge floor=0 ceil=128 floor_tex=step ceil_tex=tiles
   wall v7 v6 tex=marble
   wall v6 v0 tex=marble
   wall v0 v7 tex=marble
-player {x} {y} angle=280.344
-"
-    )
-}
+player 35 124.5 angle=280.344
+";
 
 /// Found by the fuzzer ([`EYE_ON_WALL_LINE`]), fixed in the renderer. A start strictly inside
 /// its sector can still be a few 1/65536 of a unit from a slanted wall's line: at
@@ -1999,9 +2069,8 @@ player {x} {y} angle=280.344
 /// clamps `t/z'` where the clamp cannot change `t`).
 #[test]
 fn an_eye_within_a_65536th_of_a_slanted_wall_renders() {
-    if let Err(problem) =
-        compile_and_render_strictly("wedge.map", &wedge_map("55.49609375", "115.4921875"))
-    {
+    // (55.49609375, 115.4921875).
+    if let Err(problem) = compile_and_render_strictly_at("wedge.map", WEDGE_MAP, (14207, 29566)) {
         panic!("{problem}");
     }
 }
@@ -2015,8 +2084,9 @@ fn an_eye_within_a_65536th_of_a_slanted_wall_renders() {
 #[test]
 #[ignore = "24.8 eye space near a vertex: 1120 pixels undrawn 1/256 unit from a corner (EYE_ON_WALL_LINE)"]
 fn an_eye_within_a_256th_of_a_corner_renders() {
-    for (x, y) in [("110.99609375", "230.9921875")] {
-        if let Err(problem) = compile_and_render_strictly("wedge.map", &wedge_map(x, y)) {
+    // (110.99609375, 230.9921875).
+    for eye in [(28415, 59134)] {
+        if let Err(problem) = compile_and_render_strictly_at("wedge.map", WEDGE_MAP, eye) {
             panic!("{problem}");
         }
     }
@@ -2025,7 +2095,10 @@ fn an_eye_within_a_256th_of_a_corner_renders() {
 /// Found by the fuzzer's long run, fixed in the renderer: the eye 8.1e-5 units from the slanted
 /// portal `v1 → v2`, whose far side's floor is 8192 units down. The row of that floor,
 /// `height · focal · (1/z' >> 8)` in `projected_y_closer_than_near` (`src/render/walk.rs`),
-/// overflowed i64; `1/z'` is now cut where the cut cannot move a row on screen.
+/// overflowed i64; `1/z'` is now cut where the cut cannot move a row on screen. The room's far
+/// corner `v6` was (80, 5) in the fuzzer's map; it is at (80, 200) here so that the map has a
+/// start the compiler accepts (16 from every solid wall); the pit, the portal and the eye are
+/// the fuzzer's.
 #[test]
 fn an_eye_within_a_65536th_of_a_slanted_portal_renders() {
     let map = "\
@@ -2033,7 +2106,7 @@ vertex v0 -208 0
 vertex v1 0 0
 vertex v2 -96 2
 vertex v5 384 0
-vertex v6 80 5
+vertex v6 80 200
 sector pit floor=-8192 ceil=-8064 floor_tex=grass ceil_tex=tiles
   wall v1 v0 tex=brick
   wall v0 v2 tex=brick
@@ -2043,9 +2116,10 @@ sector room floor=0 ceil=128 floor_tex=tiles ceil_tex=metal
   wall v1 v2 portal=pit upper=stone lower=stone
   wall v2 v6 tex=stone
   wall v6 v5 tex=stone
-player -47.99609375 1 angle=603.236
+player 100 60 angle=603.236
 ";
-    if let Err(problem) = compile_and_render_strictly("portal_line.map", map) {
+    // (-47.99609375, 1), in the pit.
+    if let Err(problem) = compile_and_render_strictly_at("portal_line.map", map, (-12287, 256)) {
         panic!("{problem}");
     }
 }

@@ -172,12 +172,16 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
         }
     }
 
-    let _ = writeln!(
-        s,
-        "static SPRITE_BLOB: {FORMAT}::Align4<[u8; {}]> = {FORMAT}::Align4(*include_bytes!({}));",
-        blobs.sprites.len(),
-        blob(SPRITE_BLOB)
-    );
+    // Without things nothing points into the sprite blob: it is written (empty) but not
+    // included, else the ROM build warns that it is never used.
+    if !compiled.sprites.is_empty() {
+        let _ = writeln!(
+            s,
+            "static SPRITE_BLOB: {FORMAT}::Align4<[u8; {}]> = {FORMAT}::Align4(*include_bytes!({}));",
+            blobs.sprites.len(),
+            blob(SPRITE_BLOB)
+        );
+    }
     let _ = writeln!(
         s,
         "/// Sprites used by things, sorted by name; things index this table."

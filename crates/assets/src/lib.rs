@@ -212,13 +212,25 @@ pub fn compile_map_str(
     text: &str,
     catalog: &Catalog,
 ) -> Result<CompiledMap, CompileErrors> {
+    compile_map_with_flats(file_name, text, catalog).map(|(map, _)| map)
+}
+
+/// [`compile_map_str`], also returning where the map uses each texture as a floor or ceiling.
+fn compile_map_with_flats(
+    file_name: &str,
+    text: &str,
+    catalog: &Catalog,
+) -> Result<(CompiledMap, Vec<map_build::FlatUse>), CompileErrors> {
     let path = Path::new(file_name);
     let stem = path
         .file_stem()
         .and_then(|s| s.to_str())
         .unwrap_or("map")
         .to_string();
-    let parsed = match path.extension().and_then(|e| e.to_str()) {
+    // A byte-order mark some editors put first is not part of the map (columns count from
+    // after it).
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let parsed = match map_format(path) {
         Some(GRID_MAP_EXTENSION) => map_grid::parse(text),
         Some(TEXT_MAP_EXTENSION) => map_text::parse(text),
         _ => Err(vec![(
@@ -229,6 +241,30 @@ pub fn compile_map_str(
     parsed
         .and_then(|source| map_build::build(&stem, &source, catalog))
         .map_err(|errors| CompileErrors::in_file(path, errors))
+}
+
+/// The map format of `path` by its extension, in any case (`ROOM.MAP` is a text map):
+/// [`TEXT_MAP_EXTENSION`], [`GRID_MAP_EXTENSION`] or none.
+fn map_format(path: &Path) -> Option<&'static str> {
+    let extension = path.extension()?.to_str()?;
+    [TEXT_MAP_EXTENSION, GRID_MAP_EXTENSION]
+        .into_iter()
+        .find(|known| extension.eq_ignore_ascii_case(known))
+}
+
+/// Where the first byte that is not UTF-8 lies in `bytes` (1-based line and character column),
+/// and the byte.
+fn first_bad_byte(bytes: &[u8], error: &std::str::Utf8Error) -> (Loc, u8) {
+    let valid = &bytes[..error.valid_up_to()];
+    // The prefix is valid UTF-8 by the error's own account.
+    let text = std::str::from_utf8(valid).unwrap_or_default();
+    let line = text.matches('\n').count() + 1;
+    let column = text.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    let loc = Loc::new(
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(column).unwrap_or(u32::MAX),
+    );
+    (loc, bytes[error.valid_up_to()])
 }
 
 /// Names of the `*.png` files of a folder (missing folder: none), with their paths.
@@ -291,10 +327,58 @@ impl Usage {
     }
 }
 
+/// Refuses a texture used as a floor or ceiling unless it is square: the span kernels (and
+/// their host twins) index a flat as a `side × side` tile, so a 32×64 flat would be read past
+/// its texels (`FLAT_LOG2_SIDES` in `src/raster/flat.rs`). Each use is reported where the map
+/// names the texture. Walls take any power-of-two rectangle.
+fn check_flat_shapes(
+    texture_images: &[(usize, &String, Option<RgbaImage>)],
+    flat_uses: &[(&Path, map_build::FlatUse)],
+    errors: &mut Vec<Diagnostic>,
+) {
+    for (map_path, used) in flat_uses {
+        let Some((_, name, Some(image))) = texture_images
+            .iter()
+            .find(|(index, _, _)| *index == usize::from(used.texture))
+        else {
+            continue;
+        };
+        let (width, height) = image.dimensions();
+        if width == height {
+            continue;
+        }
+        let side = width.min(height);
+        errors.push(Diagnostic::new(
+            map_path,
+            (
+                used.loc,
+                format!(
+                    "{} texture '{name}' is {width}x{height}; floors and ceilings need a square texture: resize {TEXTURES_DIR}/{name}.png to {side}x{side} (or another square power of two), or use a square texture here",
+                    used.what
+                ),
+            ),
+        ));
+    }
+}
+
 /// Compiles the asset directory `dir`: `textures/*.png`, `sprites/*.png`, `sky/sky.png` and
 /// `maps/*.map`, `maps/*.grid` (see `docs/MAP_FORMAT.md`). Only what some map uses is kept.
 /// Returns every error found, sorted by file and position.
 pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
+    if !dir.is_dir() {
+        let what = if dir.exists() {
+            "is not a directory"
+        } else {
+            "does not exist"
+        };
+        return Err(CompileErrors(vec![Diagnostic::new(
+            dir,
+            (
+                Loc::START,
+                format!("the asset directory {what}; check the path (PORTALCAST_ASSETS, if set) or create it with {MAPS_DIR}/ and {TEXTURES_DIR}/ inside"),
+            ),
+        )]));
+    }
     let mut errors: Vec<Diagnostic> = Vec::new();
     let mut files_read = vec![dir.to_path_buf()];
     let textures_dir = dir.join(TEXTURES_DIR);
@@ -326,17 +410,17 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             entries
                 .flatten()
                 .map(|e| e.path())
-                .filter(|p| {
-                    matches!(
-                        p.extension().and_then(|e| e.to_str()),
-                        Some(TEXT_MAP_EXTENSION | GRID_MAP_EXTENSION)
-                    )
-                })
+                .filter(|p| map_format(p).is_some())
                 .collect()
         })
         .unwrap_or_default();
     map_files.sort();
-    if map_files.is_empty() {
+    if !maps_dir.is_dir() {
+        errors.push(Diagnostic::new(
+            &maps_dir,
+            (Loc::START, format!("the asset directory has no {MAPS_DIR} folder; create it and put at least one *.{TEXT_MAP_EXTENSION} or *.{GRID_MAP_EXTENSION} file in it")),
+        ));
+    } else if map_files.is_empty() {
         errors.push(Diagnostic::new(
             &maps_dir,
             (Loc::START, format!("no maps found; add at least one *.{TEXT_MAP_EXTENSION} or *.{GRID_MAP_EXTENSION} file to this folder")),
@@ -344,16 +428,19 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
     }
 
     let mut maps: Vec<CompiledMap> = Vec::new();
+    // Each map's floor and ceiling textures with their places, checked once the images load.
+    let mut flat_uses: Vec<(&Path, map_build::FlatUse)> = Vec::new();
     for path in &map_files {
         files_read.push(path.clone());
         let text = match std::fs::read(path).map(String::from_utf8) {
             Ok(Ok(text)) => text,
-            Ok(Err(_)) => {
+            Ok(Err(error)) => {
+                let (loc, byte) = first_bad_byte(error.as_bytes(), &error.utf8_error());
                 errors.push(Diagnostic::new(
                     path,
                     (
-                        Loc::START,
-                        "the file is not UTF-8 text; save it as UTF-8".to_string(),
+                        loc,
+                        format!("byte 0x{byte:02X} is not UTF-8 text; save the file as UTF-8 (or remove the character here)"),
                     ),
                 ));
                 continue;
@@ -366,8 +453,9 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
                 continue;
             }
         };
-        match compile_map_str(&path.to_string_lossy(), &text, &catalog) {
-            Ok(map) => {
+        match compile_map_with_flats(&path.to_string_lossy(), &text, &catalog) {
+            Ok((map, uses)) => {
+                flat_uses.extend(uses.into_iter().map(|used| (path.as_path(), used)));
                 if let Some(first) = maps.iter().find(|m| m.name == map.name) {
                     errors.push(Diagnostic::new(
                         path,
@@ -421,6 +509,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             left_out.push(format!("{SPRITES_DIR}/{name}.png"));
         }
     }
+    check_flat_shapes(&texture_images, &flat_uses, &mut errors);
     let sky_image = if usage.sky {
         load(&sky_path, images::check_sky, &mut errors)
     } else {

@@ -7,7 +7,9 @@
 
 use std::collections::HashMap;
 
-use portalcast_format::limits::{HEIGHT_MAX, HEIGHT_MIN, TEXTURE_COORD_MAX, WORLD_COORD_MAX};
+use portalcast_format::limits::{
+    HEIGHT_MAX, HEIGHT_MIN, PORTAL_DEPTH_MAX, TEXTURE_COORD_MAX, WORLD_COORD_MAX,
+};
 use portalcast_format::{
     MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY,
 };
@@ -149,14 +151,35 @@ struct OrientedWall<'s> {
     source: &'s SourceWall,
 }
 
-/// Checks `source` and builds its tables. Texture and sprite indices refer to `catalog`.
+/// A texture a map uses as a floor or ceiling, and where: the images are checked against this
+/// use once they are loaded ([`crate::compile_dir`]), because the span kernels need a square
+/// flat while a wall may be any power-of-two rectangle.
+#[derive(Clone, Debug)]
+pub(crate) struct FlatUse {
+    /// Index in the catalog's texture list.
+    pub texture: u16,
+    /// Where the map names it.
+    pub loc: Loc,
+    /// "floor" or "ceiling".
+    pub what: &'static str,
+}
+
+/// Checks `source` and builds its tables. Texture and sprite indices refer to `catalog`. Also
+/// returns every use of a texture as a floor or ceiling, with its place in the file.
 pub(crate) fn build(
     name: &str,
     source: &SourceMap,
     catalog: &Catalog,
-) -> Result<CompiledMap, Vec<Located>> {
+) -> Result<(CompiledMap, Vec<FlatUse>), Vec<Located>> {
     let mut errors = Vec::new();
     check_values(source, catalog, &mut errors);
+    if source.sectors.is_empty() {
+        // Said so, rather than "the player start is in no sector".
+        errors.push((
+            Loc::START,
+            "the map has no sectors; add at least one `sector` line followed by its walls (docs/MAP_FORMAT.md)".to_string(),
+        ));
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -180,6 +203,10 @@ pub(crate) fn build(
         "player start",
         &mut errors,
     );
+    if player_sector != NO_PORTAL {
+        check_start_clearance(source, &outlines, &source.player, &mut errors);
+        check_portal_depth(source, &outlines, usize::from(player_sector), &mut errors);
+    }
     let thing_sectors: Vec<u16> = source
         .things
         .iter()
@@ -191,14 +218,38 @@ pub(crate) fn build(
     if !errors.is_empty() {
         return Err(errors);
     }
-    Ok(tables(
-        name,
-        source,
-        catalog,
-        &outlines,
-        player_sector,
-        &thing_sectors,
+    Ok((
+        tables(
+            name,
+            source,
+            catalog,
+            &outlines,
+            player_sector,
+            &thing_sectors,
+        ),
+        flat_uses(source, catalog),
     ))
+}
+
+/// Every floor and ceiling texture of the map with the place that names it (a grid's sectors of
+/// one kind share their legend line's place; the caller's sorted diagnostics drop repeats).
+fn flat_uses(source: &SourceMap, catalog: &Catalog) -> Vec<FlatUse> {
+    let mut ignore = Vec::new();
+    let mut uses = Vec::new();
+    for sector in &source.sectors {
+        let ceiling = match &sector.ceiling {
+            CeilingSource::Texture(name) => Some(("ceiling", name)),
+            CeilingSource::Sky => None,
+        };
+        for (what, name) in std::iter::once(("floor", &sector.floor_texture)).chain(ceiling) {
+            uses.push(FlatUse {
+                texture: catalog.texture(name, &mut ignore),
+                loc: name.loc,
+                what,
+            });
+        }
+    }
+    uses
 }
 
 fn point(source: &SourceMap, vertex: usize) -> Point {
@@ -636,6 +687,263 @@ fn fx8(value: i64) -> String {
     text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
+/// How far the player's start must be from every solid wall, in world units: the player's
+/// radius. The game's collision keeps the eye this far from solid walls once it moves, but the
+/// first frame is drawn from the start itself, and nearer a wall the renderer has known faults
+/// (an eye within a 256th of a unit of a corner is drawn up to 29 % wrong: docs/RELIABILITY.md,
+/// "Known faults"). docs/MAP_FORMAT.md states the same 16.
+pub(crate) const START_CLEARANCE: i64 = 16;
+
+/// Refuses a player start closer than [`START_CLEARANCE`] to a solid wall of any sector (a
+/// wall of a neighbour that near would push the player's disc too). Portal lines are not
+/// walls: the player crosses them. Exact integer arithmetic on the start's 24.8 position.
+fn check_start_clearance(
+    source: &SourceMap,
+    outlines: &[Outline<'_>],
+    place: &SourcePlace,
+    errors: &mut Vec<Located>,
+) {
+    let p = (i128::from(place.x_fx8.value), i128::from(place.y_fx8.value));
+    let clearance = i128::from(START_CLEARANCE) * 256;
+    let mut nearest: Option<(f64, &OrientedWall<'_>)> = None;
+    for wall in outlines.iter().flat_map(|o| &o.walls) {
+        if wall.source.portal.is_some() {
+            continue;
+        }
+        let scaled = |vertex: usize| {
+            let (x, y) = point(source, vertex);
+            (i128::from(x) * 256, i128::from(y) * 256)
+        };
+        let (a, b) = (scaled(wall.start), scaled(wall.end));
+        let (ab, ap, bp) = (
+            (b.0 - a.0, b.1 - a.1),
+            (p.0 - a.0, p.1 - a.1),
+            (p.0 - b.0, p.1 - b.1),
+        );
+        let along = ab.0 * ap.0 + ab.1 * ap.1;
+        let length_squared = ab.0 * ab.0 + ab.1 * ab.1;
+        // Squared distance to the segment as a fraction `numerator / denominator`.
+        let (numerator, denominator) = if along <= 0 {
+            (ap.0 * ap.0 + ap.1 * ap.1, 1)
+        } else if along >= length_squared {
+            (bp.0 * bp.0 + bp.1 * bp.1, 1)
+        } else {
+            let cross = ab.0 * ap.1 - ab.1 * ap.0;
+            (cross * cross, length_squared)
+        };
+        if numerator < clearance * clearance * denominator {
+            let distance = (numerator as f64 / denominator as f64).sqrt() / 256.0;
+            if nearest.is_none_or(|(d, _)| distance < d) {
+                nearest = Some((distance, wall));
+            }
+        }
+    }
+    if let Some((distance, wall)) = nearest {
+        let label = |vertex: usize| source.vertices[vertex].label.as_str();
+        // Rounded up to a 256th, the positions' resolution, so moving that far is enough.
+        let short = (START_CLEARANCE as f64 - distance) * 256.0;
+        errors.push((
+            place.loc,
+            format!(
+                "player start at ({}, {}) is {} from the solid wall from {} to {} (line {}); move it at least {} further from that wall: the start must be {START_CLEARANCE} or more from every solid wall (the player's radius)",
+                fx8(place.x_fx8.value),
+                fx8(place.y_fx8.value),
+                fx8((distance * 256.0).floor() as i64),
+                label(wall.start),
+                label(wall.end),
+                wall.source.loc.line,
+                fx8(short.ceil() as i64),
+            ),
+        ));
+    }
+}
+
+/// A direction in the plane, as an integer vector (y down).
+type Direction = (i64, i64);
+
+fn perp_dot(a: Direction, b: Direction) -> i128 {
+    i128::from(a.0) * i128::from(b.1) - i128::from(a.1) * i128::from(b.0)
+}
+
+/// Sorts directions by angle (atan2 order), exactly.
+fn angle_order(a: &Direction, b: &Direction) -> std::cmp::Ordering {
+    let half = |v: &Direction| u8::from(!(v.1 > 0 || (v.1 == 0 && v.0 > 0)));
+    half(a).cmp(&half(b)).then_with(|| 0.cmp(&perp_dot(*a, *b)))
+}
+
+/// Refuses a map where a view could pass more than [`PORTAL_DEPTH_MAX`] portals in a row: the
+/// renderer's walk stops there and leaves what lies beyond undrawn.
+///
+/// The rule, sound and checkable: a column's ray leaves each sector of its walk through the one
+/// wall that owns the column, so every portal of a walk path is crossed by that ray outwards,
+/// `cross(wall, d) < 0` for the ray's direction `d`. For one direction those crossings form an
+/// acyclic graph of sectors (convex sectors that do not overlap are ordered along any
+/// direction), and the longest path in it bounds every walk whose rays point that way. The
+/// graph only changes where `d` is parallel to a portal, so one direction strictly between each
+/// two consecutive portal directions covers all. The bound counts portals crossed in one general
+/// direction, not only along one straight line, so it can refuse a winding run that no single
+/// ray follows; it never accepts a map whose walk is cut. Only the sectors the player can reach
+/// (through portals from the start's) count; a map of at most `PORTAL_DEPTH_MAX + 1` of them
+/// passes at once.
+fn check_portal_depth(
+    source: &SourceMap,
+    outlines: &[Outline<'_>],
+    start: usize,
+    errors: &mut Vec<Located>,
+) {
+    let limit = PORTAL_DEPTH_MAX as usize;
+    // Each portal as seen from its sector: (from, to, wall vector, the wall).
+    let mut portals: Vec<Vec<(usize, Direction, &OrientedWall<'_>)>> =
+        vec![Vec::new(); outlines.len()];
+    for (from, outline) in outlines.iter().enumerate() {
+        for wall in &outline.walls {
+            if let Some(to) = &wall.source.portal {
+                let (a, b) = (point(source, wall.start), point(source, wall.end));
+                portals[from].push((to.value, (b.0 - a.0, b.1 - a.1), wall));
+            }
+        }
+    }
+    let mut reachable = vec![false; outlines.len()];
+    let mut stack = vec![start];
+    reachable[start] = true;
+    while let Some(sector) = stack.pop() {
+        for &(to, _, _) in &portals[sector] {
+            if !reachable[to] {
+                reachable[to] = true;
+                stack.push(to);
+            }
+        }
+    }
+    if reachable.iter().filter(|&&r| r).count() <= limit + 1 {
+        return;
+    }
+    let mut directions: Vec<Direction> = portals
+        .iter()
+        .enumerate()
+        .filter(|(sector, _)| reachable[*sector])
+        .flat_map(|(_, list)| list.iter().map(|&(_, v, _)| v))
+        .flat_map(|v| [v, (-v.0, -v.1)])
+        .collect();
+    directions.sort_by(angle_order);
+    directions.dedup_by(|a, b| angle_order(a, b).is_eq());
+    // The longest run found: its length in portals and its first sector.
+    let mut worst: Option<(usize, usize, Vec<usize>)> = None;
+    for (i, &a) in directions.iter().enumerate() {
+        let b = directions[(i + 1) % directions.len()];
+        // Strictly between a and b (going round in angle order): their sum when the arc is
+        // under a half turn, else a turned a quarter turn onwards.
+        let d = if perp_dot(a, b) > 0 {
+            (a.0 + b.0, a.1 + b.1)
+        } else {
+            (-a.1, a.0)
+        };
+        match longest_run(&portals, &reachable, d) {
+            Some((length, path)) => {
+                if length > limit && worst.as_ref().is_none_or(|w| length > w.0) {
+                    worst = Some((length, path[0], path));
+                }
+            }
+            None => {
+                // A loop of portals all crossed one way: only overlapping sectors make one. The
+                // plain bound, the number of sectors reachable, is over the limit (else this
+                // check returned above), so the map is refused.
+                worst = Some((usize::MAX, start, Vec::new()));
+                break;
+            }
+        }
+    }
+    let Some((length, first, path)) = worst else {
+        return;
+    };
+    let label = |sector: usize| source.sectors[sector].label.as_str();
+    let (loc, message) = if path.len() >= 2 {
+        let first_portal = portals[first]
+            .iter()
+            .find(|&&(to, _, _)| to == path[1])
+            .and_then(|&(_, _, wall)| wall.source.portal.as_ref())
+            .map_or(source.sectors[first].loc, |p| p.loc);
+        (
+            first_portal,
+            format!(
+                "a view from {} can pass {length} portals in a row (through {} to {}), more than the {limit} the renderer follows: what lies beyond would be left undrawn; close the run with a solid wall or shorten it (a run counts portals all crossed in one general direction)",
+                label(first),
+                label(path[1]),
+                label(path[path.len() - 1])
+            ),
+        )
+    } else {
+        (
+            source.sectors[first].loc,
+            format!(
+                "portals from {} lead round in a loop, all crossed the same way, which only overlapping sectors allow; fix the outlines",
+                label(first)
+            ),
+        )
+    };
+    errors.push((loc, message));
+}
+
+/// The longest chain of portals crossed outwards by direction `d` (`cross(wall, d) < 0`),
+/// starting in a reachable sector: its length in portals and its sectors. `None` if those
+/// crossings form a loop.
+fn longest_run(
+    portals: &[Vec<(usize, Direction, &OrientedWall<'_>)>],
+    reachable: &[bool],
+    d: Direction,
+) -> Option<(usize, Vec<usize>)> {
+    const UNSEEN: u8 = 0;
+    const OPEN: u8 = 1;
+    const DONE: u8 = 2;
+    let n = portals.len();
+    let mut state = vec![UNSEEN; n];
+    // Longest run from each sector, and the next sector on it.
+    let mut length = vec![0usize; n];
+    let mut next = vec![usize::MAX; n];
+    for root in (0..n).filter(|&s| reachable[s]) {
+        if state[root] != UNSEEN {
+            continue;
+        }
+        // Depth-first, iterative: (sector, index of the next portal to try).
+        let mut stack = vec![(root, 0usize)];
+        state[root] = OPEN;
+        while let Some(&(sector, index)) = stack.last() {
+            let top = stack.len() - 1;
+            let Some(&(to, wall, _)) = portals[sector].get(index) else {
+                state[sector] = DONE;
+                stack.pop();
+                continue;
+            };
+            if perp_dot(wall, d) >= 0 {
+                stack[top].1 += 1;
+                continue;
+            }
+            match state[to] {
+                UNSEEN => {
+                    // Visit `to` first; this portal is looked at again once it is done.
+                    state[to] = OPEN;
+                    stack.push((to, 0));
+                }
+                OPEN => return None,
+                _ => {
+                    if length[to] + 1 > length[sector] {
+                        length[sector] = length[to] + 1;
+                        next[sector] = to;
+                    }
+                    stack[top].1 += 1;
+                }
+            }
+        }
+    }
+    let first = (0..n)
+        .filter(|&s| reachable[s])
+        .max_by_key(|&s| length[s])?;
+    let mut path = vec![first];
+    while next[*path.last()?] != usize::MAX {
+        path.push(next[*path.last()?]);
+    }
+    Some((length[first], path))
+}
+
 /// Finds the one sector strictly containing `place`.
 fn locate(
     source: &SourceMap,
@@ -664,12 +972,17 @@ fn locate(
         }
     }
     let at = format!("({}, {})", fx8(p.0), fx8(p.1));
+    let off_the_line = if what == "player start" {
+        format!("move it at least {START_CLEARANCE} from every solid wall")
+    } else {
+        "move it off the line".to_string()
+    };
     match (inside.as_slice(), on_line.as_slice()) {
         ([index], []) => return u16::try_from(*index).unwrap_or(NO_PORTAL),
         (_, [index, ..]) => errors.push((
             place.loc,
             format!(
-                "{what} at {at} lies on a wall line of {}; move it off the line (e.g. by .5)",
+                "{what} at {at} lies on a wall line of {}; {off_the_line}",
                 source.sectors[*index].label
             ),
         )),

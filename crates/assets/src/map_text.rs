@@ -85,9 +85,11 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 });
             }
             "sector" => {
-                let parsed = parse_sector(directive, &positional, &mut keys, &mut errors);
+                let (name, parsed) = parse_sector(directive, &positional, &mut keys, &mut errors);
                 keys.report_unknown("sector", SECTOR_KEYS, &mut errors);
-                if let Some((name, sector)) = parsed {
+                if let Some(name) = name {
+                    // A sector with a bad value keeps its name, so portals to it report nothing
+                    // more (the bad value is reported; the map is not built).
                     match sector_names.entry(name) {
                         Entry::Occupied(taken) => errors.push((
                             positional[0].loc,
@@ -97,17 +99,13 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                             free.insert(sectors.len());
                         }
                     }
-                    sectors.push(WrittenSector {
-                        sector,
-                        walls: Vec::new(),
-                    });
-                } else {
-                    // Keep later walls attached to something so they are still checked.
-                    sectors.push(WrittenSector {
-                        sector: placeholder_sector(directive.loc),
-                        walls: Vec::new(),
-                    });
                 }
+                // Without its values, keep later walls attached to something so they are
+                // still checked.
+                sectors.push(WrittenSector {
+                    sector: parsed.unwrap_or_else(|| placeholder_sector(directive.loc)),
+                    walls: Vec::new(),
+                });
             }
             "wall" => {
                 let wall = parse_wall(directive, &positional, &mut keys, &mut errors);
@@ -225,14 +223,26 @@ fn texture_name(token: Token<'_>, errors: &mut Vec<Located>) -> Option<Spanned<S
     record(lex::name(token, "texture name"), errors).map(|name| Spanned::new(name, token.loc))
 }
 
+/// Parses a `sector` line: its name (if valid) and the sector (if every value is).
 fn parse_sector(
     directive: Token<'_>,
     positional: &[Token<'_>],
     keys: &mut KeyValues<'_>,
     errors: &mut Vec<Located>,
-) -> Option<(String, SourceSector)> {
-    let [name] = expect_words(directive, positional, ["NAME"], errors)?;
-    let name = record(lex::name(name, "sector name"), errors);
+) -> (Option<String>, Option<SourceSector>) {
+    let name = expect_words(directive, positional, ["NAME"], errors)
+        .and_then(|[name]| record(lex::name(name, "sector name"), errors));
+    let sector = parse_sector_values(directive, name.as_deref(), keys, errors);
+    (name, sector)
+}
+
+/// The values of a `sector` line named `name`, if all are valid (each bad one is reported).
+fn parse_sector_values(
+    directive: Token<'_>,
+    name: Option<&str>,
+    keys: &mut KeyValues<'_>,
+    errors: &mut Vec<Located>,
+) -> Option<SourceSector> {
     let mut missing = |key: &str, example: &str| {
         errors.push((
             directive.loc,
@@ -282,20 +292,16 @@ fn parse_sector(
         Some(t) => record(lex::integer_in(t, "light", 0, 255), errors)? as u8,
         None => DEFAULT_LIGHT,
     };
-    let name = name?;
-    Some((
-        name.clone(),
-        SourceSector {
-            label: format!("sector '{name}'"),
-            loc: directive.loc,
-            floor: floor?,
-            ceil: ceil?,
-            floor_texture: floor_texture?,
-            ceiling: ceiling?,
-            light,
-            walls: Vec::new(),
-        },
-    ))
+    Some(SourceSector {
+        label: format!("sector '{}'", name?),
+        loc: directive.loc,
+        floor: floor?,
+        ceil: ceil?,
+        floor_texture: floor_texture?,
+        ceiling: ceiling?,
+        light,
+        walls: Vec::new(),
+    })
 }
 
 fn parse_wall<'t>(

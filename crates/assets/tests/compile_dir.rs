@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{pattern, sprite, valid_assets, Scratch};
+use common::{pattern, room_map, sprite, valid_assets, Scratch};
 use image::{Rgba, RgbaImage};
 use portalcast_assets::{compile_dir, CompileErrors};
 use portalcast_format::{colormap_row, LIGHT_LEVELS, LIGHT_NEUTRAL, NO_TEXTURE, TRANSPARENT};
@@ -92,6 +92,48 @@ fn undecodable_png() {
         1,
         "cannot decode the PNG",
     );
+}
+
+#[test]
+fn non_square_flat_is_refused_where_the_map_uses_it() {
+    // The span kernels read a flat as a side x side tile: a 32x64 floor used to compile and
+    // then fail the flat kernels' assertion on the first frame (issue 16, defect 1).
+    let scratch = valid_assets("flat_shape", "stone");
+    scratch.png("textures/stone.png", &pattern(32, 64));
+    let errors = assert_error(
+        &scratch,
+        "maps/room.map",
+        5,
+        39,
+        "floor texture 'stone' is 32x64; floors and ceilings need a square texture: resize textures/stone.png to 32x32",
+    );
+    assert_error(
+        &scratch,
+        "maps/room.map",
+        5,
+        54,
+        "ceiling texture 'stone' is 32x64",
+    );
+    assert_eq!(errors.0.len(), 2, "{errors}");
+    // The same texture on a wall only is fine: walls take any power-of-two rectangle.
+    scratch.png("textures/brick.png", &pattern(8, 64));
+    scratch.png("textures/stone.png", &pattern(64, 64));
+    compile_dir(&scratch.dir).unwrap_or_else(|e| panic!("{e}"));
+    // A grid map reports it at its legend line, once for all the sectors of that kind.
+    scratch.png("textures/stone.png", &pattern(64, 16));
+    std::fs::remove_file(scratch.path("maps/room.map")).expect("remove map");
+    scratch.write(
+        "maps/cells.grid",
+        b"solid # tex=brick\nopen . floor=0 ceil=64 floor_tex=stone ceil_tex=sky\nplayer @ on=.\ngrid\n#####\n#@#.#\n#...#\n#####\n",
+    );
+    let errors = assert_error(
+        &scratch,
+        "maps/cells.grid",
+        2,
+        34,
+        "floor texture 'stone' is 64x16",
+    );
+    assert_eq!(errors.0.len(), 1, "{errors}");
 }
 
 #[test]
@@ -365,4 +407,113 @@ fn missing_optional_folders_are_not_watched() {
     let compiled = compile_dir(&scratch.dir).unwrap_or_else(|e| panic!("{e}"));
     assert!(compiled.files_read().iter().all(|p| p.exists()));
     assert!(compiled.files_read().contains(&scratch.dir));
+}
+
+// Errors that misled (issue 16, defect 5): each says what is really wrong, where.
+
+#[test]
+fn a_byte_order_mark_is_accepted() {
+    let scratch = valid_assets("bom", "stone");
+    let text = format!("\u{feff}{}", room_map("stone"));
+    scratch.write("maps/room.map", text.as_bytes());
+    compile_dir(&scratch.dir).unwrap_or_else(|e| panic!("{e}"));
+    // Columns count from after the mark: a bad first word is at 1:1, and quoted without it.
+    let text = format!("\u{feff}vortex a 0 0\n{}", room_map("stone"));
+    scratch.write("maps/room.map", text.as_bytes());
+    let errors = assert_error(
+        &scratch,
+        "maps/room.map",
+        1,
+        1,
+        "unknown directive 'vortex'",
+    );
+    assert!(!errors.to_string().contains('\u{feff}'), "{errors}");
+}
+
+#[test]
+fn a_bad_value_on_a_sector_line_keeps_the_sector() {
+    let scratch = valid_assets("sector_value", "stone");
+    let map = "vertex a 0 0\nvertex b 64 0\nvertex c 64 64\nvertex d 0 64\n\
+               vertex e 128 0\nvertex f 128 64\n\
+               sector west floor=0 ceil=96 floor_tex=stone ceil_tex=stone\n\
+               wall a b tex=brick\nwall b c portal=east\nwall c d tex=brick\nwall d a tex=brick\n\
+               sector east floor=0 ceil=96 floor_tex=stone ceil_tex=stone light=300\n\
+               wall b e tex=brick\nwall e f tex=brick\nwall f c tex=brick\nwall c b portal=west\n\
+               player 32 32\n";
+    scratch.write("maps/room.map", map.as_bytes());
+    let errors = assert_error(
+        &scratch,
+        "maps/room.map",
+        12,
+        66,
+        "light 300 is out of range",
+    );
+    // Only the bad value: no "unknown sector 'east'" on the portal to it.
+    assert_eq!(errors.0.len(), 1, "{errors}");
+}
+
+#[test]
+fn a_missing_asset_directory_or_maps_folder_is_named() {
+    let scratch = valid_assets("missing_dir", "stone");
+    let errors = compile_dir(&scratch.path("nowhere")).expect_err("no such directory");
+    assert_eq!(errors.0.len(), 1, "{errors}");
+    assert!(
+        errors.0[0]
+            .message
+            .starts_with("the asset directory does not exist"),
+        "{errors}"
+    );
+    std::fs::remove_dir_all(scratch.path("maps")).expect("remove maps folder");
+    assert_error(
+        &scratch,
+        "maps",
+        1,
+        1,
+        "the asset directory has no maps folder",
+    );
+}
+
+#[test]
+fn an_uppercase_extension_is_a_map() {
+    let scratch = valid_assets("upper", "stone");
+    std::fs::rename(scratch.path("maps/room.map"), scratch.path("maps/ROOM.MAP"))
+        .expect("rename map");
+    let compiled = compile_dir(&scratch.dir).unwrap_or_else(|e| panic!("{e}"));
+    assert!(compiled.map("ROOM").is_some());
+}
+
+#[test]
+fn a_map_without_sectors_says_so() {
+    let scratch = valid_assets("no_sectors", "stone");
+    scratch.write("maps/room.map", b"vertex a 0 0\nplayer 32 32\n");
+    let errors = assert_error(&scratch, "maps/room.map", 1, 1, "the map has no sectors");
+    assert_eq!(errors.0.len(), 1, "{errors}");
+}
+
+#[test]
+fn a_bad_byte_is_reported_where_it_is() {
+    let scratch = valid_assets("bad_byte", "stone");
+    scratch.write("maps/room.map", b"vertex a 0 0\nvertex \xc3\xa9b \xff 0\n");
+    // Line 2: `vertex ` is 7 characters and the two-byte e-acute one, so the 0xFF is column 11.
+    assert_error(
+        &scratch,
+        "maps/room.map",
+        2,
+        11,
+        "byte 0xFF is not UTF-8 text",
+    );
+}
+
+#[test]
+fn no_sprite_blob_is_declared_without_things() {
+    // A static nothing reads makes the ROM build warn ("SPRITE_BLOB is never used").
+    let scratch = valid_assets("no_things", "stone");
+    let map = room_map("stone").replace("thing torch 32 32\n", "");
+    scratch.write("maps/room.map", map.as_bytes());
+    let compiled = compile_dir(&scratch.dir).unwrap_or_else(|e| panic!("{e}"));
+    let out = Scratch::new("out_no_things");
+    compiled.write_to(&out.dir).expect("write");
+    let source = std::fs::read_to_string(out.path("assets.rs")).expect("assets.rs");
+    assert!(!source.contains("SPRITE_BLOB"), "{source}");
+    assert!(source.contains("pub static SPRITES:"));
 }

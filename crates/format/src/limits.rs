@@ -76,6 +76,11 @@ pub const TEXTURE_SIZE_MAX: i32 = 256;
 /// length, `255 + WALL_LENGTH_MAX = 23426 ≤ 32767`.
 pub const TEXTURE_COORD_MAX: i32 = 32_767;
 
+/// Deepest portal chain the renderer follows from the eye's sector (the walk's
+/// `MAX_PORTAL_DEPTH`, which `src/lib.rs` asserts equal): sectors further along a chain are left
+/// undrawn, so the map compiler refuses a map where a view could cross more portals in a row.
+pub const PORTAL_DEPTH_MAX: u32 = 64;
+
 /// Widest logical screen, in columns (Mode 4 at full width).
 pub const SCREEN_WIDTH_MAX: i32 = 240;
 

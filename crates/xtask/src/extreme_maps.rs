@@ -300,12 +300,15 @@ impl MapBuilder {
 fn chain() -> ExtremeMap {
     let mut builder = MapBuilder::new(
         "The deepest portal chain the renderer draws whole: 65 sectors in a row, seen end to end.",
-        (8 * 256, 64 * 256, 0),
+        (0, 64 * 256, 0),
     );
     for i in 0..CHAIN_SECTORS as i32 {
         let ceiling = Ceiling::Texture(256 - 8 * (i % 2), "ceiling");
+        // The first sector reaches back to x = -16: the compiler keeps a start 16 from solid
+        // walls (and a sector behind would make the chain deeper than the renderer follows).
+        let x0 = if i == 0 { -16 } else { 16 * i };
         builder.sector(
-            SectorSpec::new(rectangle(16 * i, 0, 16 * i + 16, 128, &[]), 2 * i, ceiling)
+            SectorSpec::new(rectangle(x0, 0, 16 * i + 16, 128, &[]), 2 * i, ceiling)
                 .textures(if i % 2 == 0 { "tiles" } else { "wood" }, "stone")
                 .light((64 + (i * 37) % 160) as u8),
         );
@@ -324,7 +327,7 @@ fn corners() -> ExtremeMap {
     let mut builder = MapBuilder::new(
         "Coordinates at the declared limits: the square of +-8192, cut by a diagonal portal\n\
          23170 units long; the player looks from one corner to the opposite one.",
-        ((-l + 2) * 256, (l - 2) * 256, 315),
+        ((-l + 16) * 256, (l - 16) * 256, 315),
     );
     builder.sector(
         SectorSpec::new(
@@ -353,7 +356,7 @@ fn longwall() -> ExtremeMap {
     let mut builder = MapBuilder::new(
         "The longest solid wall: the diagonal of the limits square, 23170 units, with the\n\
          largest texture offsets.",
-        ((-l + 2) * 256, (-l + 2) * 256, 45),
+        ((-l + 16) * 256, (-l + 16) * 256, 45),
     );
     let mut spec = SectorSpec::new(
         vec![(-l, -l), (l, -l), (-l, l)],
@@ -595,7 +598,7 @@ fn long() -> ExtremeMap {
     let l = LIMIT;
     let mut builder = MapBuilder::new(
         "A long corridor seen end to end: from x = -8192 to 8192, 256 units wide, in 16 sectors.",
-        ((-l + 2) * 256, 0, 0),
+        ((-l + 16) * 256, 0, 0),
     );
     for i in 0..16 {
         let x0 = -l + 1024 * i;

@@ -235,7 +235,9 @@ pub fn build_rom() -> TaskResult<PathBuf> {
 /// `PORTALCAST_ENGINE_ISA` says (the benchmark report builds both).
 pub fn build_rom_for(isa: EngineIsa, gba: &Path) -> TaskResult<()> {
     ensure_rust_src()?;
-    run(
+    // The asset compiler's `file:line:col` lines end the error, after cargo's output, so a
+    // broken map (in `assets/` or `PORTALCAST_ASSETS`) is the last thing `cargo rom` prints.
+    run_keeping_build_script_errors(
         &mut rom_build_command(isa, &rom_target_dir()),
         "building the ROM",
     )?;

@@ -76,7 +76,7 @@ pub fn valid_assets(label: &str, ceiling: &str) -> Scratch {
     let scratch = Scratch::new(label);
     scratch.write("maps/room.map", room_map(ceiling).as_bytes());
     scratch.png("textures/brick.png", &pattern(16, 16));
-    scratch.png("textures/stone.png", &pattern(8, 32));
+    scratch.png("textures/stone.png", &pattern(32, 32));
     scratch.png("sprites/torch.png", &sprite());
     scratch.png("sky/sky.png", &pattern(64, 16));
     scratch
