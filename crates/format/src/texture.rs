@@ -136,12 +136,12 @@ pub struct Sky<'a> {
     pub width_log2: u8,
     /// Height in texels.
     pub height: u16,
-    /// Palette indices, column-major; never [`TRANSPARENT`](crate::TRANSPARENT).
+    /// Palette indices, column-major; never [`TRANSPARENT`].
     pub texels: &'a [u8],
 }
 
 /// A sprite image: palette indices, column-major (texel `(u, v)` at `u * height + v`), with
-/// [`TRANSPARENT`](crate::TRANSPARENT) (0) where nothing is drawn. Its origin is the bottom
+/// [`TRANSPARENT`] (0) where nothing is drawn. Its origin is the bottom
 /// centre, placed on the floor at the thing's position.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C)]

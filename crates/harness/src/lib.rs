@@ -532,9 +532,9 @@ impl Emulator {
 /// The message of the panic print `lines[0]`, without its `panic:` prefix.
 ///
 /// mGBA's debug output carries one line per print, so a ROM logger that sends on every `\n` (as
-/// gba's `MgbaBufferedLogger` does) splits a multi-line panic, e.g. core's "panicked at
-/// src/x.rs:1:2:\n<message>", into several prints. The debug prints right after it at the same
-/// level are taken as its continuation and joined back with newlines.
+/// gba's `MgbaBufferedLogger` does) splits a multi-line panic, e.g. core's `panicked at
+/// src/x.rs:1:2:` followed by a newline and the message, into several prints. The debug prints
+/// right after it at the same level are taken as its continuation and joined back with newlines.
 fn panic_message(lines: &[LogLine]) -> String {
     let first = &lines[0];
     let mut message = first.text["panic".len()..]

@@ -3,7 +3,7 @@
 //! The engine renders in fixed point, span by span; the oracle renders the same map and camera
 //! by casting one exact ray per pixel in `f64`, applying the texture rules of
 //! [`portalcast::render::surface`] and the light rule of [`portalcast::render::light`]. The
-//! accuracy tests render both and [`compare`] them: which surface each pixel shows, which palette
+//! accuracy tests render both and [`compare()`] them: which surface each pixel shows, which palette
 //! index it ends with, how far the engine's edges are from the oracle's, and which sectors one of
 //! them shows and the other does not.
 //!
@@ -173,7 +173,7 @@ pub struct Frame {
     /// [`Surface::None`].
     pub depths: Vec<f64>,
     /// The sector owning each wall of the map (wall index → sector; `u16::MAX` for a wall no
-    /// sector lists), so [`compare`] can tell which sectors a frame shows without the map.
+    /// sector lists), so [`compare()`] can tell which sectors a frame shows without the map.
     pub wall_sectors: Vec<u16>,
 }
 

@@ -7,7 +7,7 @@
 //! against the oracle at extreme poses, `tests/emulator_extreme.rs` builds a ROM of them from a
 //! directory outside the repository and flies through each in mGBA.
 //!
-//! A map is described as convex outlines only; [`MapBuilder`] turns an edge that two sectors
+//! A map is described as convex outlines only; `MapBuilder` turns an edge that two sectors
 //! share (in opposite directions) into a portal pair and every other edge into a solid wall, so a
 //! generated map cannot have an unpaired portal.
 

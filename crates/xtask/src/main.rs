@@ -168,6 +168,18 @@ fn test() -> TaskResult<()> {
             .args(["--", "-D", "warnings"]),
         "cargo clippy (GBA)",
     )?;
+    // Dead intra-doc links and malformed doc comments fail here, not in a reader's browser.
+    run(
+        cargo()
+            .args([
+                "doc",
+                "--workspace",
+                "--no-deps",
+                "--document-private-items",
+            ])
+            .env("RUSTDOCFLAGS", "-D warnings"),
+        "cargo doc (warnings denied)",
+    )?;
     let gba = build_rom()?;
     run_tests_and_count(
         cargo()
