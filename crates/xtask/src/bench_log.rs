@@ -37,6 +37,12 @@ pub struct Run {
     pub frames: Vec<Frame>,
 }
 
+/// The value of the word `key=VALUE` of a debug line, if it has one.
+pub fn field<'a>(line: &'a str, key: &str) -> Option<&'a str> {
+    line.split_whitespace()
+        .find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
+}
+
 /// The `key=value` words of a line, after its first word.
 fn fields(line: &str) -> Vec<(&str, &str)> {
     line.split_whitespace()

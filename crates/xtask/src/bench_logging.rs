@@ -10,9 +10,9 @@
 //! `cargo bench-report` writes; `cargo bench-logging` only prints it. mGBA's cycle counts are
 //! deterministic, so the same ROM gives the same figures.
 
-use crate::bench_log::group_digits;
+use crate::bench_log::{field, group_digits};
 use crate::{
-    build_rom_for, cargo, engine_isa, ensure_setup, rom_target_dir, workspace_root, TaskError,
+    build_rom_for, engine_isa, ensure_setup, play_keys, rom_target_dir, workspace_root, TaskError,
     TaskResult,
 };
 use std::path::Path;
@@ -117,29 +117,13 @@ fn run_demo(rom: &Path, label: &str, script: &str) -> TaskResult<String> {
         "== {} playing {KEYS_FILE} for {FRAMES} frames, per-frame lines {label}",
         rom.display()
     );
-    let output = cargo()
-        .args(["run", "--quiet", "--release", "-p", "portalcast-harness"])
-        .args(["--bin", "pc-run", "--"])
-        .arg(rom)
-        .args(["--frames", &FRAMES.to_string(), "--png-every", "0", "--out"])
-        .arg(rom_target_dir().join("logging-frames"))
-        .arg("--keys")
-        .arg(&keys)
-        .output()
-        .map_err(|error| TaskError(format!("running pc-run: {error}")))?;
-    if !output.status.success() {
-        return Err(TaskError(format!(
-            "{} failed on {KEYS_FILE}: {}",
-            rom.display(),
-            String::from_utf8_lossy(&output.stderr).trim()
-        )));
-    }
-    Ok(String::from_utf8_lossy(&output.stdout).into_owned())
-}
-
-fn field<'a>(line: &'a str, key: &str) -> Option<&'a str> {
-    line.split_whitespace()
-        .find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
+    play_keys(
+        rom,
+        &keys,
+        FRAMES,
+        &rom_target_dir().join("logging-frames"),
+        KEYS_FILE,
+    )
 }
 
 /// Adds up the `rate` lines.

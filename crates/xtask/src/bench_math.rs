@@ -5,6 +5,7 @@
 //! regenerates all of `BENCH.md` can call it too; [`replace_region`] puts it between the
 //! section's markers.
 
+use crate::bench_log::field;
 use crate::{
     build_rom, cargo, engine_isa, ensure_setup, workspace_root, EngineIsa, TaskError, TaskResult,
 };
@@ -202,11 +203,6 @@ struct Results {
     long_rounds: u32,
     /// Per operation, in the ROM's order: name and cycles ×100 in ROM, IWRAM, ARM.
     rows: Vec<(String, [Option<u64>; 3])>,
-}
-
-fn field<'a>(line: &'a str, key: &str) -> Option<&'a str> {
-    line.split_whitespace()
-        .find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
 }
 
 fn parse(log: &str) -> TaskResult<Results> {

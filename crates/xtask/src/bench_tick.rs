@@ -11,9 +11,9 @@
 //! only prints it (the quick loop while optimising). mGBA's cycle counts are deterministic, so
 //! the same ROM gives the same figures.
 
-use crate::bench_log::group_digits;
+use crate::bench_log::{field, group_digits};
 use crate::{
-    build_rom_for, cargo, engine_isa, ensure_setup, rom_target_dir, workspace_root, TaskError,
+    build_rom_for, engine_isa, ensure_setup, play_keys, rom_target_dir, workspace_root, TaskError,
     TaskResult,
 };
 use std::path::Path;
@@ -74,29 +74,13 @@ fn run_walk(rom: &Path) -> TaskResult<String> {
         "== {} playing {KEYS_FILE} for {FRAMES} frames",
         rom.display()
     );
-    let output = cargo()
-        .args(["run", "--quiet", "--release", "-p", "portalcast-harness"])
-        .args(["--bin", "pc-run", "--"])
-        .arg(rom)
-        .args(["--frames", &FRAMES.to_string(), "--png-every", "0", "--out"])
-        .arg(rom_target_dir().join("tick-frames"))
-        .arg("--keys")
-        .arg(&keys)
-        .output()
-        .map_err(|error| TaskError(format!("running pc-run: {error}")))?;
-    if !output.status.success() {
-        return Err(TaskError(format!(
-            "{} failed on {KEYS_FILE}: {}",
-            rom.display(),
-            String::from_utf8_lossy(&output.stderr).trim()
-        )));
-    }
-    Ok(String::from_utf8_lossy(&output.stdout).into_owned())
-}
-
-fn field<'a>(line: &'a str, key: &str) -> Option<&'a str> {
-    line.split_whitespace()
-        .find_map(|word| word.strip_prefix(key)?.strip_prefix('='))
+    play_keys(
+        rom,
+        &keys,
+        FRAMES,
+        &rom_target_dir().join("tick-frames"),
+        KEYS_FILE,
+    )
 }
 
 /// Adds up the `player` lines' tick fields.

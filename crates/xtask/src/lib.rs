@@ -113,6 +113,36 @@ pub fn elf_path_for(isa: EngineIsa) -> PathBuf {
     elf_path_in(&rom_target_dir(), isa)
 }
 
+/// Plays `rom` in the real mGBA core (`pc-run`) for `frames` frames with the key script at
+/// `keys`, writing no frame but the last to `out`, and returns the ROM's debug lines. `what`
+/// names the run in the error.
+pub fn play_keys(
+    rom: &Path,
+    keys: &Path,
+    frames: u32,
+    out: &Path,
+    what: &str,
+) -> TaskResult<String> {
+    let output = cargo()
+        .args(["run", "--quiet", "--release", "-p", "portalcast-harness"])
+        .args(["--bin", "pc-run", "--"])
+        .arg(rom)
+        .args(["--frames", &frames.to_string(), "--png-every", "0", "--out"])
+        .arg(out)
+        .arg("--keys")
+        .arg(keys)
+        .output()
+        .map_err(|error| TaskError(format!("running pc-run: {error}")))?;
+    if !output.status.success() {
+        return Err(TaskError(format!(
+            "{} failed on {what}: {}",
+            rom.display(),
+            String::from_utf8_lossy(&output.stderr).trim()
+        )));
+    }
+    Ok(String::from_utf8_lossy(&output.stdout).into_owned())
+}
+
 fn cargo() -> Command {
     let mut command = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
     command.current_dir(workspace_root());

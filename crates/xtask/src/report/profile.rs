@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use portalcast_xtask::bench_log::group_digits;
 use portalcast_xtask::{rom_target_dir, TaskError, TaskResult};
 
 use super::{cargo, write_file};
@@ -160,15 +161,7 @@ pub fn section(profile: &Profile) -> String {
 
 /// `1234567.8` as `1,234,568`.
 fn thousands(value: f64) -> String {
-    let digits = format!("{:.0}", value.max(0.0));
-    let mut out = String::new();
-    for (index, digit) in digits.chars().enumerate() {
-        if index > 0 && (digits.len() - index) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(digit);
-    }
-    out
+    group_digits(value.max(0.0).round() as u64)
 }
 
 #[cfg(test)]
