@@ -354,8 +354,10 @@ fn run_keeping_build_script_errors(command: &mut Command, what: &str) -> TaskRes
         .iter()
         .skip_while(|line| line.trim() != "--- stderr")
         .skip(1)
+        // Cargo indents the script's lines; its own (`warning: build failed, waiting for other
+        // jobs to finish...` when other crates still build) follow unindented, without a blank.
+        .take_while(|line| line.starts_with(' ') && !line.trim().is_empty())
         .map(|line| line.trim())
-        .take_while(|line| !line.is_empty())
         .collect();
     let shown = if script_errors.is_empty() {
         lines[lines.len().saturating_sub(20)..]
