@@ -13,8 +13,8 @@ use super::surface::Surface;
 use super::view::{Preprocessing, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
-    owned_columns_in, VertexSplit, WallColumn, WallLerp, WallProjector, WallRows, WallStepper,
-    ROW_HEIGHTS,
+    owned_columns_in, SteppedWall, VertexSplit, WallColumn, WallLerp, WallProjector, WallRows,
+    WallStepper, ROW_HEIGHTS,
 };
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
@@ -686,56 +686,123 @@ impl<W: WindowStore> Renderer<W> {
             }
             let projector = WallProjector::new(&scene.view.viewport, a, b);
             let mut job = WallJob::new(scene, sector, wall, wall_index);
-            let mut stepper = projector.stepper(start);
-            let mut rows = WallRows::new(
-                &scene.view.viewport,
-                job.heights(),
-                job.portal.is_some(),
-                &stepper,
-                stop - start,
-            );
+            let stepper = projector.stepper(start);
             stats.wall_columns += (stop - start) as u32;
+            let viewport = &scene.view.viewport;
+            let heights = job.heights();
             let interval = scene.view.perspective.interval();
-            // The interpolating knobs' segments: exact at both ends, interpolated between. Each
-            // segment's right end is the next one's left (one exact column per interval), and
-            // the wall's last column is always exact. One loop for every knob, so the column's
-            // code is inlined once.
-            let mut left = WallColumn {
-                depth: Fx24_8::ZERO,
-                along: Fx2_30::ZERO,
-            };
-            if interval > 1 {
-                left = stepper.ahead(0);
+            if let Some(stepped) = SteppedWall::new(viewport, heights, &stepper, stop - start) {
+                self.draw_stepped_wall(
+                    scene, canvas, stats, &mut job, stepped, interval, start, stop,
+                );
+                continue;
             }
-            let mut lerp = WallLerp::new(left, left, 1);
-            let (mut segment_start, mut segment_end) = (start, start);
-            for column in start..stop {
-                let at = if interval == 1 {
-                    ColumnAt::Stepper(&stepper)
-                } else if column < segment_end {
-                    ColumnAt::Lerp(&lerp, column - segment_start)
-                } else {
-                    let last = (column + interval).min(stop - 1);
-                    if last == column {
-                        ColumnAt::Known(left.depth, left.along)
-                    } else {
-                        let span = last - column;
-                        let right = stepper.ahead(span);
-                        lerp = WallLerp::new(left, right, span);
-                        stepper.advance(span);
-                        left = right;
-                        (segment_start, segment_end) = (column, last);
-                        ColumnAt::Lerp(&lerp, 0)
-                    }
-                };
-                let column_rows = rows.next_column();
-                self.wall_column(scene, canvas, stats, &mut job, &at, column_rows, column);
-                if interval == 1 {
-                    stepper.step();
-                }
-            }
+            self.draw_clamped_wall(scene, canvas, stats, &mut job, stepper, start, stop);
         }
         self.portals_recorded = recording;
+    }
+
+    /// The columns `start..stop` of a wall that reaches the near plane or the far limit
+    /// somewhere (a portal the eye stands in, a wall at the far limit): exact at every column
+    /// whatever the perspective knob, since only the stepper's 64-bit accumulators and clamps
+    /// get its columns right. Out of line and in ROM: few walls of a frame take it, and IWRAM
+    /// has no room for a second copy of the column's code.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn draw_clamped_wall(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        job: &mut WallJob,
+        mut stepper: WallStepper,
+        start: i32,
+        stop: i32,
+    ) {
+        let viewport = &scene.view.viewport;
+        let portal = job.portal;
+        let mut rows = WallRows::new(
+            viewport,
+            job.heights(),
+            portal.is_some(),
+            &stepper,
+            stop - start,
+        );
+        for column in start..stop {
+            let column_rows = rows.next_column().map(i32::from);
+            self.wall_column(
+                scene,
+                canvas,
+                stats,
+                job,
+                portal,
+                || stepper.texturing(),
+                column_rows,
+                column,
+            );
+            stepper.step();
+        }
+    }
+
+    /// The columns `start..stop` of a [`SteppedWall`] (most walls): its rows and texturing
+    /// from 32-bit accumulators. With the perspective knob's `interval > 1`, the depth and
+    /// position along the wall are exact every `interval` columns and at the wall's last
+    /// column, and interpolated between (each segment's right end is the next one's left).
+    /// One loop for every knob, so the column's code is inlined once.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn draw_stepped_wall(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        job: &mut WallJob,
+        mut wall: SteppedWall,
+        interval: i32,
+        start: i32,
+        stop: i32,
+    ) {
+        let portal = job.portal;
+        let mut left = WallColumn {
+            depth: Fx24_8::ZERO,
+            along: Fx2_30::ZERO,
+        };
+        if interval > 1 {
+            left = wall.ahead(0);
+        }
+        let mut lerp = WallLerp::new(left, left, 1);
+        let (mut segment_start, mut segment_end) = (start, start);
+        for column in start..stop {
+            let at = if interval == 1 {
+                ColumnAt::Stepped(&wall)
+            } else if column < segment_end {
+                ColumnAt::Lerp(&lerp, column - segment_start)
+            } else {
+                let last = (column + interval).min(stop - 1);
+                if last == column {
+                    ColumnAt::Known(left.depth, left.along)
+                } else {
+                    let span = last - column;
+                    let right = wall.ahead(span);
+                    lerp = WallLerp::new(left, right, span);
+                    left = right;
+                    (segment_start, segment_end) = (column, last);
+                    ColumnAt::Lerp(&lerp, 0)
+                }
+            };
+            let rows = wall.rows(portal.is_some());
+            self.wall_column(
+                scene,
+                canvas,
+                stats,
+                job,
+                portal,
+                || at.texturing(),
+                rows,
+                column,
+            );
+            wall.step();
+        }
     }
 
     fn plane_job<'r>(
@@ -772,14 +839,15 @@ impl<W: WindowStore> Renderer<W> {
         canvas: &mut impl Canvas,
         stats: &mut FrameStats,
         job: &mut WallJob,
-        at: &ColumnAt,
-        rows: [i16; ROW_HEIGHTS],
+        portal: Option<PortalJob>,
+        texturing: impl FnOnce() -> (Fx24_8, Fx2_30),
+        rows: [i32; ROW_HEIGHTS],
         column: i32,
     ) {
         let x = column as usize;
         let windows = self.windows.windows();
-        // Rows in i32 from here: i16 arithmetic would sign-extend after every operation.
-        let [ceiling, floor, neighbour_ceiling, neighbour_floor] = rows.map(i32::from);
+        // Rows in i32: i16 arithmetic would sign-extend after every operation.
+        let [ceiling, floor, neighbour_ceiling, neighbour_floor] = rows;
         let clip = windows.clip[x];
         let (clip_top, clip_bottom) = (i32::from(clip.top), i32::from(clip.bottom));
         let ceiling_row = ceiling.max(clip_top);
@@ -792,7 +860,7 @@ impl<W: WindowStore> Renderer<W> {
         windows.floor[x] = window(floor_row.max(clip_top), clip_bottom);
         // The rows of the column's strips (`job.strips`, empty where not drawn), and the clip
         // window the column leaves for the sectors behind it.
-        let rows = match &job.portal {
+        let rows = match portal {
             None => {
                 windows.clip[x] = Window::EMPTY;
                 [(ceiling_row, floor_row), (0, 0)]
@@ -838,7 +906,7 @@ impl<W: WindowStore> Renderer<W> {
             // its texture column is not needed.
             return;
         }
-        let (depth, along) = at.texturing();
+        let (depth, along) = texturing();
         let u = Fx24_8::from_bits(
             ((i64::from(along.to_bits()) * i64::from(job.length.to_bits())) >> 30) as i32,
         ) + job.x_offset;
@@ -864,6 +932,7 @@ impl<W: WindowStore> Renderer<W> {
 
     /// Draws rows `top..bottom` of one wall column with the strip texture `texture`.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn draw_strip(
         &mut self,
         scene: &Scene,
@@ -982,7 +1051,7 @@ impl Ownership {
 /// reciprocal) or the interpolating knobs' straight line between exact columns, evaluated only
 /// where a strip is drawn; or already known (an exact column of those knobs).
 enum ColumnAt<'s> {
-    Stepper(&'s WallStepper),
+    Stepped(&'s SteppedWall),
     Known(Fx24_8, Fx2_30),
     Lerp(&'s WallLerp, i32),
 }
@@ -992,7 +1061,7 @@ impl ColumnAt<'_> {
     #[inline]
     fn texturing(&self) -> (Fx24_8, Fx2_30) {
         match self {
-            ColumnAt::Stepper(stepper) => stepper.texturing(),
+            ColumnAt::Stepped(wall) => wall.texturing(),
             ColumnAt::Known(depth, along) => (*depth, *along),
             ColumnAt::Lerp(lerp, offset) => lerp.texturing(*offset),
         }
@@ -1031,6 +1100,7 @@ impl WallJob<'_> {
 }
 
 /// A portal's neighbour, as its columns need it.
+#[derive(Clone, Copy)]
 struct PortalJob {
     ceiling_above_eye: Fx24_8,
     floor_above_eye: Fx24_8,

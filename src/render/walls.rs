@@ -247,9 +247,9 @@ impl WallStepper {
     }
 
     /// The current column's depth and position along the wall ([`WallColumn::depth`],
-    /// [`WallColumn::along`]): what its texture column needs, one reciprocal. `ahead(0)` without
-    /// its multiplies: this is the exact setting's per-column path, inlined into the wall's
-    /// column loop (its one caller).
+    /// [`WallColumn::along`]): what its texture column needs, one reciprocal, with the near
+    /// plane's clamp (the column loop of walls that reach it; [`SteppedWall::texturing`] is the
+    /// same where no clamp is needed).
     #[inline(always)]
     pub fn texturing(&self) -> (Fx24_8, Fx2_30) {
         let (inverse_depth, near_inverse_depth) = self.rows();
@@ -269,49 +269,6 @@ impl WallStepper {
         self.along_over_depth += self.along_over_depth_step;
     }
 
-    /// The depth and position along the wall `columns` columns after the current one, without
-    /// stepping. Not inlined (the interpolating knobs call it twice per interval; IWRAM is
-    /// short).
-    #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram_render.stepper_ahead")]
-    pub fn ahead(&self, columns: i32) -> WallColumn {
-        let inverse_depth = self.inverse_depth_ahead(columns);
-        let depth = inverse_depth.recip_fx24_8();
-        let along_over_depth =
-            self.along_over_depth + self.along_over_depth_step * i64::from(columns);
-        let exact_inverse_depth = self.near_inverse_depth_ahead(columns);
-        let along = if exact_inverse_depth <= 1 << 30 {
-            along_at_depth(along_over_depth, depth)
-        } else {
-            // Closer than the near plane, where the depth read is clamped: t = (t/z')/(1/z')
-            // from the exact accumulators instead.
-            ratio_shifted(along_over_depth, 30, exact_inverse_depth)
-        };
-        WallColumn {
-            depth,
-            along: Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
-        }
-    }
-
-    /// `1/z'` in units of 2^-30, `columns` after the current column, clamped only at the far
-    /// limit (see [`WallStepper::rows`]).
-    pub fn near_inverse_depth_ahead(&self, columns: i32) -> i64 {
-        (self.inverse_depth + self.inverse_depth_step * i64::from(columns))
-            .max(i64::from(SMALLEST_INVERSE_DEPTH))
-    }
-
-    /// `1/z'` alone, `columns` after the current column: exact (it is affine in the column),
-    /// clamped to the near plane and the far limit.
-    pub fn inverse_depth_ahead(&self, columns: i32) -> Fx2_30 {
-        let inverse_depth = self.inverse_depth + self.inverse_depth_step * i64::from(columns);
-        Fx2_30::from_bits(inverse_depth.clamp(i64::from(SMALLEST_INVERSE_DEPTH), 1 << 30) as i32)
-    }
-
-    /// Steps `columns` columns on.
-    pub fn advance(&mut self, columns: i32) {
-        self.inverse_depth += self.inverse_depth_step * i64::from(columns);
-        self.along_over_depth += self.along_over_depth_step * i64::from(columns);
-    }
 }
 
 /// Heights whose rows a wall column needs: its sector's ceiling and floor, and a portal's
@@ -464,6 +421,116 @@ impl WallRows {
             };
             viewport.first_row_at_or_after(y) as i16
         })
+    }
+}
+
+/// A wall on which [`WallStepper`] and [`WallRows`] need no clamp and no 64-bit accumulator:
+/// `1/z'` stays within `[SMALLEST_INVERSE_DEPTH, 2^30]` ([`WallRows::Stepped`]'s condition) and
+/// `t/z'` within i32 over every column, so every column's rows and texturing are the stepper's
+/// and the rows' own, bit for bit, from four 32-bit accumulators. Both quantities are affine in
+/// the column, so checking the first and the last column checks them all. Most walls of a frame
+/// are such walls; the wall loop keeps this state in registers (Doom's `R_RenderSegLoop` steps
+/// its `rw_scale` and `topfrac` the same way).
+#[derive(Clone, Copy, Debug)]
+pub struct SteppedWall {
+    inverse_depth: i32,
+    inverse_depth_step: i32,
+    along_over_depth: i32,
+    along_over_depth_step: i32,
+    scales: [i32; ROW_HEIGHTS],
+    horizon: i32,
+    height: i32,
+}
+
+impl SteppedWall {
+    /// The wall `stepper` starts on, over its `columns ≥ 1` columns, with the rows of `heights`
+    /// (see [`WallRows::new`]); `None` where a column needs a clamp or a 64-bit accumulator.
+    pub fn new(
+        viewport: &Viewport,
+        heights: [Fx24_8; ROW_HEIGHTS],
+        stepper: &WallStepper,
+        columns: i32,
+    ) -> Option<SteppedWall> {
+        let WallRows::Stepped {
+            inverse_depth,
+            inverse_depth_step,
+            scales,
+            horizon,
+            height,
+            ..
+        } = WallRows::new(viewport, heights, true, stepper, columns)
+        else {
+            return None;
+        };
+        // As in `WallRows::new`: one column steps nowhere, so its step is kept out.
+        let along_step = if columns > 1 {
+            stepper.along_over_depth_step
+        } else {
+            0
+        };
+        let first = stepper.along_over_depth;
+        let last = along_step
+            .checked_mul(i64::from(columns - 1))
+            .and_then(|run| run.checked_add(first))?;
+        i32::try_from(last).ok()?;
+        Some(SteppedWall {
+            inverse_depth,
+            inverse_depth_step,
+            along_over_depth: i32::try_from(first).ok()?,
+            along_over_depth_step: i32::try_from(along_step).ok()?,
+            scales,
+            horizon,
+            height,
+        })
+    }
+
+    /// The current column's rows of the four heights, unclipped (in `[0, height]`): those of
+    /// [`WallRows::next_column`]. Without a `neighbour` (a solid wall) the last two read 0.
+    #[inline(always)]
+    pub fn rows(&self, neighbour: bool) -> [i32; ROW_HEIGHTS] {
+        let inverse_depth = i64::from(self.inverse_depth);
+        let row = |scale: i32| {
+            let offset = ((i64::from(scale) * inverse_depth + (1 << 29)) >> 30) as i32;
+            ((self.horizon - offset) >> 8).max(0).min(self.height)
+        };
+        if neighbour {
+            self.scales.map(row)
+        } else {
+            [row(self.scales[0]), row(self.scales[1]), 0, 0]
+        }
+    }
+
+    /// The current column's depth and position along the wall: [`WallStepper::texturing`]'s,
+    /// which on such a wall is one reciprocal and one 32×32-bit product.
+    #[inline(always)]
+    pub fn texturing(&self) -> (Fx24_8, Fx2_30) {
+        let depth = Fx2_30::from_bits(self.inverse_depth).recip_fx24_8();
+        let along = (i64::from(self.along_over_depth) * i64::from(depth.to_bits())) >> 8;
+        (depth, Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32))
+    }
+
+    /// The depth and position along the wall `columns` columns after the current one (at most
+    /// the wall's last), without stepping: what [`SteppedWall::texturing`] gives there.
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.stepped_wall_ahead")]
+    pub fn ahead(&self, columns: i32) -> WallColumn {
+        let (depth, along) = SteppedWall {
+            inverse_depth: self.inverse_depth + self.inverse_depth_step * columns,
+            along_over_depth: self.along_over_depth + self.along_over_depth_step * columns,
+            ..*self
+        }
+        .texturing();
+        WallColumn { depth, along }
+    }
+
+    /// Steps to the next column. Past the wall's last column the sums may leave i32; they are
+    /// never read then.
+    #[inline(always)]
+    pub fn step(&mut self) {
+        self.inverse_depth = self.inverse_depth.wrapping_add(self.inverse_depth_step);
+        self.along_over_depth = self
+            .along_over_depth
+            .wrapping_add(self.along_over_depth_step);
     }
 }
 
@@ -679,6 +746,67 @@ mod row_tests {
             };
             for column in start..stop {
                 prop_assert_eq!(rows.next_column(), exact.next_column(), "column {}", column);
+            }
+        }
+
+        /// Where a wall needs no clamp, the 32-bit [`SteppedWall`] gives every column the rows
+        /// and the texturing of the 64-bit stepper and of [`WallRows::Exact`], bit for bit, and
+        /// its look-ahead is its own texturing that many columns on.
+        #[test]
+        fn a_stepped_wall_is_the_stepper_bit_for_bit(
+            ax in -4000i32..4000, az in -4000i32..4000,
+            bx in -4000i32..4000, bz in -4000i32..4000,
+            scale in prop_oneof![Just(1i32), Just(37), Just(256), Just(2048)],
+            heights in proptest::array::uniform4(-(1i32 << 22)..(1 << 22)),
+            wide in any::<bool>(),
+            look in -40i32..=40,
+        ) {
+            let mut viewport = if wide { Viewport::new(240, 160) } else { Viewport::new(120, 80) };
+            viewport.horizon_y = (viewport.horizon_y + look).clamp(0, viewport.height);
+            let a = EyePoint::new(Fx24_8::from_bits(ax * scale), Fx24_8::from_bits(az * scale));
+            let b = EyePoint::new(Fx24_8::from_bits(bx * scale), Fx24_8::from_bits(bz * scale));
+            let (a, b) = if owned_columns(&viewport, a, b).0 < owned_columns(&viewport, a, b).1 {
+                (a, b)
+            } else {
+                (b, a)
+            };
+            let (start, stop) = owned_columns(&viewport, a, b);
+            if start >= stop {
+                return Ok(());
+            }
+            let mut stepper = WallProjector::new(&viewport, a, b).stepper(start);
+            let heights = heights.map(Fx24_8::from_bits);
+            let Some(mut wall) = SteppedWall::new(&viewport, heights, &stepper, stop - start) else {
+                return Ok(());
+            };
+            let mut exact = WallRows::Exact {
+                inverse_depth: stepper.inverse_depth,
+                inverse_depth_step: stepper.inverse_depth_step,
+                heights,
+                viewport,
+            };
+            let mut ahead = Vec::new();
+            for column in start..stop {
+                let expected = exact.next_column().map(i32::from);
+                prop_assert_eq!(wall.rows(true), expected, "column {}", column);
+                let solid = wall.rows(false);
+                prop_assert_eq!(&solid[..2], &expected[..2], "column {}", column);
+                prop_assert_eq!(wall.texturing(), stepper.texturing(), "column {}", column);
+                let (depth, along) = wall.texturing();
+                ahead.push(WallColumn { depth, along });
+                wall.step();
+                stepper.step();
+            }
+            let first = SteppedWall::new(
+                &viewport,
+                heights,
+                &WallProjector::new(&viewport, a, b).stepper(start),
+                stop - start,
+            );
+            if let Some(first) = first {
+                for (offset, expected) in ahead.iter().enumerate() {
+                    prop_assert_eq!(first.ahead(offset as i32), *expected, "offset {}", offset);
+                }
             }
         }
     }
