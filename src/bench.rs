@@ -16,7 +16,7 @@ use crate::assets;
 use crate::frame::Resolution;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Floors, Perspective, Preprocessing, Settings, TexturePlacement};
+use crate::render::view::{Floors, Preprocessing, Settings, TexturePlacement};
 use crate::render::walk::FrameStats;
 
 /// Frames measured per setting along the [`crate::flight`] path.
@@ -59,14 +59,6 @@ pub fn knob_variants(resolution: Resolution) -> impl Iterator<Item = Settings> {
             [Lighting::Off, Lighting::Sector]
                 .into_iter()
                 .map(move |lighting| Settings { lighting, ..base }),
-        )
-        .chain(
-            [Perspective::Every16]
-                .into_iter()
-                .map(move |perspective| Settings {
-                    perspective,
-                    ..base
-                }),
         )
         .chain(core::iter::once(Settings {
             textures: TexturePlacement::Rom,
@@ -129,7 +121,6 @@ impl fmt::Display for SettingsLabel<'_> {
         let settings = self.0;
         write!(f, "res={}", settings.resolution.label())?;
         write!(f, " lighting={}", lighting_label(settings.lighting))?;
-        write!(f, " persp={}", settings.perspective.label())?;
         write!(f, " tex={}", settings.textures.label())?;
         write!(f, " prep={}", settings.preprocessing.label())?;
         write!(f, " floors={}", settings.floors.label())?;
@@ -226,7 +217,7 @@ mod tests {
         assert_eq!(distinct.len(), labels.len(), "{labels:?}");
         assert_eq!(
             labels[0],
-            "map=bench res=120x80 lighting=depth persp=exact tex=ewram prep=off floors=full"
+            "map=bench res=120x80 lighting=depth tex=ewram prep=off floors=full"
         );
         assert_eq!(guard_runs().count(), Resolution::ALL.len());
     }

@@ -85,7 +85,6 @@ impl<'m> Game<'m> {
             fly: self.player.fly,
             run: self.controls.always_run,
             hud: self.hud,
-            perspective: self.settings.perspective,
             textures: self.settings.textures,
             preprocessing: self.settings.preprocessing,
             floors: self.settings.floors,
@@ -172,7 +171,6 @@ impl<'m> Game<'m> {
             }
             Entry::Fly => self.player.toggle_fly(),
             Entry::Run => self.controls.always_run = !self.controls.always_run,
-            Entry::Perspective => self.settings.perspective = self.settings.perspective.next(),
             Entry::Preprocessing => {
                 self.settings.preprocessing = self.settings.preprocessing.next();
             }

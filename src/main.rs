@@ -194,11 +194,10 @@ mod rom {
             if frame_lines {
                 let started = meter::now();
                 log::info(format_args!(
-                    "render map={} frame={frame} res={} lighting={} persp={} tex={} prep={} floors={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
+                    "render map={} frame={frame} res={} lighting={} tex={} prep={} floors={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
                     game.map().name,
                     settings.resolution.label(),
                     demo::lighting_label(settings.lighting),
-                    settings.perspective.label(),
                     settings.textures.label(),
                     settings.preprocessing.label(),
                     settings.floors.label(),

@@ -14,7 +14,7 @@ use crate::raster::flat::{FlatTexture, PackedUv};
 use crate::raster::Canvas;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Floors, Perspective, Preprocessing, TexturePlacement};
+use crate::render::view::{Floors, Preprocessing, TexturePlacement};
 
 /// One line of the menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,8 +29,6 @@ pub enum Entry {
     Fly,
     /// Run rather than walk.
     Run,
-    /// Wall perspective (exact, or exact every 8 or 16 columns).
-    Perspective,
     /// Where texels are read from (EWRAM or the cartridge).
     Textures,
     /// The thesis' scene preprocessing (merged sector visits), on or off.
@@ -42,13 +40,12 @@ pub enum Entry {
 }
 
 /// The menu's entries, top to bottom.
-pub const ENTRIES: [Entry; 10] = [
+pub const ENTRIES: [Entry; 9] = [
     Entry::Resolution,
     Entry::Lighting,
     Entry::Map,
     Entry::Fly,
     Entry::Run,
-    Entry::Perspective,
     Entry::Textures,
     Entry::Preprocessing,
     Entry::Floors,
@@ -64,7 +61,6 @@ impl Entry {
             Entry::Map => "MAP",
             Entry::Fly => "FLY",
             Entry::Run => "RUN",
-            Entry::Perspective => "PERSP",
             Entry::Textures => "TEX",
             Entry::Preprocessing => "PREP",
             Entry::Floors => "FLOOR",
@@ -88,8 +84,6 @@ pub struct Shown<'a> {
     pub run: bool,
     /// The heads-up display (frame rate and cycles).
     pub hud: bool,
-    /// Wall perspective.
-    pub perspective: Perspective,
     /// Texture placement.
     pub textures: TexturePlacement,
     /// Scene preprocessing.
@@ -108,7 +102,6 @@ impl Entry {
             Entry::Map => shown.map,
             Entry::Fly => on_off(shown.fly),
             Entry::Run => on_off(shown.run),
-            Entry::Perspective => shown.perspective.label(),
             Entry::Textures => shown.textures.label(),
             Entry::Preprocessing => shown.preprocessing.label(),
             // Not offered at 120 wide, where floors already have one texel per halfword.

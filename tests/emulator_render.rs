@@ -15,9 +15,7 @@ use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
-use portalcast::render::view::{
-    Camera, Floors, Perspective, Preprocessing, Settings, TexturePlacement, View,
-};
+use portalcast::render::view::{Camera, Floors, Preprocessing, Settings, TexturePlacement, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_harness::{Emulator, Keys};
@@ -28,7 +26,6 @@ struct Compared {
     map: String,
     resolution: Resolution,
     lighting: portalcast::render::light::Lighting,
-    perspective: Perspective,
     textures: TexturePlacement,
     preprocessing: Preprocessing,
     floors: Floors,
@@ -93,14 +90,12 @@ impl Checker {
             sector: player.sector,
             look_lines: player.look,
         };
-        let perspective = Perspective::from_label(field(text, "persp").unwrap()).unwrap();
         let textures = TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap();
         let preprocessing = Preprocessing::from_label(field(text, "prep").unwrap()).unwrap();
         let floors = Floors::from_label(field(text, "floors").unwrap()).unwrap();
         let settings = Settings {
             resolution,
             lighting,
-            perspective,
             textures,
             preprocessing,
             floors,
@@ -130,7 +125,6 @@ impl Checker {
                 fly: player.fly,
                 run: player.run,
                 hud: player.hud,
-                perspective,
                 textures,
                 preprocessing,
                 floors,
@@ -182,7 +176,6 @@ impl Checker {
             map: map_name,
             resolution,
             lighting,
-            perspective,
             textures,
             preprocessing,
             floors,
@@ -261,12 +254,11 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         checker.press(key);
     }
     checker.hold_until_compared(right, 2, false);
-    // The quality knobs at the end of the menu: perspective every 16, the textures from the
-    // cartridge, the scene preprocessing, then half-width floors, which need 240×160 (down
-    // from the preprocessing wraps to the resolution, two up is the floors).
-    let knob_phases: [&[Keys]; 5] = [
+    // The quality knobs at the end of the menu: the textures from the cartridge, the scene
+    // preprocessing, then half-width floors, which need 240×160 (down from the preprocessing
+    // wraps to the resolution, two up is the floors).
+    let knob_phases: [&[Keys]; 4] = [
         &[start, down, down, down, right, start],
-        &[start, down, right, start],
         &[start, down, right, start],
         &[start, down, down, down, right, up, up, right, start],
         // The HUD on: its figures are this frame's cycles, which the host reads from the line.
@@ -292,12 +284,6 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         );
     }
     assert!(compared.iter().any(|c| c.menu), "no menu frame compared");
-    for perspective in Perspective::ALL {
-        assert!(
-            compared.iter().any(|c| c.perspective == perspective),
-            "perspective {perspective:?} never compared"
-        );
-    }
     for preprocessing in Preprocessing::ALL {
         assert!(
             compared.iter().any(|c| c.preprocessing == preprocessing),

@@ -12,7 +12,7 @@
 //! - on success: [`Compiled::write_to`] leaves exactly the four output files; an independent
 //!   validator (exact integer arithmetic, written here from `crates/format`'s documented
 //!   invariants, not from the compiler's code) accepts the tables; and the host engine renders
-//!   the player's first frame at every resolution and perspective mode, and a frame after a
+//!   the player's first frame at every resolution, and a frame after a
 //!   short walk, writing every pixel exactly once (the dev profile panics on overflow).
 //!
 //! One renderer fault the fuzzer found is the renderer's to fix, not the compiler's (an eye 1/256
@@ -37,7 +37,7 @@ use std::time::Instant;
 use portalcast::frame::Resolution;
 use portalcast::player::input::Intent;
 use portalcast::player::Player;
-use portalcast::render::view::{Camera, Perspective, Preprocessing, Settings, View};
+use portalcast::render::view::{Camera, Preprocessing, Settings, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_assets::{compile_dir, CompileErrors, Compiled};
@@ -683,9 +683,7 @@ fn render(map: &MapTables, compiled: &Compiled) -> Result<(), RenderFault> {
     let mut player = Player::spawn(map);
     // The ROM's first frame: the spawn pose, before any tick.
     let spawn = player.camera();
-    for perspective in Perspective::ALL {
-        draw(map, &assets, &spawn, perspective, "spawn")?;
-    }
+    draw(map, &assets, &spawn, "spawn")?;
     for tick in 0..WALK_TICKS {
         let intent = Intent {
             forward: 1,
@@ -694,20 +692,13 @@ fn render(map: &MapTables, compiled: &Compiled) -> Result<(), RenderFault> {
         };
         player.tick(&intent, map);
     }
-    draw(
-        map,
-        &assets,
-        &player.camera(),
-        Perspective::Exact,
-        "after the walk",
-    )
+    draw(map, &assets, &player.camera(), "after the walk")
 }
 
 fn draw(
     map: &MapTables,
     assets: &RenderAssets,
     camera: &Camera,
-    perspective: Perspective,
     pose: &str,
 ) -> Result<(), RenderFault> {
     // The scene preprocessing on at the lowest resolution: its plan and merges see the same
@@ -719,12 +710,11 @@ fn draw(
     for (resolution, preprocessing) in runs {
         let settings = Settings {
             resolution,
-            perspective,
             preprocessing,
             ..Settings::DEFAULT
         };
         let view = View::new(camera, &settings);
-        let what = format!("{pose} {camera:?} {resolution:?} {perspective:?} {preprocessing:?}");
+        let what = format!("{pose} {camera:?} {resolution:?} {preprocessing:?}");
         // Caught here rather than by proptest so that a known renderer panic can be told apart.
         let frame = std::panic::catch_unwind(AssertUnwindSafe(|| {
             let mut canvas = RecordingCanvas::new(resolution);

@@ -8,7 +8,7 @@ use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::light::Lighting;
 use portalcast::render::surface::Surface;
-use portalcast::render::view::{Camera, Floors, Perspective, Settings, View};
+use portalcast::render::view::{Camera, Floors, Settings, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_format::{MapTables, Texture};
@@ -47,21 +47,18 @@ fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
             camera.angle = Angle::from_bits(camera.angle.to_bits().wrapping_add(turn * 8192 + 123));
             for resolution in Resolution::ALL {
                 let knobs = [
-                    (Lighting::Off, Perspective::Exact, Floors::Full),
-                    (Lighting::SectorDepth, Perspective::Exact, Floors::Full),
-                    (Lighting::SectorDepth, Perspective::Every16, Floors::Full),
-                    (Lighting::Off, Perspective::Every16, Floors::Full),
+                    (Lighting::Off, Floors::Full),
+                    (Lighting::SectorDepth, Floors::Full),
                     // Half-width floors change which texel a pixel shows, not which pixels
                     // a span covers: still each pixel once (the value is ignored at 120 wide).
-                    (Lighting::SectorDepth, Perspective::Exact, Floors::Half),
+                    (Lighting::SectorDepth, Floors::Half),
                 ];
-                for (lighting, perspective, floors) in knobs {
+                for (lighting, floors) in knobs {
                     let view = View::new(
                         &camera,
                         &Settings {
                             resolution,
                             lighting,
-                            perspective,
                             floors,
                             ..Settings::DEFAULT
                         },
@@ -71,7 +68,7 @@ fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
                     let faults = canvas.coverage_faults();
                     assert!(
                         faults.is_empty(),
-                        "{} turn {turn} {resolution:?} {perspective:?} {floors:?}: {} pixels not drawn exactly once, first {:?}; {stats:?}",
+                        "{} turn {turn} {resolution:?} {lighting:?} {floors:?}: {} pixels not drawn exactly once, first {:?}; {stats:?}",
                         map.name,
                         faults.len(),
                         &faults[..faults.len().min(8)]

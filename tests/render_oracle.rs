@@ -8,7 +8,7 @@ use common::*;
 use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::light::Lighting;
-use portalcast::render::view::{Camera, Floors, Perspective, Settings, View};
+use portalcast::render::view::{Camera, Floors, Settings, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_format::Texture;
@@ -16,13 +16,9 @@ use portalcast_oracle::RecordingCanvas;
 
 const POSES_PER_MAP: usize = 12;
 const SURFACE_MISMATCH_MAX_PERCENT: f64 = 0.5;
-/// The knob values compared, each from the defaults: both wall perspectives, and half-width
-/// floors (the same pixels as the defaults at 120 wide, where the value is not offered).
-const KNOBS: [(&str, Perspective, Floors); 3] = [
-    ("persp=exact", Perspective::Exact, Floors::Full),
-    ("persp=every16", Perspective::Every16, Floors::Full),
-    ("floors=half", Perspective::Exact, Floors::Half),
-];
+/// The knob values compared: the defaults, and half-width floors (the same pixels as the
+/// defaults at 120 wide, where the value is not offered).
+const KNOBS: [(&str, Floors); 2] = [("defaults", Floors::Full), ("floors=half", Floors::Half)];
 /// How far from a wall the "touching a wall" poses put the eye, in 24.8 units: 1/16 unit. Closer
 /// than about 1/32 unit the near-plane clamp of the depth (`NEAR_DEPTH`) still moves single
 /// rows of planes behind a portal (0.6-0.9 % of pixels at 1/256 unit, see docs/BENCH.md); the
@@ -91,12 +87,11 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
                 let oracle =
                     portalcast_oracle::render(&map, &oracle_assets, &oracle_camera, &oracle_view);
                 frames += 1;
-                for (knob, (label, perspective, floors)) in KNOBS.into_iter().enumerate() {
+                for (knob, (label, floors)) in KNOBS.into_iter().enumerate() {
                     let view = View::new(
                         &camera,
                         &Settings {
                             resolution,
-                            perspective,
                             floors,
                             ..Settings::DEFAULT
                         },
@@ -126,7 +121,7 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
             }
         }
     }
-    for (knob, (label, _, _)) in KNOBS.into_iter().enumerate() {
+    for (knob, (label, _)) in KNOBS.into_iter().enumerate() {
         println!(
             "oracle, {label}: {frames} frames, worst surface mismatch {:.3} %, mean texel mismatch {:.2} %",
             worst[knob],

@@ -32,8 +32,6 @@ pub struct Settings {
     pub resolution: Resolution,
     /// Lighting rule.
     pub lighting: Lighting,
-    /// How walls find their depth and texture column.
-    pub perspective: Perspective,
     /// Where the ROM reads texels from. The renderer draws whatever textures it is handed; the
     /// ROM picks them by this knob ([`crate::render::demo::assets_for`]).
     pub textures: TexturePlacement,
@@ -112,12 +110,11 @@ impl TexturePlacement {
 }
 
 impl Settings {
-    /// The shipped defaults: 120×80, sector + depth lighting, exact perspective, exact
-    /// column splits, textures in EWRAM (each the faster or more exact choice by measurement: docs/BENCH.md).
+    /// The shipped defaults: 120×80, sector + depth lighting, exact column splits, textures in
+    /// EWRAM (each the faster or more exact choice by measurement: docs/BENCH.md).
     pub const DEFAULT: Settings = Settings {
         resolution: Resolution::R120x80,
         lighting: Lighting::SectorDepth,
-        perspective: Perspective::Exact,
         textures: TexturePlacement::Ewram,
         preprocessing: Preprocessing::Off,
         floors: Floors::Full,
@@ -127,57 +124,6 @@ impl Settings {
 impl Default for Settings {
     fn default() -> Self {
         Settings::DEFAULT
-    }
-}
-
-/// The wall perspective knob: how often a wall's depth and texture column come from the exact
-/// reciprocal. The thesis computed them exactly every 16 columns and interpolated linearly
-/// between; that is the cheap end here. Rows (the wall's top and bottom on screen) stay exact at
-/// every setting, so no setting opens a hole or moves an edge; only texture columns, mip levels,
-/// light and the vertical texture step drift between the exact columns. An every-8-columns value
-/// went when the exact path got cheaper than it (issue 15: a value that gives up accuracy must
-/// buy speed).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Perspective {
-    /// Exact at every column (one reciprocal per column).
-    Exact,
-    /// Exact every 16 columns, linear between (the thesis' choice).
-    Every16,
-}
-
-impl Perspective {
-    /// Every setting, exact first.
-    pub const ALL: [Perspective; 2] = [Perspective::Exact, Perspective::Every16];
-
-    /// Columns between exact evaluations (1 for exact).
-    pub const fn interval(self) -> i32 {
-        match self {
-            Perspective::Exact => 1,
-            Perspective::Every16 => 16,
-        }
-    }
-
-    /// The label the ROM prints and the benchmarks read.
-    pub const fn label(self) -> &'static str {
-        match self {
-            Perspective::Exact => "exact",
-            Perspective::Every16 => "every16",
-        }
-    }
-
-    /// Parses [`Perspective::label`].
-    pub fn from_label(label: &str) -> Option<Perspective> {
-        Perspective::ALL
-            .into_iter()
-            .find(|perspective| perspective.label() == label)
-    }
-
-    /// The setting after this one (the menu cycles through them).
-    pub const fn next(self) -> Perspective {
-        match self {
-            Perspective::Exact => Perspective::Every16,
-            Perspective::Every16 => Perspective::Exact,
-        }
     }
 }
 
@@ -243,8 +189,6 @@ pub struct View {
     pub sector: u16,
     /// Lighting rule.
     pub lighting: Lighting,
-    /// Wall perspective rule.
-    pub perspective: Perspective,
     /// Whether sector visits are planned and merged before drawing.
     pub preprocessing: Preprocessing,
     /// Floors and ceilings at half the horizontal resolution (only ever true at 240 wide).
@@ -264,7 +208,6 @@ impl View {
             viewport,
             sector: camera.sector,
             lighting: settings.lighting,
-            perspective: settings.perspective,
             preprocessing: settings.preprocessing,
             halved_floors: settings.floors == Floors::Half && Floors::offered_at(resolution),
         }

@@ -13,8 +13,7 @@ use super::surface::Surface;
 use super::view::{Preprocessing, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
-    owned_columns_in, SteppedWall, VertexSplit, WallColumn, WallLerp, WallProjector, WallRows,
-    WallStepper, ROW_HEIGHTS,
+    owned_columns_in, SteppedWall, VertexSplit, WallProjector, WallRows, WallStepper, ROW_HEIGHTS,
 };
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
@@ -690,11 +689,8 @@ impl<W: WindowStore> Renderer<W> {
             stats.wall_columns += (stop - start) as u32;
             let viewport = &scene.view.viewport;
             let heights = job.heights();
-            let interval = scene.view.perspective.interval();
             if let Some(stepped) = SteppedWall::new(viewport, heights, &stepper, stop - start) {
-                self.draw_stepped_wall(
-                    scene, canvas, stats, &mut job, stepped, interval, start, stop,
-                );
+                self.draw_stepped_wall(scene, canvas, stats, &mut job, stepped, start, stop);
                 continue;
             }
             self.draw_clamped_wall(scene, canvas, stats, &mut job, stepper, start, stop);
@@ -703,9 +699,8 @@ impl<W: WindowStore> Renderer<W> {
     }
 
     /// The columns `start..stop` of a wall that reaches the near plane or the far limit
-    /// somewhere (a portal the eye stands in, a wall at the far limit): exact at every column
-    /// whatever the perspective knob, since only the stepper's 64-bit accumulators and clamps
-    /// get its columns right. Out of line and in ROM: few walls of a frame take it, and IWRAM
+    /// somewhere (a portal the eye stands in, a wall at the far limit): the stepper's 64-bit
+    /// accumulators and clamps. Out of line and in ROM: few walls of a frame take it, and IWRAM
     /// has no room for a second copy of the column's code.
     #[allow(clippy::too_many_arguments)]
     #[inline(never)]
@@ -745,10 +740,7 @@ impl<W: WindowStore> Renderer<W> {
     }
 
     /// The columns `start..stop` of a [`SteppedWall`] (most walls): its rows and texturing
-    /// from 32-bit accumulators. With the perspective knob's `interval > 1`, the depth and
-    /// position along the wall are exact every `interval` columns and at the wall's last
-    /// column, and interpolated between (each segment's right end is the next one's left).
-    /// One loop for every knob, so the column's code is inlined once.
+    /// from 32-bit accumulators.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn draw_stepped_wall(
@@ -758,38 +750,11 @@ impl<W: WindowStore> Renderer<W> {
         stats: &mut FrameStats,
         job: &mut WallJob,
         mut wall: SteppedWall,
-        interval: i32,
         start: i32,
         stop: i32,
     ) {
         let portal = job.portal;
-        let mut left = WallColumn {
-            depth: Fx24_8::ZERO,
-            along: Fx2_30::ZERO,
-        };
-        if interval > 1 {
-            left = wall.ahead(0);
-        }
-        let mut lerp = WallLerp::new(left, left, 1);
-        let (mut segment_start, mut segment_end) = (start, start);
         for column in start..stop {
-            let at = if interval == 1 {
-                ColumnAt::Stepped(&wall)
-            } else if column < segment_end {
-                ColumnAt::Lerp(&lerp, column - segment_start)
-            } else {
-                let last = (column + interval).min(stop - 1);
-                if last == column {
-                    ColumnAt::Known(left.depth, left.along)
-                } else {
-                    let span = last - column;
-                    let right = wall.ahead(span);
-                    lerp = WallLerp::new(left, right, span);
-                    left = right;
-                    (segment_start, segment_end) = (column, last);
-                    ColumnAt::Lerp(&lerp, 0)
-                }
-            };
             let rows = wall.rows(portal.is_some());
             self.wall_column(
                 scene,
@@ -797,7 +762,7 @@ impl<W: WindowStore> Renderer<W> {
                 stats,
                 job,
                 portal,
-                || at.texturing(),
+                || wall.texturing(),
                 rows,
                 column,
             );
@@ -1044,27 +1009,6 @@ impl Ownership {
         self.last = Some((wall.end, b, b_split));
         let (start, stop) = owned_columns_in(a_split, b_split, self.first, self.end);
         (start < stop).then_some((a, b, start, stop))
-    }
-}
-
-/// Where one wall column's depth and position along the wall come from: the exact stepper (a
-/// reciprocal) or the interpolating knobs' straight line between exact columns, evaluated only
-/// where a strip is drawn; or already known (an exact column of those knobs).
-enum ColumnAt<'s> {
-    Stepped(&'s SteppedWall),
-    Known(Fx24_8, Fx2_30),
-    Lerp(&'s WallLerp, i32),
-}
-
-impl ColumnAt<'_> {
-    /// Depth and position along the wall: see [`WallStepper::texturing`].
-    #[inline]
-    fn texturing(&self) -> (Fx24_8, Fx2_30) {
-        match self {
-            ColumnAt::Stepped(wall) => wall.texturing(),
-            ColumnAt::Known(depth, along) => (*depth, *along),
-            ColumnAt::Lerp(lerp, offset) => lerp.texturing(*offset),
-        }
     }
 }
 

@@ -15,7 +15,7 @@
 //! (`NEAR_DEPTH`), so an eye closer than that to a wall sees it as at the near plane.
 
 use super::ratio::{ratio, ratio_shifted, Divisor};
-use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, Side, Viewport, NEAR_DEPTH};
+use crate::math::{EyePoint, Fx24_8, Fx2_30, Side, Viewport, NEAR_DEPTH};
 
 /// The columns `[start, end)` where a monotone predicate over `0..width` holds.
 fn columns_where(width: i32, holds: impl Fn(i32) -> bool) -> (i32, i32) {
@@ -268,7 +268,6 @@ impl WallStepper {
         self.inverse_depth += self.inverse_depth_step;
         self.along_over_depth += self.along_over_depth_step;
     }
-
 }
 
 /// Heights whose rows a wall column needs: its sector's ceiling and floor, and a portal's
@@ -509,20 +508,6 @@ impl SteppedWall {
         (depth, Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32))
     }
 
-    /// The depth and position along the wall `columns` columns after the current one (at most
-    /// the wall's last), without stepping: what [`SteppedWall::texturing`] gives there.
-    #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram_render.stepped_wall_ahead")]
-    pub fn ahead(&self, columns: i32) -> WallColumn {
-        let (depth, along) = SteppedWall {
-            inverse_depth: self.inverse_depth + self.inverse_depth_step * columns,
-            along_over_depth: self.along_over_depth + self.along_over_depth_step * columns,
-            ..*self
-        }
-        .texturing();
-        WallColumn { depth, along }
-    }
-
     /// Steps to the next column. Past the wall's last column the sums may leave i32; they are
     /// never read then.
     #[inline(always)]
@@ -559,51 +544,6 @@ fn projected_y_closer_than_near(
         >> 22;
     let y = (i64::from(viewport.horizon_y) << 8) - offset;
     Fx24_8::from_bits(y.clamp(-(1 << 30), 1 << 30) as i32)
-}
-
-/// Fractional bits of the interpolation steps of [`WallLerp`].
-const LERP_FRACTION_BITS: u32 = 16;
-
-/// The cheap perspective knob's middle columns: depth and position along the wall interpolated
-/// linearly between two exact columns `span` apart (the thesis' "exact every 16 columns").
-/// `1/z'` stays exact, so rows do not move.
-#[derive(Clone, Copy, Debug)]
-pub struct WallLerp {
-    depth: i64,
-    depth_step: i64,
-    along: i64,
-    along_step: i64,
-}
-
-impl WallLerp {
-    /// From the exact column `left` to the exact column `right`, `span ≥ 1` columns later.
-    pub fn new(left: WallColumn, right: WallColumn, span: i32) -> WallLerp {
-        // × 1/span from the reciprocal table (exact for the power-of-two spans, within 2^-31
-        // for the last, shorter one): no divide.
-        let inverse_span = i64::from(recip_small(span as u32).to_bits());
-        let step = |from: i32, to: i32| {
-            ((i64::from(to) - i64::from(from)) * inverse_span) >> (30 - LERP_FRACTION_BITS)
-        };
-        WallLerp {
-            depth: i64::from(left.depth.to_bits()) << LERP_FRACTION_BITS,
-            depth_step: step(left.depth.to_bits(), right.depth.to_bits()),
-            along: i64::from(left.along.to_bits()) << LERP_FRACTION_BITS,
-            along_step: step(left.along.to_bits(), right.along.to_bits()),
-        }
-    }
-
-    /// The depth and position along the wall of the column `offset` after the left one: what
-    /// its texture column needs. Only drawn columns ask (the rows come from [`WallRows`]).
-    #[inline]
-    pub fn texturing(&self, offset: i32) -> (Fx24_8, Fx2_30) {
-        let offset = i64::from(offset);
-        let depth = (self.depth + self.depth_step * offset) >> LERP_FRACTION_BITS;
-        let along = (self.along + self.along_step * offset) >> LERP_FRACTION_BITS;
-        (
-            Fx24_8::from_bits(depth.max(i64::from(NEAR_DEPTH.to_bits())) as i32),
-            Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32),
-        )
-    }
 }
 
 #[cfg(test)]
@@ -750,8 +690,7 @@ mod row_tests {
         }
 
         /// Where a wall needs no clamp, the 32-bit [`SteppedWall`] gives every column the rows
-        /// and the texturing of the 64-bit stepper and of [`WallRows::Exact`], bit for bit, and
-        /// its look-ahead is its own texturing that many columns on.
+        /// and the texturing of the 64-bit stepper and of [`WallRows::Exact`], bit for bit.
         #[test]
         fn a_stepped_wall_is_the_stepper_bit_for_bit(
             ax in -4000i32..4000, az in -4000i32..4000,
@@ -785,28 +724,14 @@ mod row_tests {
                 heights,
                 viewport,
             };
-            let mut ahead = Vec::new();
             for column in start..stop {
                 let expected = exact.next_column().map(i32::from);
                 prop_assert_eq!(wall.rows(true), expected, "column {}", column);
                 let solid = wall.rows(false);
                 prop_assert_eq!(&solid[..2], &expected[..2], "column {}", column);
                 prop_assert_eq!(wall.texturing(), stepper.texturing(), "column {}", column);
-                let (depth, along) = wall.texturing();
-                ahead.push(WallColumn { depth, along });
                 wall.step();
                 stepper.step();
-            }
-            let first = SteppedWall::new(
-                &viewport,
-                heights,
-                &WallProjector::new(&viewport, a, b).stepper(start),
-                stop - start,
-            );
-            if let Some(first) = first {
-                for (offset, expected) in ahead.iter().enumerate() {
-                    prop_assert_eq!(first.ahead(offset as i32), *expected, "offset {}", offset);
-                }
             }
         }
     }

@@ -260,7 +260,7 @@ mod tests {
     #[test]
     fn a_new_knob_keeps_matching_by_map_and_resolution() {
         let mut now = baseline(1_000_000, 2_000_000);
-        now.entries[0].key.push_str(" persp=exact");
+        now.entries[0].key.push_str(" knob=value");
         let verdict = check(&baseline(1_000_000, 2_000_000), &now);
         assert!(verdict.passed());
         assert_eq!(verdict.notes.len(), 1);

@@ -429,9 +429,6 @@ fn knobs(doc: &mut String, measurements: &Measurements) {
          knobs (`src/render/view.rs`; the Start menu changes each live):\n\n\
          - `lighting`: `off`, `sector` (each sector's light level), `depth` (sector light \
            darkened with distance, through the colormap);\n\
-         - `persp`: a wall's depth and texture column from the exact reciprocal at every column \
-           (`exact`), or every 16 columns with linear steps between (`every16`, the thesis' \
-           choice);\n\
          - `tex`: texels read from the EWRAM copy (`ewram`) or the cartridge (`rom`);\n\
          - `prep`: the thesis' scene preprocessing: `on` plans the portal walk first and draws \
            each sector once over the touching columns of its visits (`src/render/visits.rs`), \

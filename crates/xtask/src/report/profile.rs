@@ -11,7 +11,7 @@ use super::{cargo, write_file};
 
 /// Where sampling starts: the first frame line of the bench map's default 120×80 run (the
 /// regression guard's first run).
-pub const FROM: &str = "bench map=bench res=120x80 lighting=depth persp=exact";
+pub const FROM: &str = "bench map=bench res=120x80 lighting=depth tex=ewram prep=off floors=full";
 /// Where it stops: the next run's first line.
 const UNTIL: &str = "res=120x160";
 /// Rows of the function table.
