@@ -809,69 +809,31 @@ impl<W: WindowStore> Renderer<W> {
         rows: [i32; ROW_HEIGHTS],
         column: i32,
     ) {
-        let x = column as usize;
-        let windows = self.windows.windows();
-        // Rows in i32: i16 arithmetic would sign-extend after every operation.
-        let [ceiling, floor, neighbour_ceiling, neighbour_floor] = rows;
-        let clip = windows.clip[x];
-        let (clip_top, clip_bottom) = (i32::from(clip.top), i32::from(clip.bottom));
-        let ceiling_row = ceiling.max(clip_top);
-        let floor_row = floor.min(clip_bottom);
-        let window = |top: i32, bottom: i32| Window {
-            top: top as i16,
-            bottom: bottom as i16,
-        };
-        windows.ceiling[x] = window(clip_top, ceiling_row.min(clip_bottom));
-        windows.floor[x] = window(floor_row.max(clip_top), clip_bottom);
-        // The rows of the column's strips (`job.strips`, empty where not drawn), and the clip
-        // window the column leaves for the sectors behind it.
-        let rows = match portal {
-            None => {
-                windows.clip[x] = Window::EMPTY;
-                [(ceiling_row, floor_row), (0, 0)]
-            }
-            Some(portal) => {
-                let neighbour_ceiling_row = neighbour_ceiling
-                    .max(ceiling_row)
-                    .min(floor_row.max(ceiling_row));
-                let neighbour_floor_row = neighbour_floor
-                    .max(neighbour_ceiling_row.min(floor_row))
-                    .min(floor_row);
-                // Where no upper strip is drawn (the neighbour's ceiling is not lower, or both
-                // show the sky), the neighbour gets the rows down from this sector's ceiling
-                // line: its own ceiling (sky) fills them, and no row between the two ceiling
-                // lines is left undrawn.
-                let opening_top = if portal.upper_drawn {
-                    neighbour_ceiling_row
-                } else {
-                    ceiling_row
-                };
-                let opening_bottom = if portal.lower_drawn {
-                    neighbour_floor_row
-                } else {
-                    floor_row
-                };
-                windows.clip[x] = window(opening_top, opening_bottom.max(opening_top));
-                [
-                    if portal.upper_drawn {
-                        (ceiling_row, neighbour_ceiling_row)
-                    } else {
-                        (0, 0)
-                    },
-                    if portal.lower_drawn {
-                        (neighbour_floor_row, floor_row)
-                    } else {
-                        (0, 0)
-                    },
-                ]
-            }
-        };
-        if rows.iter().all(|(top, bottom)| top >= bottom) {
+        let strips = column_windows(self.windows.windows(), portal, rows, column as usize);
+        if strips.iter().all(|(top, bottom)| top >= bottom) {
             // Nothing of the wall is drawn in this column (an open portal, or a clipped strip):
             // its texture column is not needed.
             return;
         }
         let (depth, along) = texturing();
+        self.texture_column(scene, canvas, stats, job, depth, along, strips, column);
+    }
+
+    /// The strips of one wall column, rows `strips[k].0..strips[k].1` of `job.strips[k]`, at
+    /// `depth` and `along` the wall: its texture column, mip level and light, then each strip.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn texture_column(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        job: &mut WallJob,
+        depth: Fx24_8,
+        along: Fx2_30,
+        strips: [(i32, i32); 2],
+        column: i32,
+    ) {
         let u = Fx24_8::from_bits(
             ((i64::from(along.to_bits()) * i64::from(job.length.to_bits())) >> 30) as i32,
         ) + job.x_offset;
@@ -882,7 +844,7 @@ impl<W: WindowStore> Renderer<W> {
         );
         let strip = StripColumn {
             u,
-            column: x,
+            column: column as usize,
             // z'/d_y in 24.8 × 2^30, through the 2.30 reciprocal of d_y (a table entry).
             depth_over_focal,
             // The same product as `depth_over_focal`: `mip_ratio` is its top bits.
@@ -890,7 +852,7 @@ impl<W: WindowStore> Renderer<W> {
             colormap: light_row(job.sector.light, depth.to_int_floor(), scene.view.lighting)
                 .map(|row| &scene.assets.colormap[row]),
         };
-        for (texture, (top, bottom)) in job.strips.iter_mut().zip(rows) {
+        for (texture, (top, bottom)) in job.strips.iter_mut().zip(strips) {
             self.draw_strip(scene, canvas, stats, &strip, texture, top, bottom);
         }
     }
@@ -958,6 +920,72 @@ impl<W: WindowStore> Renderer<W> {
             colormap,
         };
         canvas.column(strip.column, top as usize, count, &column);
+    }
+}
+
+/// Column `x` of a wall whose rows there are `rows` ([`WallJob::heights`]): sets its ceiling
+/// and floor windows and the clip window it leaves for the sectors behind it, and returns the
+/// rows `(top, bottom)` of its two strips (`job.strips`; `top >= bottom` where not drawn).
+#[inline(always)]
+fn column_windows(
+    windows: &mut ColumnWindows,
+    portal: Option<PortalJob>,
+    rows: [i32; ROW_HEIGHTS],
+    x: usize,
+) -> [(i32, i32); 2] {
+    let [ceiling, floor, neighbour_ceiling, neighbour_floor] = rows;
+    let clip = windows.clip[x];
+    let (clip_top, clip_bottom) = (i32::from(clip.top), i32::from(clip.bottom));
+    let ceiling_row = ceiling.max(clip_top);
+    let floor_row = floor.min(clip_bottom);
+    let window = |top: i32, bottom: i32| Window {
+        top: top as i16,
+        bottom: bottom as i16,
+    };
+    windows.ceiling[x] = window(clip_top, ceiling_row.min(clip_bottom));
+    windows.floor[x] = window(floor_row.max(clip_top), clip_bottom);
+    // The rows of the column's strips (`job.strips`, empty where not drawn), and the clip
+    // window the column leaves for the sectors behind it.
+    match portal {
+        None => {
+            windows.clip[x] = Window::EMPTY;
+            [(ceiling_row, floor_row), (0, 0)]
+        }
+        Some(portal) => {
+            let neighbour_ceiling_row = neighbour_ceiling
+                .max(ceiling_row)
+                .min(floor_row.max(ceiling_row));
+            let neighbour_floor_row = neighbour_floor
+                .max(neighbour_ceiling_row.min(floor_row))
+                .min(floor_row);
+            // Where no upper strip is drawn (the neighbour's ceiling is not lower, or both
+            // show the sky), the neighbour gets the rows down from this sector's ceiling
+            // line: its own ceiling (sky) fills them, and no row between the two ceiling
+            // lines is left undrawn.
+            let opening_top = if portal.upper_drawn {
+                neighbour_ceiling_row
+            } else {
+                ceiling_row
+            };
+            let opening_bottom = if portal.lower_drawn {
+                neighbour_floor_row
+            } else {
+                floor_row
+            };
+            windows.clip[x] = window(opening_top, opening_bottom.max(opening_top));
+            [
+                if portal.upper_drawn {
+                    (ceiling_row, neighbour_ceiling_row)
+                } else {
+                    (0, 0)
+                },
+                if portal.lower_drawn {
+                    (neighbour_floor_row, floor_row)
+                } else {
+                    (0, 0)
+                },
+            ]
+        }
     }
 }
 
