@@ -754,8 +754,10 @@ impl<W: WindowStore> Renderer<W> {
         stop: i32,
     ) {
         let portal = job.portal;
+        // The neighbour's rows matter only where the portal has a strip (`column_windows`).
+        let neighbour_rows = portal.is_some_and(|portal| portal.upper_drawn || portal.lower_drawn);
         for column in start..stop {
-            let rows = wall.rows(portal.is_some());
+            let rows = wall.rows(neighbour_rows);
             self.wall_column(
                 scene,
                 canvas,
@@ -950,6 +952,12 @@ fn column_windows(
         None => {
             windows.clip[x] = Window::EMPTY;
             [(ceiling_row, floor_row), (0, 0)]
+        }
+        // An opening with no strip (the neighbour's ceiling and floor are not inside this
+        // sector's): the neighbour's rows are not read.
+        Some(portal) if !portal.upper_drawn && !portal.lower_drawn => {
+            windows.clip[x] = window(ceiling_row, floor_row.max(ceiling_row));
+            [(0, 0), (0, 0)]
         }
         Some(portal) => {
             let neighbour_ceiling_row = neighbour_ceiling
