@@ -689,13 +689,67 @@ impl<W: WindowStore> Renderer<W> {
             stats.wall_columns += (stop - start) as u32;
             let viewport = &scene.view.viewport;
             let heights = job.heights();
-            if let Some(stepped) = SteppedWall::new(viewport, heights, &stepper, stop - start) {
-                self.draw_stepped_wall(scene, canvas, stats, &mut job, stepped, start, stop);
-                continue;
+            let columns = stop - start;
+            let (first, end, stepped) = match SteppedWall::new(viewport, heights, &stepper, columns)
+            {
+                Some(stepped) => (0, columns, Some(stepped)),
+                None => {
+                    self.draw_clamped_runs(scene, canvas, stats, &mut job, stepper, start, stop)
+                }
+            };
+            if let Some(stepped) = stepped {
+                self.draw_stepped_wall(
+                    scene,
+                    canvas,
+                    stats,
+                    &mut job,
+                    stepped,
+                    start + first,
+                    start + end,
+                );
             }
-            self.draw_clamped_wall(scene, canvas, stats, &mut job, stepper, start, stop);
         }
         self.portals_recorded = recording;
+    }
+
+    /// A wall that [`SteppedWall`] cannot step whole: draws the columns nearest the eye (or at
+    /// the far limit), which need the clamps, through [`Renderer::draw_clamped_wall`], and
+    /// returns the run between them, `(first, end)` from `start`, with its [`SteppedWall`] if
+    /// it has one (else that run is drawn here too). Each column is drawn alone, so the order
+    /// of the runs changes no pixel. Out of line and in ROM, like the clamped loop, so the
+    /// common walls' code is not disturbed.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn draw_clamped_runs(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        job: &mut WallJob,
+        stepper: WallStepper,
+        start: i32,
+        stop: i32,
+    ) -> (i32, i32, Option<SteppedWall>) {
+        let columns = stop - start;
+        let (first, end) = stepper.unclamped_columns(columns);
+        let heights = job.heights();
+        let mut clamped = |from: i32, to: i32| {
+            if from < to {
+                let at = stepper.advanced(from);
+                self.draw_clamped_wall(scene, canvas, stats, job, at, start + from, start + to);
+            }
+        };
+        clamped(0, first);
+        clamped(end, columns);
+        if first >= end {
+            return (0, 0, None);
+        }
+        let middle = stepper.advanced(first);
+        let stepped = SteppedWall::new(&scene.view.viewport, heights, &middle, end - first);
+        if stepped.is_none() {
+            clamped(first, end);
+        }
+        (first, end, stepped)
     }
 
     /// The columns `start..stop` of a wall that reaches the near plane or the far limit

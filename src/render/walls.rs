@@ -268,6 +268,46 @@ impl WallStepper {
         self.inverse_depth += self.inverse_depth_step;
         self.along_over_depth += self.along_over_depth_step;
     }
+
+    /// This stepper `columns ≥ 0` columns on: the sums of that many [`WallStepper::step`]s.
+    pub fn advanced(&self, columns: i32) -> WallStepper {
+        let columns = i64::from(columns);
+        WallStepper {
+            inverse_depth: self.inverse_depth + self.inverse_depth_step * columns,
+            along_over_depth: self.along_over_depth + self.along_over_depth_step * columns,
+            ..*self
+        }
+    }
+
+    /// The columns `[first, end)` of the `columns` from the current one where `1/z'` needs no
+    /// clamp (within `[SMALLEST_INVERSE_DEPTH, 2^30]`): one run, possibly empty, since `1/z'`
+    /// is affine in the column. A wall the eye stands next to reaches the near plane only in
+    /// its columns nearest the eye, so the rest can take [`SteppedWall`].
+    pub fn unclamped_columns(&self, columns: i32) -> (i32, i32) {
+        // Saturated, the value stays monotone in the column, so each test below holds on a
+        // prefix or a suffix of the columns, and where it does not saturate it is the value
+        // the steps reach.
+        let inverse_depth_at = |column: i32| {
+            self.inverse_depth
+                .saturating_add(self.inverse_depth_step.saturating_mul(i64::from(column)))
+        };
+        let beyond_far = columns_where(columns, |c| {
+            inverse_depth_at(c) < i64::from(SMALLEST_INVERSE_DEPTH)
+        });
+        let within_near = columns_where(columns, |c| inverse_depth_at(c) > 1 << 30);
+        // The columns outside a prefix or a suffix run `(start, end)` of `0..columns`.
+        let outside = |(start, end): (i32, i32)| {
+            if start == 0 {
+                (end, columns)
+            } else {
+                (0, start)
+            }
+        };
+        let (far_first, far_end) = outside(beyond_far);
+        let (near_first, near_end) = outside(within_near);
+        let first = far_first.max(near_first);
+        (first, far_end.min(near_end).max(first))
+    }
 }
 
 /// Heights whose rows a wall column needs: its sector's ceiling and floor, and a portal's
@@ -686,6 +726,45 @@ mod row_tests {
             };
             for column in start..stop {
                 prop_assert_eq!(rows.next_column(), exact.next_column(), "column {}", column);
+            }
+        }
+
+        /// The unclamped run is exactly the columns whose `1/z'` needs no clamp, and a stepper
+        /// advanced to any column is the one stepped there.
+        #[test]
+        fn the_unclamped_run_is_where_no_clamp_is_needed(
+            ax in -4000i32..4000, az in -4000i32..4000,
+            bx in -4000i32..4000, bz in -4000i32..4000,
+            scale in prop_oneof![Just(1i32), Just(37), Just(256), Just(2048)],
+            wide in any::<bool>(),
+        ) {
+            let viewport = if wide { Viewport::new(240, 160) } else { Viewport::new(120, 80) };
+            let a = EyePoint::new(Fx24_8::from_bits(ax * scale), Fx24_8::from_bits(az * scale));
+            let b = EyePoint::new(Fx24_8::from_bits(bx * scale), Fx24_8::from_bits(bz * scale));
+            let (a, b) = if owned_columns(&viewport, a, b).0 < owned_columns(&viewport, a, b).1 {
+                (a, b)
+            } else {
+                (b, a)
+            };
+            let (start, stop) = owned_columns(&viewport, a, b);
+            if start >= stop {
+                return Ok(());
+            }
+            let first_stepper = WallProjector::new(&viewport, a, b).stepper(start);
+            let (first, end) = first_stepper.unclamped_columns(stop - start);
+            let range = i64::from(SMALLEST_INVERSE_DEPTH)..=1 << 30;
+            let mut stepper = first_stepper;
+            for offset in 0..stop - start {
+                let advanced = first_stepper.advanced(offset);
+                prop_assert_eq!(advanced.inverse_depth, stepper.inverse_depth);
+                prop_assert_eq!(advanced.along_over_depth, stepper.along_over_depth);
+                let unclamped = range.contains(&stepper.inverse_depth);
+                prop_assert_eq!(
+                    unclamped,
+                    (first..end).contains(&offset),
+                    "offset {} of {:?}", offset, (first, end)
+                );
+                stepper.step();
             }
         }
 
