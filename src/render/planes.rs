@@ -9,7 +9,7 @@ use super::light::Lighting;
 use super::spans::{make_spans, Window};
 use super::surface::Surface;
 use super::view::View;
-use super::walk::{is_sky, mip_level_of_ratio, mip_ratio, FrameStats};
+use super::walk::{is_sky, mip_level_of_ratio, mip_ratio, mip_ratios_of_level, FrameStats};
 use super::RenderAssets;
 use crate::math::{recip_small, Fx24_8};
 use crate::raster::column::ColumnTexture;
@@ -87,7 +87,7 @@ impl PlaneJob<'_> {
         canvas.set_halved_flats(view.halved_floors);
         for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
             canvas.set_surface(*surface);
-            let plane = PlaneSpans::new(view, assets, sector, *height, *texture);
+            let mut plane = PlaneSpans::new(view, assets, sector, *height, *texture);
             make_spans(windows, first, span_start, |row, start, end| {
                 stats.span_pixels += (end - start) as u32;
                 stats.spans += 1;
@@ -127,6 +127,50 @@ struct PlaneSpans<'r> {
     light: u8,
     lighting: Lighting,
     colormap: &'r Colormap,
+    /// The mip level the last span took, kept while the spans' mip ratio stays in its range
+    /// (the rows of a plane go one way in depth, so most spans reuse it).
+    level: PlaneLevel<'r>,
+}
+
+/// A flat's mip level and what its spans need of it, with the [`mip_ratio`]s that select it.
+#[derive(Clone, Copy)]
+struct PlaneLevel<'r> {
+    ratio_low: i32,
+    ratio_high: i32,
+    level: u8,
+    side_log2: u32,
+    texels: &'r [u8],
+}
+
+impl<'r> PlaneLevel<'r> {
+    /// No level yet: every ratio is out of its range.
+    const NONE: PlaneLevel<'static> = PlaneLevel {
+        ratio_low: 1,
+        ratio_high: 0,
+        level: 0,
+        side_log2: 0,
+        texels: &[],
+    };
+
+    /// The level the span rule picks for `ratio` on `texture`: the mip rule on its largest
+    /// square, never below `smallest` (the largest flat the kernels take).
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.render_plane_level_of")]
+    fn of(texture: &Texture<'r>, ratio: i32, smallest: u8) -> PlaneLevel<'r> {
+        let largest = texture.width_log2.min(texture.height_log2);
+        let pick = |ratio: i32| {
+            mip_level_of_ratio(ratio, texture.mip_count, largest, largest).max(smallest)
+        };
+        let level = pick(ratio);
+        let (ratio_low, ratio_high) = mip_ratios_of_level(level, smallest, pick(i32::MAX));
+        PlaneLevel {
+            ratio_low,
+            ratio_high,
+            level,
+            side_log2: u32::from(texture.level_width_log2(level)),
+            texels: texture.flat_level(level),
+        }
+    }
 }
 
 impl<'r> PlaneSpans<'r> {
@@ -157,6 +201,7 @@ impl<'r> PlaneSpans<'r> {
             light: sector.light,
             lighting: view.lighting,
             colormap: assets.colormap,
+            level: PlaneLevel::NONE,
         }
     }
 
@@ -165,7 +210,7 @@ impl<'r> PlaneSpans<'r> {
     /// ([`Viewport::floor_depth_of_row`](crate::math::Viewport::floor_depth_of_row)'s rule).
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".iwram.render_plane_span")]
-    fn span(&self, canvas: &mut impl Canvas, row: usize, start: usize, end: usize) {
+    fn span(&mut self, canvas: &mut impl Canvas, row: usize, start: usize, end: usize) {
         let doubled_offset = 2 * (row as i32 - self.horizon_y) + 1;
         let (Some(texture), false, true) = (
             self.texture,
@@ -188,16 +233,16 @@ impl<'r> PlaneSpans<'r> {
         let depth = self
             .depth_numerator
             .mul_fx2_30(recip_small(doubled_offset.unsigned_abs()));
-        let largest = texture.width_log2.min(texture.height_log2);
-        let level = mip_level_of_ratio(
-            mip_ratio(i64::from(depth.to_bits()), self.inverse_focal_y),
-            texture.mip_count,
-            largest,
-            largest,
-        )
-        .max(self.smallest_kernel_level);
-        let side_log2 = u32::from(texture.level_width_log2(level));
-        let texels = texture.flat_level(level);
+        let ratio = mip_ratio(i64::from(depth.to_bits()), self.inverse_focal_y);
+        if !(self.level.ratio_low..=self.level.ratio_high).contains(&ratio) {
+            self.level = PlaneLevel::of(texture, ratio, self.smallest_kernel_level);
+        }
+        let PlaneLevel {
+            level,
+            side_log2,
+            texels,
+            ..
+        } = self.level;
         let depth_bits = i64::from(depth.to_bits());
         // w = z'/d_x in 16.16, through the 2.30 reciprocal of 2·d_x (a table entry, no divide).
         let w = (depth_bits * i64::from(self.inverse_twice_focal_x)) >> 21;

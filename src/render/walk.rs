@@ -1196,15 +1196,10 @@ impl<'s> StripLevel<'s> {
             texture.width_log2,
             texture.height_log2,
         );
-        // Unclamped, level L ≥ 1 is floor(log2(ratio)): ratios 2^L..2^(L+1) − 1; level 0 takes
-        // every ratio below 2, and the deepest level every ratio from its own power up.
+        let (ratio_low, ratio_high) = mip_ratios_of_level(level, 0, deepest);
         StripLevel {
-            ratio_low: if level == 0 { i32::MIN } else { 1 << level },
-            ratio_high: if level == deepest {
-                i32::MAX
-            } else {
-                (1 << (level + 1)) - 1
-            },
+            ratio_low,
+            ratio_high,
             level,
             width_log2: u32::from(texture.level_width_log2(level)),
             height_log2: u32::from(texture.level_height_log2(level)),
@@ -1330,6 +1325,26 @@ pub(crate) fn mip_level_of_ratio(ratio: i32, mip_count: u8, width_log2: u8, heig
         .min(smallest_side.saturating_sub(3))
 }
 
+/// The [`mip_ratio`]s that select `level`, for a rule whose levels run from `shallowest` to
+/// `deepest`: unclamped, a level L ≥ 1 is floor(log2(ratio)), the ratios 2^L..2^(L+1) − 1; the
+/// shallowest level takes every ratio below those of the next, and the deepest every ratio from
+/// its own power up. Lets a strip or a plane keep its level while the ratio stays in range.
+#[inline]
+pub(crate) const fn mip_ratios_of_level(level: u8, shallowest: u8, deepest: u8) -> (i32, i32) {
+    (
+        if level <= shallowest {
+            i32::MIN
+        } else {
+            1 << level
+        },
+        if level >= deepest {
+            i32::MAX
+        } else {
+            (1 << (level + 1)) - 1
+        },
+    )
+}
+
 pub(crate) fn is_sky(sector: &Sector) -> bool {
     sector.ceil_texture == SKY
 }
@@ -1355,4 +1370,40 @@ pub fn column_angle(q: i32, twice_focal: i32) -> i16 {
         }
     }
     low as i16
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(5000))]
+        /// A level's ratio range holds every ratio that picks the level and none other: a strip
+        /// or plane that keeps its level while the ratio stays in range picks what the rule
+        /// would pick afresh.
+        #[test]
+        fn a_level_s_ratio_range_is_exactly_the_ratios_that_pick_it(
+            ratio in prop_oneof![0i32..4096, 0i32..=i32::MAX],
+            mip_count in 1u8..=9,
+            width_log2 in 3u8..=8,
+            height_log2 in 3u8..=8,
+            shallowest in 0u8..=3,
+        ) {
+            let pick = |ratio: i32| {
+                mip_level_of_ratio(ratio, mip_count, width_log2, height_log2).max(shallowest)
+            };
+            let level = pick(ratio);
+            let (low, high) = mip_ratios_of_level(level, shallowest, pick(i32::MAX));
+            prop_assert!((low..=high).contains(&ratio));
+            prop_assert_eq!(pick(low.max(0)), level);
+            prop_assert_eq!(pick(high), level);
+            if low > 0 {
+                prop_assert_ne!(pick(low - 1), level);
+            }
+            if high < i32::MAX {
+                prop_assert_ne!(pick(high + 1), level);
+            }
+        }
+    }
 }
