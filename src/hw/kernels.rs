@@ -250,11 +250,18 @@ impl Canvas for VramCanvas {
 
     #[inline(always)]
     fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture) {
+        // Every bound the kernel trusts, in one test: the column's pixels inside the page, a
+        // kernel for its height, and that many texels.
+        let height_index = texture
+            .log2_height
+            .wrapping_sub(*COLUMN_LOG2_HEIGHTS.start()) as usize;
         assert!(
-            x < self.resolution.width() && row + count <= self.resolution.height() && count > 0
+            x < self.resolution.width()
+                && count > 0
+                && row + count <= self.resolution.height()
+                && height_index < COLUMN_KERNELS[0][0].len()
+                && texture.texels.len() == 1 << texture.log2_height
         );
-        assert!(COLUMN_LOG2_HEIGHTS.contains(&texture.log2_height));
-        assert_eq!(texture.texels.len(), 1 << texture.log2_height);
         let (packing, byte_column) = match self.resolution.pixels_per_halfword() {
             1 => (0, 2 * x),
             _ => (1 + x % 2, x & !1),
@@ -267,8 +274,7 @@ impl Canvas for VramCanvas {
             count: count as u32,
             colormap: colormap_pointer(texture.colormap),
         };
-        let kernel = COLUMN_KERNELS[packing][usize::from(texture.colormap.is_some())]
-            [(texture.log2_height - 3) as usize];
+        let kernel = COLUMN_KERNELS[packing][usize::from(texture.colormap.is_some())][height_index];
         if self.kernels {
             // SAFETY: the column lies inside the page (checked above), the texel column holds
             // 2^log2_height bytes and every index the kernel forms is below that; the
@@ -280,13 +286,17 @@ impl Canvas for VramCanvas {
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".iwram.vram_canvas_flat")]
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
+        // Every bound the kernels trust, in one test: the span inside the page row, a kernel
+        // for its side, and that many texels.
+        let side = texture.log2_side.wrapping_sub(*FLAT_LOG2_SIDES.start()) as usize;
         assert!(
-            row < self.resolution.height() && x + count <= self.resolution.width() && count > 0
+            row < self.resolution.height()
+                && count > 0
+                && x + count <= self.resolution.width()
+                && side < FLAT_KERNELS[0][0].len()
+                && texture.texels.len() == 1 << (2 * texture.log2_side)
         );
-        assert!(FLAT_LOG2_SIDES.contains(&texture.log2_side));
-        assert_eq!(texture.texels.len(), 1 << (2 * texture.log2_side));
         let lit = usize::from(texture.colormap.is_some());
-        let side = (texture.log2_side - 3) as usize;
         let (mut x, mut count, mut texture) = (x, count, *texture);
         if self.resolution.pixels_per_halfword() == 2 {
             // Whole halfwords go to the pair kernel; a pixel sharing its halfword with a

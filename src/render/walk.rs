@@ -963,10 +963,13 @@ impl<W: WindowStore> Renderer<W> {
         // v (texels at level 0) of row r: anchor − eye + y_offset + (r + ½ − cy)·z/d_y; as a
         // fraction of the texture height in 0.32 it is the same at every mip level.
         let base_log2 = u32::from(texture_image.height_log2);
-        let twice_row_offset = 2 * (i64::from(top) - i64::from(view.viewport.horizon_y)) + 1;
-        // v in 24.8 texels; then scale to 0.32 of the height: × 2^(24 − log2 height).
-        let v_bits = texture.eye_to_anchor + ((twice_row_offset * strip.depth_over_focal) >> 31);
-        let v = (v_bits << (24 - base_log2)) as u32;
+        // Within ±(2·160 + 1): one 32-bit factor, so the product takes two multiplies, not three.
+        let twice_row_offset = 2 * (top - view.viewport.horizon_y) + 1;
+        // v in 24.8 texels; then scale to 0.32 of the height: × 2^(24 − log2 height), of which
+        // only the low 32 bits are kept, and those come from v's low 32 bits alone.
+        let v_bits =
+            texture.eye_to_anchor + ((i64::from(twice_row_offset) * strip.depth_over_focal) >> 31);
+        let v = (v_bits as u32) << (24 - base_log2);
         let dv = (strip.depth_over_focal >> (6 + base_log2)) as u32;
         let column = ColumnTexture {
             texels: column_texels,
