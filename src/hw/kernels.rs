@@ -109,6 +109,8 @@ core::arch::global_asm!(include_str!("../../asm/column.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
 restore_code_mode!();
+core::arch::global_asm!(include_str!("../../asm/wall.s"), options(raw));
+restore_code_mode!();
 // The math benchmark's ARM routines: assembled here with the kernels, placed in the benchmark's
 // IWRAM overlay by their section, and called through `hw::math_bench`.
 core::arch::global_asm!(include_str!("../../asm/mathbench.s"), options(raw));
@@ -122,7 +124,39 @@ restore_code_mode!();
 use crate::frame::Resolution;
 use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
 use crate::raster::flat::{FlatTexture, FLAT_LOG2_SIDES};
+use crate::raster::wall_run::{StripRun, WallRun, WallRunEnd};
 use crate::raster::Canvas;
+
+extern "C" {
+    fn pc_wall_run(run: *mut WallRun) -> u32;
+    fn pc_column_skip(job: *const ColumnJob);
+}
+
+// `asm/wall.s` reads the run at these offsets (its header lists them).
+const _: () = {
+    use core::mem::{offset_of, size_of};
+    assert!(offset_of!(WallRun, steps) == 0);
+    assert!(offset_of!(WallRun, column) == 40);
+    assert!(offset_of!(WallRun, kind) == 48);
+    assert!(offset_of!(WallRun, clip) == 52);
+    assert!(offset_of!(WallRun, length) == 64);
+    assert!(offset_of!(WallRun, light_mode) == 76);
+    assert!(offset_of!(WallRun, colormap) == 84);
+    assert!(offset_of!(WallRun, recip_seeds) == 88);
+    assert!(offset_of!(WallRun, horizon_row) == 92);
+    assert!(offset_of!(WallRun, page) == 96);
+    assert!(offset_of!(WallRun, column_pixels) == 104);
+    assert!(offset_of!(WallRun, miss_ratio) == 112);
+    assert!(offset_of!(WallRun, resume) == 116);
+    assert!(offset_of!(WallRun, resume_rows) == 120);
+    assert!(offset_of!(WallRun, strips) == 128);
+    assert!(size_of::<StripRun>() == 32);
+    assert!(offset_of!(StripRun, shape) == 4);
+    assert!(offset_of!(StripRun, width_mask) == 16);
+    assert!(offset_of!(StripRun, texels) == 20);
+    assert!(offset_of!(StripRun, kernel_odd) == 28);
+    assert!(size_of::<WallRun>() == 192);
+};
 
 /// The argument block of the column kernels (`asm/column.s`).
 #[repr(C)]
@@ -360,5 +394,53 @@ impl Canvas for VramCanvas {
 
     fn set_halved_flats(&mut self, halved: bool) {
         self.halved_flats = halved;
+    }
+
+    fn wall_run(&mut self, run: &mut WallRun) -> Option<WallRunEnd> {
+        // The run's own checks (`WallRun::new`, `set_strip`) hold its windows and texels; these
+        // keep its columns and rows inside this page.
+        assert!(
+            (0..=self.resolution.width() as i32).contains(&run.stop)
+                && (0..=self.resolution.height() as i32).contains(&run.steps.height)
+        );
+        let native = self.resolution.pixels_per_halfword() == 2;
+        let lit = usize::from(run.light_mode != 0);
+        for strip in &mut run.strips {
+            if strip.texels.is_null() {
+                // No level yet: the loop stops before drawing it and asks for one.
+                continue;
+            }
+            let height = (strip.height_log2() - COLUMN_LOG2_HEIGHTS.start()) as usize;
+            let (even, odd) = match (self.kernels, native) {
+                (false, _) => (
+                    pc_column_skip as ColumnKernel,
+                    pc_column_skip as ColumnKernel,
+                ),
+                (true, false) => (
+                    COLUMN_KERNELS[0][lit][height],
+                    COLUMN_KERNELS[0][lit][height],
+                ),
+                (true, true) => (
+                    COLUMN_KERNELS[1][lit][height],
+                    COLUMN_KERNELS[2][lit][height],
+                ),
+            };
+            strip.kernel_even = even as usize;
+            strip.kernel_odd = odd as usize;
+        }
+        run.page = self.page.base.cast::<u8>();
+        run.native = u32::from(native);
+        // SAFETY: `WallRun::new` and `set_strip` checked every pointer the loop follows: the
+        // window slices reach past `stop`, each strip with texels holds 2^(width + height)
+        // of them at a kernel's height and its column index is masked to its width, the
+        // colormap row index is at most 31 of the 32-row table; the assertion above keeps
+        // every column below the page's width and every row below its height; the kernels
+        // are this canvas's for the strip's height and lighting.
+        let end = unsafe { pc_wall_run(run) };
+        Some(if end == 0 {
+            WallRunEnd::Done
+        } else {
+            WallRunEnd::MipLevel(run.miss_ratio)
+        })
     }
 }

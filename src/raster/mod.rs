@@ -7,6 +7,28 @@
 pub mod column;
 pub mod flat;
 pub mod span;
+pub mod wall_run;
+
+/// A column window: rows `top..bottom` (half-open). `top >= bottom` means empty. `repr(C)`:
+/// the ARM wall loop reads and writes one as a word, `top` in its low half.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[repr(C)]
+pub struct Window {
+    /// First row in the window.
+    pub top: i16,
+    /// One past the last row.
+    pub bottom: i16,
+}
+
+impl Window {
+    /// The empty window.
+    pub const EMPTY: Window = Window { top: 0, bottom: 0 };
+
+    /// True if no row is in the window.
+    pub const fn is_empty(self) -> bool {
+        self.top >= self.bottom
+    }
+}
 
 use crate::frame::{PAGE_HALFWORDS, PAGE_ROW_HALFWORDS};
 use crate::testpic::SpanTarget;
@@ -79,6 +101,15 @@ pub trait Canvas {
     #[inline]
     fn set_surface(&mut self, surface: crate::render::surface::Surface) {
         let _ = surface;
+    }
+
+    /// Draws the columns of `run` with the canvas's own column loop, if it has one (the GBA's
+    /// ARM wall loop, `asm/wall.s`), and says how the run ended; `None` if it has none, and then
+    /// nothing is drawn: the renderer draws the columns with its own loop, the loop's twin.
+    #[inline]
+    fn wall_run(&mut self, run: &mut wall_run::WallRun) -> Option<wall_run::WallRunEnd> {
+        let _ = run;
+        None
     }
 }
 

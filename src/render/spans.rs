@@ -2,24 +2,7 @@
 //! span starts where the row enters the window and ends where it leaves, so every pixel of every
 //! window is in exactly one span and no span covers a pixel outside the windows.
 
-/// A column window: rows `top..bottom` (half-open). `top >= bottom` means empty.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct Window {
-    /// First row in the window.
-    pub top: i16,
-    /// One past the last row.
-    pub bottom: i16,
-}
-
-impl Window {
-    /// The empty window.
-    pub const EMPTY: Window = Window { top: 0, bottom: 0 };
-
-    /// True if no row is in the window.
-    pub const fn is_empty(self) -> bool {
-        self.top >= self.bottom
-    }
-}
+pub use crate::raster::Window;
 
 /// Emits the spans of `windows` (one per column, the first at column `first_column`) as
 /// `emit(row, x_start, x_end)` with `x_end` exclusive. `span_start` is scratch, one entry per

@@ -18,8 +18,18 @@ use super::walls::{
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
 use crate::raster::column::ColumnTexture;
+use crate::raster::wall_run::{
+    RunLight, RunTexturing, StripRunLevel, WallKind, WallRun, WallRunEnd,
+};
 use crate::raster::Canvas;
-use crate::render::light::light_row;
+use crate::render::light::{light_row, Lighting, DEPTH_BOOST, DEPTH_UNITS_PER_STEP};
+use portalcast_format::colormap_row;
+
+// The ARM wall loop (`asm/wall.s`) lights a column with the row of `base − (z' >> 12)` (z' in
+// 24.8), clamped to 0..=255, shifted right by 3: the light rule's steps must stay 16 units and
+// its rows 8 levels.
+const _: () = assert!(DEPTH_UNITS_PER_STEP == 16);
+const _: () = assert!(colormap_row(255) == 31 && colormap_row(8) == 1 && colormap_row(7) == 0);
 use core::cell::Cell;
 use core::convert::Infallible;
 
@@ -793,8 +803,10 @@ impl<W: WindowStore> Renderer<W> {
         }
     }
 
-    /// The columns `start..stop` of a [`SteppedWall`] (most walls): its rows and texturing
-    /// from 32-bit accumulators.
+    /// The columns `start..stop` of a [`SteppedWall`] (most walls): drawn by the canvas's own
+    /// wall loop where it has one (the GBA's, `asm/wall.s`), which stops where a strip needs
+    /// another mip level and is started again after the renderer looks it up; else, and for
+    /// walls it cannot take, by [`Renderer::draw_stepped_columns`], its twin.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn draw_stepped_wall(
@@ -803,10 +815,137 @@ impl<W: WindowStore> Renderer<W> {
         canvas: &mut impl Canvas,
         stats: &mut FrameStats,
         job: &mut WallJob,
-        mut wall: SteppedWall,
+        wall: SteppedWall,
         start: i32,
         stop: i32,
     ) {
+        let mut resume = Some(WallResume {
+            column: start,
+            wall,
+            pending: None,
+        });
+        // The canvas loops draw textured strips only; a strip of a missing texture is drawn
+        // blank by the renderer's loop.
+        if job.drawn_strips().all(|strip| strip.texture.is_some()) {
+            resume = self.run_wall(scene, canvas, stats, job, wall, start, stop);
+        }
+        if let Some(WallResume {
+            column,
+            wall,
+            pending,
+        }) = resume
+        {
+            self.draw_stepped_columns(scene, canvas, stats, job, wall, pending, column, stop);
+        }
+    }
+
+    /// [`Renderer::draw_stepped_wall`] through the canvas's own loop: the column and the wall's
+    /// state where the renderer's loop must take over (the canvas has no loop, or a texture's
+    /// levels are ones its kernels do not take), with that column's strips where its windows
+    /// are drawn already; or `None` when every column is drawn.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn run_wall(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        job: &mut WallJob,
+        wall: SteppedWall,
+        start: i32,
+        stop: i32,
+    ) -> Option<WallResume> {
+        let kind = match job.portal {
+            None => WallKind::Solid,
+            Some(portal) if !portal.upper_drawn && !portal.lower_drawn => WallKind::Opening,
+            Some(portal) => WallKind::Portal {
+                upper: portal.upper_drawn,
+                lower: portal.lower_drawn,
+            },
+        };
+        let view = scene.view;
+        let texturing = RunTexturing {
+            length: job.length.to_bits(),
+            x_offset: job.x_offset.to_bits(),
+            inverse_focal_y: scene.inverse_focal_y as i32,
+            horizon_row: view.viewport.horizon_y,
+        };
+        let colormap = scene.assets.colormap;
+        let light = match view.lighting {
+            Lighting::Off => RunLight::Off,
+            Lighting::Sector => RunLight::Fixed(&colormap[colormap_row(job.sector.light)]),
+            Lighting::SectorDepth => RunLight::Depth {
+                base: i32::from(job.sector.light) + DEPTH_BOOST,
+                colormap,
+            },
+        };
+        let windows = self.windows.windows();
+        let mut run = WallRun::new(
+            wall.steps(),
+            kind,
+            start,
+            stop,
+            &mut windows.clip,
+            &mut windows.ceiling,
+            &mut windows.floor,
+            texturing,
+            light,
+            job.strips.each_ref().map(StripTexture::run_level),
+        )?;
+        let resume = loop {
+            match canvas.wall_run(&mut run) {
+                None => break Some(run.column()),
+                Some(WallRunEnd::Done) => break None,
+                Some(WallRunEnd::MipLevel(ratio)) => {
+                    let mut ready = true;
+                    for (index, strip) in job.strips.iter_mut().enumerate() {
+                        if strip.texture.is_some() {
+                            strip.take_level(ratio);
+                            run.set_strip(index, strip.run_level());
+                            // A level whose height no kernel takes: the renderer's loop.
+                            ready &= run.strip_ready(index);
+                        }
+                    }
+                    if !ready {
+                        break Some(run.column());
+                    }
+                }
+            }
+        };
+        let (pixels, strips) = run.drawn();
+        stats.column_pixels += pixels;
+        stats.strips += strips;
+        resume.map(|column| WallResume {
+            column,
+            wall: SteppedWall::from_steps(run.steps()),
+            pending: run.pending_strips(),
+        })
+    }
+
+    /// The columns `start..stop` of a [`SteppedWall`]: its rows and texturing from 32-bit
+    /// accumulators, column by column (the twin of the canvas loops of
+    /// [`Renderer::draw_stepped_wall`]); first, where a canvas loop left the column `start`
+    /// with its windows drawn, that column's `pending` strips. Out of line and in ROM: on the
+    /// GBA only the walls the ARM loop cannot take come here.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn draw_stepped_columns(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        job: &mut WallJob,
+        mut wall: SteppedWall,
+        pending: Option<[(i32, i32); 2]>,
+        mut start: i32,
+        stop: i32,
+    ) {
+        if let Some(strips) = pending {
+            let (depth, along) = wall.texturing();
+            self.texture_column(scene, canvas, stats, job, depth, along, strips, start);
+            wall.step();
+            start += 1;
+        }
         let portal = job.portal;
         // The neighbour's rows matter only where the portal has a strip (`column_windows`).
         let neighbour_rows = portal.is_some_and(|portal| portal.upper_drawn || portal.lower_drawn);
@@ -1054,6 +1193,14 @@ fn column_windows(
     }
 }
 
+/// Where the renderer's own loop takes over a wall from a canvas loop: the column, the wall's
+/// accumulators there, and that column's strips where the canvas loop drew its windows.
+struct WallResume {
+    column: i32,
+    wall: SteppedWall,
+    pending: Option<[(i32, i32); 2]>,
+}
+
 /// The eye-space ends of a sector's walls and the columns of `[first, end)` each owns, one
 /// wall after the other: a wall's end is the next wall's start, so each vertex is transformed
 /// and split once per loop (twice for the loop's first vertex at most).
@@ -1118,7 +1265,19 @@ struct WallJob<'s> {
     portal: Option<PortalJob>,
 }
 
-impl WallJob<'_> {
+impl<'s> WallJob<'s> {
+    /// The strips its columns can draw: a solid wall's, a portal's upper and lower where drawn.
+    fn drawn_strips(&self) -> impl Iterator<Item = &StripTexture<'s>> {
+        let (first, second) = match &self.portal {
+            None => (true, false),
+            Some(portal) => (portal.upper_drawn, portal.lower_drawn),
+        };
+        let [upper, lower] = &self.strips;
+        [(first, upper), (second, lower)]
+            .into_iter()
+            .filter_map(|(drawn, strip)| drawn.then_some(strip))
+    }
+
     /// The heights above the eye whose rows each column needs, in the order of
     /// [`WallRows::next_column`]'s rows: the sector's ceiling and floor, then the neighbour's
     /// (a solid wall repeats its own: the rows are computed and not read).
@@ -1171,6 +1330,34 @@ struct StripLevel<'s> {
     width_log2: u32,
     height_log2: u32,
     texels: &'s [u8],
+}
+
+impl<'s> StripTexture<'s> {
+    /// Keeps the level that mip ratio `ratio` selects (looked up if the kept one does not).
+    fn take_level(&mut self, ratio: i32) {
+        if let Some(texture) = self.texture {
+            if !(self.level.ratio_low..=self.level.ratio_high).contains(&ratio) {
+                self.level = StripLevel::of(texture, ratio);
+            }
+        }
+    }
+
+    /// The kept level as a canvas's wall loop takes it (an empty range until one is kept).
+    fn run_level(&self) -> StripRunLevel<'s> {
+        let level = &self.level;
+        StripRunLevel {
+            eye_to_anchor: self.eye_to_anchor,
+            base_height_log2: self
+                .texture
+                .map_or(0, |texture| u32::from(texture.height_log2)),
+            ratio_low: level.ratio_low,
+            ratio_high: level.ratio_high,
+            level: u32::from(level.level),
+            width_log2: level.width_log2,
+            height_log2: level.height_log2,
+            texels: level.texels,
+        }
+    }
 }
 
 impl<'s> StripLevel<'s> {

@@ -16,6 +16,7 @@
 
 use super::ratio::{ratio, ratio_shifted, Divisor};
 use crate::math::{EyePoint, Fx24_8, Fx2_30, Side, Viewport, NEAR_DEPTH};
+use crate::raster::wall_run::WallSteps;
 
 /// The columns `[start, end)` where a monotone predicate over `0..width` holds.
 fn columns_where(width: i32, holds: impl Fn(i32) -> bool) -> (i32, i32) {
@@ -521,6 +522,32 @@ impl SteppedWall {
             horizon,
             height,
         })
+    }
+
+    /// Its accumulators and row constants, as a canvas's own wall loop takes them.
+    pub fn steps(&self) -> WallSteps {
+        WallSteps {
+            inverse_depth: self.inverse_depth,
+            inverse_depth_step: self.inverse_depth_step,
+            along_over_depth: self.along_over_depth,
+            along_over_depth_step: self.along_over_depth_step,
+            scales: self.scales,
+            horizon: self.horizon,
+            height: self.height,
+        }
+    }
+
+    /// The wall at the column a canvas's loop left `steps` at.
+    pub fn from_steps(steps: WallSteps) -> SteppedWall {
+        SteppedWall {
+            inverse_depth: steps.inverse_depth,
+            inverse_depth_step: steps.inverse_depth_step,
+            along_over_depth: steps.along_over_depth,
+            along_over_depth_step: steps.along_over_depth_step,
+            scales: steps.scales,
+            horizon: steps.horizon,
+            height: steps.height,
+        }
     }
 
     /// The current column's rows of the four heights, unclipped (in `[0, height]`): those of

@@ -1,0 +1,472 @@
+@ The wall loop: a run of a stepped wall's columns, Doom's R_RenderSegLoop, in ARM code in IWRAM.
+@ Rust twin: the renderer's own column loop (src/render/walk.rs, draw_stepped_columns, through
+@ column_windows, texture_column and draw_strip), which the host draws with; the emulator's
+@ ROM-versus-host frame test compares the two pixel for pixel. The job is built and checked by
+@ src/raster/wall_run.rs (WallRun) and handed over by src/hw/kernels.rs.
+@
+@ u32 pc_wall_run(WallRun *r0): draws columns run.column..run.stop and returns 0; or, at a
+@ column whose drawn strips need a mip level outside their ranges, writes its windows, stores
+@ the strips' rows in run.resume_rows with run.resume = 1 and the mip ratio in run.miss_ratio,
+@ and returns 1. Called again with run.resume = 1 it draws those strips first. On return
+@ run.column and the accumulators are those of the column it stopped at.
+@
+@ WallRun (words):
+@   0 inverse_depth  4 inverse_depth_step  8 along_over_depth  12 along_over_depth_step
+@  16..28 scales[4] (d_y·h, 24.8)  32 horizon (cy 24.8 + 127)  36 height
+@  40 column  44 stop  48 kind (0 solid, 1 opening, 2 portal | upper << 8 | lower << 9)
+@  52 clip  56 ceiling  60 floor (Window arrays: a word per column, top in the low half)
+@  64 length  68 x_offset  72 inverse_focal_y  76 light_mode (0 off, 1 fixed, 2 depth)
+@  80 light_base  84 colormap  88 recip_seeds (u16[1024])  92 horizon_row  96 page  100 native
+@ 104 column_pixels  108 strips_drawn  112 miss_ratio  116 resume  120 resume_rows[2]
+@ 128 strips[0], 160 strips[1]: +0 eye_to_anchor (low word)  +4 shape (level | log2 height << 8
+@     | log2 base height << 16)  +8 ratio_low  +12 ratio_high  +16 width_mask  +20 texels
+@     +24 kernel_even  +28 kernel_odd
+@
+@ Registers kept across columns: r11 the run, r10 1/z', r9 the column, r5 the pixels drawn and
+@ (from bit 16) the strips drawn. The kernels keep r4-r11. The stack holds the column's strip
+@ rows and the kernels' argument block (asm/column.s).
+
+    .equ RUN_INV, 0
+    .equ RUN_INV_STEP, 4
+    .equ RUN_AOD, 8
+    .equ RUN_AOD_STEP, 12
+    .equ RUN_SCALE0, 16
+    .equ RUN_SCALE1, 20
+    .equ RUN_SCALE2, 24
+    .equ RUN_SCALE3, 28
+    .equ RUN_HORIZON, 32
+    .equ RUN_HEIGHT, 36
+    .equ RUN_COLUMN, 40
+    .equ RUN_STOP, 44
+    .equ RUN_KIND, 48
+    .equ RUN_CLIP, 52
+    .equ RUN_CEILING, 56
+    .equ RUN_FLOOR, 60
+    .equ RUN_LENGTH, 64
+    .equ RUN_X_OFFSET, 68
+    .equ RUN_IFOC, 72
+    .equ RUN_LIGHT_MODE, 76
+    .equ RUN_LIGHT_BASE, 80
+    .equ RUN_COLORMAP, 84
+    .equ RUN_SEEDS, 88
+    .equ RUN_HORIZON_ROW, 92
+    .equ RUN_PAGE, 96
+    .equ RUN_NATIVE, 100
+    .equ RUN_PIXELS, 104
+    .equ RUN_STRIPS, 108
+    .equ RUN_MISS, 112
+    .equ RUN_RESUME, 116
+    .equ RUN_RESUME_ROWS, 120
+    .equ RUN_STRIP0, 128
+    .equ RUN_STRIP1, 160
+
+    .equ STRIP_EYE, 0
+    .equ STRIP_SHAPE, 4
+    .equ STRIP_LOW, 8
+    .equ STRIP_HIGH, 12
+    .equ STRIP_WMASK, 16
+    .equ STRIP_TEXELS, 20
+    .equ STRIP_K_EVEN, 24
+    .equ STRIP_K_ODD, 28
+
+    @ The stack frame: the strips' rows, the kernels' job, the run's first column and its t/z'.
+    .equ SP_ROWS0, 0
+    .equ SP_ROWS1, 4
+    .equ SP_JOB, 8
+    .equ SP_FIRST, 32
+    .equ SP_AOD, 36
+    .equ SP_FRAME, 40
+
+    @ \dst = clamp((horizon − ((scale·inv + 2^29) >> 30)) >> 8, 0, height), as
+    @ SteppedWall::rows. r2 = horizon, r3 = height, r10 = 1/z'; \lo, \hi scratch.
+    .macro WALL_ROW dst, scale, lo, hi
+    mov     \lo, #0x20000000
+    mov     \hi, #0
+    smlal   \lo, \hi, \scale, r10
+    mov     \lo, \lo, lsr #30
+    orr     \lo, \lo, \hi, lsl #2
+    rsb     \lo, \lo, r2
+    mov     \dst, \lo, asr #8
+    bic     \dst, \dst, \dst, asr #31
+    cmp     \dst, r3
+    movgt   \dst, r3
+    .endm
+
+    @ Draws the strip at \strip, rows at [sp, #\rows], through .Lstrip.
+    .macro WALL_STRIP strip, rows
+    ldr     r0, [sp, #\rows]
+    add     r2, r11, #\strip
+    bl      .Lstrip
+    .endm
+
+    @ Every drawn strip's level must select the mip ratio r12, or the run stops.
+    .macro WALL_LEVEL_CHECK strip, rows
+    ldr     r0, [sp, #\rows]
+    cmp     r0, #0
+    beq     1f
+    ldr     r1, [r11, #\strip + STRIP_LOW]
+    ldr     r2, [r11, #\strip + STRIP_HIGH]
+    cmp     r12, r1
+    blt     .Lmiss
+    cmp     r12, r2
+    bgt     .Lmiss
+1:
+    .endm
+
+    .section .iwram_render.pc_wall_run, "ax", %progbits
+    .arm
+    .global pc_wall_run
+    .type pc_wall_run, %function
+    .align 2
+pc_wall_run:
+    push    {r4-r11, lr}
+    sub     sp, sp, #SP_FRAME
+    mov     r11, r0
+    ldr     r9, [r11, #RUN_COLUMN]
+    ldr     r10, [r11, #RUN_INV]
+    ldr     r0, [r11, #RUN_AOD]
+    str     r9, [sp, #SP_FIRST]
+    str     r0, [sp, #SP_AOD]
+    mov     r5, #0
+    ldr     r0, [r11, #RUN_RESUME]
+    cmp     r0, #0
+    beq     .Lcolumn
+    @ Started again at a column whose windows are written: its strips.
+    mov     r1, #0
+    str     r1, [r11, #RUN_RESUME]
+    ldr     r0, [r11, #RUN_RESUME_ROWS]
+    ldr     r1, [r11, #RUN_RESUME_ROWS + 4]
+    str     r0, [sp, #SP_ROWS0]
+    str     r1, [sp, #SP_ROWS1]
+    b       .Ltexture
+
+.Lcolumn:
+    ldr     r0, [r11, #RUN_STOP]
+    cmp     r9, r0
+    bge     .Ldone
+    ldr     r2, [r11, #RUN_HORIZON]
+    ldr     r3, [r11, #RUN_HEIGHT]
+    ldr     r4, [r11, #RUN_SCALE0]
+    WALL_ROW r6, r4, r0, r1                 @ r6: the ceiling's row
+    ldr     r4, [r11, #RUN_SCALE1]
+    WALL_ROW r7, r4, r0, r1                 @ r7: the floor's row
+    @ The clip window: r4 top, r8 bottom (column_windows from here).
+    ldr     r0, [r11, #RUN_CLIP]
+    ldr     r0, [r0, r9, lsl #2]
+    mov     r4, r0, lsl #16
+    mov     r4, r4, asr #16
+    mov     r8, r0, asr #16
+    cmp     r6, r4
+    movlt   r6, r4                          @ ceiling row = max(ceiling, clip top)
+    cmp     r7, r8
+    movgt   r7, r8                          @ floor row = min(floor, clip bottom)
+    @ The ceiling window, (clip top, min(ceiling row, clip bottom)), and the floor window,
+    @ (max(floor row, clip top), clip bottom).
+    cmp     r6, r8
+    movlt   r0, r6
+    movge   r0, r8
+    orr     r0, r4, r0, lsl #16
+    ldr     r1, [r11, #RUN_CEILING]
+    str     r0, [r1, r9, lsl #2]
+    cmp     r7, r4
+    movgt   r0, r7
+    movle   r0, r4
+    orr     r0, r0, r8, lsl #16
+    ldr     r1, [r11, #RUN_FLOOR]
+    str     r0, [r1, r9, lsl #2]
+    ldr     r12, [r11, #RUN_KIND]
+    ldr     r1, [r11, #RUN_CLIP]
+    ands    r0, r12, #3
+    bne     .Lportal
+    @ Solid: the clip window closes; one strip, from the ceiling row to the floor row.
+    str     r0, [r1, r9, lsl #2]
+    cmp     r6, r7
+    bge     .Lnext
+    orr     r0, r6, r7, lsl #16
+    mov     r1, #0
+    str     r0, [sp, #SP_ROWS0]
+    str     r1, [sp, #SP_ROWS1]
+    b       .Ltexture
+
+.Lportal:
+    cmp     r0, #1
+    bne     .Lstripped
+    @ An opening: the clip window from the ceiling row to the floor row, no strip.
+    cmp     r7, r6
+    movlt   r7, r6
+    orr     r0, r6, r7, lsl #16
+    str     r0, [r1, r9, lsl #2]
+    b       .Lnext
+
+.Lstripped:
+    @ The neighbour's rows, clamped: r8 its ceiling's, lr its floor's.
+    ldr     r4, [r11, #RUN_SCALE2]
+    WALL_ROW r8, r4, r0, r1
+    cmp     r8, r6
+    movlt   r8, r6                          @ max(neighbour ceiling, ceiling row)
+    cmp     r7, r6
+    movge   r0, r7
+    movlt   r0, r6                          @ max(floor row, ceiling row)
+    cmp     r8, r0
+    movgt   r8, r0
+    ldr     r4, [r11, #RUN_SCALE3]
+    WALL_ROW lr, r4, r0, r1
+    cmp     r8, r7
+    movlt   r0, r8
+    movge   r0, r7                          @ min(neighbour ceiling row, floor row)
+    cmp     lr, r0
+    movlt   lr, r0
+    cmp     lr, r7
+    movgt   lr, r7
+    @ The opening: from the neighbour's ceiling row (upper strip) or the ceiling row, to the
+    @ neighbour's floor row (lower strip) or the floor row; the strips where drawn.
+    tst     r12, #0x100
+    moveq   r2, r6
+    movne   r2, r8
+    tst     r12, #0x200
+    moveq   r3, r7
+    movne   r3, lr
+    cmp     r3, r2
+    movlt   r3, r2
+    orr     r2, r2, r3, lsl #16
+    ldr     r1, [r11, #RUN_CLIP]
+    str     r2, [r1, r9, lsl #2]
+    mov     r0, #0
+    tst     r12, #0x100
+    beq     1f
+    cmp     r6, r8
+    orrlt   r0, r6, r8, lsl #16
+1:
+    mov     r1, #0
+    tst     r12, #0x200
+    beq     2f
+    cmp     lr, r7
+    orrlt   r1, lr, r7, lsl #16
+2:
+    str     r0, [sp, #SP_ROWS0]
+    str     r1, [sp, #SP_ROWS1]
+    orrs    r0, r0, r1
+    beq     .Lnext
+
+.Ltexture:
+    @ z' = 1/(1/z'): recip_pow2(1/z', 38) (src/math/recip.rs), r0 the normalised mantissa,
+    @ r1 its shift.
+    mov     r0, r10
+    mov     r1, #0
+    cmp     r0, #0x10000
+    movlo   r0, r0, lsl #16
+    addlo   r1, r1, #16
+    cmp     r0, #0x1000000
+    movlo   r0, r0, lsl #8
+    addlo   r1, r1, #8
+    cmp     r0, #0x10000000
+    movlo   r0, r0, lsl #4
+    addlo   r1, r1, #4
+    cmp     r0, #0x40000000
+    movlo   r0, r0, lsl #2
+    addlo   r1, r1, #2
+    cmp     r0, #0x80000000
+    movlo   r0, r0, lsl #1
+    addlo   r1, r1, #1
+    @ mantissa_reciprocal: the seed for its top 10 bits, then r·(1 + δ + δ²).
+    ldr     r2, [r11, #RUN_SEEDS]
+    mov     r3, r0, lsr #21
+    bic     r3, r3, #0x400
+    mov     r3, r3, lsl #1
+    ldrh    r3, [r2, r3]                    @ seed
+    mov     r4, r0, lsr #16                 @ high half
+    mov     r12, r0, lsl #16
+    mov     r12, r12, lsr #16               @ low half
+    mul     r2, r3, r12
+    mov     r2, r2, lsr #16
+    mla     r12, r3, r4, r2                 @ m·seed / 2^16
+    rsb     r12, r12, #0x80000000           @ δ · 2^31
+    mov     r2, r12, asr #5
+    mul     r4, r2, r2
+    add     r12, r12, r4, asr #21           @ (δ + δ²) · 2^31
+    mov     r2, r12, asr #8
+    and     r12, r12, #0xff
+    mul     r4, r3, r12
+    mov     r4, r4, asr #8
+    mla     r12, r3, r2, r4
+    mov     r12, r12, asr #8                @ the correction
+    add     r0, r12, r3, lsl #15            @ 2^31 / M
+    @ To 24.8, rounded: right by 62 − 38 − shift (the shift is 1..16 for 1/z' in
+    @ [2^30 / EYE_DEPTH_MAX, 2^30], so 8..23).
+    rsb     r1, r1, #23
+    mov     r0, r0, lsr r1
+    add     r0, r0, #1
+    mov     r8, r0, lsr #1                  @ r8: z' in 24.8
+    @ t/z' at this column, then t = (t/z')·z' >> 8, clamped to 0..2^30.
+    ldr     r0, [sp, #SP_FIRST]
+    ldr     r1, [r11, #RUN_AOD_STEP]
+    ldr     r2, [sp, #SP_AOD]
+    sub     r0, r9, r0
+    mla     r1, r0, r1, r2
+    smull   r2, r3, r1, r8
+    mov     r4, r2, lsr #8
+    orr     r4, r4, r3, lsl #24
+    movs    r12, r3, asr #8
+    movmi   r4, #0
+    bmi     1f
+    cmp     r12, #0
+    movne   r4, #0x40000000
+    cmp     r4, #0x40000000
+    movhi   r4, #0x40000000
+1:
+    @ u = t·length >> 30, plus the x offset (24.8).
+    ldr     r1, [r11, #RUN_LENGTH]
+    smull   r2, r3, r4, r1
+    mov     r2, r2, lsr #30
+    orr     r2, r2, r3, lsl #2
+    ldr     r1, [r11, #RUN_X_OFFSET]
+    add     r4, r2, r1                      @ r4: u
+    @ z'/d_y = z'·(1/d_y) in 24.8 × 2^30; the mip ratio is its bits from 38 up.
+    ldr     r1, [r11, #RUN_IFOC]
+    smull   r6, r7, r8, r1                  @ r6/r7: z'/d_y
+    @ The light: no colormap, one row, or the row of base − z'/16 units, clamped to 0..255.
+    ldr     r1, [r11, #RUN_LIGHT_MODE]
+    ldr     r0, [r11, #RUN_COLORMAP]
+    cmp     r1, #2
+    bne     1f
+    ldr     r1, [r11, #RUN_LIGHT_BASE]
+    sub     r1, r1, r8, asr #12
+    bic     r1, r1, r1, asr #31
+    cmp     r1, #255
+    movgt   r1, #255
+    mov     r1, r1, lsr #3
+    add     r0, r0, r1, lsl #8
+1:
+    mov     r8, r0                          @ r8: the colormap row (0: unlit)
+    mov     r12, r7, asr #6                 @ r12: the mip ratio
+    WALL_LEVEL_CHECK RUN_STRIP0, SP_ROWS0
+    WALL_LEVEL_CHECK RUN_STRIP1, SP_ROWS1
+    ldr     r0, [sp, #SP_ROWS0]
+    cmp     r0, #0
+    beq     3f
+    WALL_STRIP RUN_STRIP0, SP_ROWS0
+3:
+    ldr     r0, [sp, #SP_ROWS1]
+    cmp     r0, #0
+    beq     .Lnext
+    WALL_STRIP RUN_STRIP1, SP_ROWS1
+
+.Lnext:
+    ldr     r0, [r11, #RUN_INV_STEP]
+    add     r9, r9, #1
+    add     r10, r10, r0
+    b       .Lcolumn
+
+.Lmiss:
+    @ Stop at this column, its windows written, its strips to draw when started again.
+    str     r12, [r11, #RUN_MISS]
+    ldr     r0, [sp, #SP_ROWS0]
+    ldr     r1, [sp, #SP_ROWS1]
+    str     r0, [r11, #RUN_RESUME_ROWS]
+    str     r1, [r11, #RUN_RESUME_ROWS + 4]
+    mov     r0, #1
+    str     r0, [r11, #RUN_RESUME]
+    b       .Lreturn
+
+.Ldone:
+    mov     r0, #0
+
+.Lreturn:
+    @ The run's state at column r9: its accumulators, the counts.
+    str     r9, [r11, #RUN_COLUMN]
+    str     r10, [r11, #RUN_INV]
+    ldr     r1, [sp, #SP_FIRST]
+    ldr     r2, [r11, #RUN_AOD_STEP]
+    ldr     r3, [sp, #SP_AOD]
+    sub     r1, r9, r1
+    mla     r2, r1, r2, r3
+    str     r2, [r11, #RUN_AOD]
+    ldr     r1, [r11, #RUN_PIXELS]
+    ldr     r2, [r11, #RUN_STRIPS]
+    mov     r3, r5, lsl #16
+    add     r1, r1, r3, lsr #16
+    add     r2, r2, r5, lsr #16
+    str     r1, [r11, #RUN_PIXELS]
+    str     r2, [r11, #RUN_STRIPS]
+    add     sp, sp, #SP_FRAME
+    pop     {r4-r11, lr}
+    bx      lr
+
+    @ One strip of column r9 (draw_strip): r0 its rows (top | bottom << 16, not 0), r2 the
+    @ strip; r4 = u (24.8), r6/r7 = z'/d_y (24.8 × 2^30), r8 = the colormap row (0: unlit).
+    @ Texture column, v and its step, then the kernel. Keeps r4-r11. The kernels' job sits
+    @ just above the return address this pushes.
+.Lstrip:
+    str     lr, [sp, #-4]!
+    mov     r1, r0, lsl #16
+    mov     r1, r1, lsr #16                 @ r1: top
+    rsb     r0, r1, r0, lsr #16             @ r0: count
+    add     r5, r5, r0
+    add     r5, r5, #0x10000
+    str     r0, [sp, #4 + SP_JOB + 16]
+    str     r8, [sp, #4 + SP_JOB + 20]
+    @ The texel column: ((u >> 8) >> level) & width mask, 2^h texels each.
+    ldr     r3, [r2, #STRIP_WMASK]
+    ldr     r0, [r2, #STRIP_SHAPE]
+    and     lr, r0, #0xff
+    mov     r12, r4, asr #8
+    and     r12, r3, r12, asr lr
+    mov     lr, r0, lsr #8
+    and     lr, lr, #0xff
+    ldr     r3, [r2, #STRIP_TEXELS]
+    add     r3, r3, r12, lsl lr
+    str     r3, [sp, #4 + SP_JOB + 4]
+    @ v = (eye_to_anchor + ((2(top − cy) + 1)·z'/d_y >> 31)) << (24 − base log2), low words.
+    ldr     r3, [r11, #RUN_HORIZON_ROW]
+    sub     r3, r1, r3
+    mov     r3, r3, lsl #1
+    add     r3, r3, #1                      @ twice the row offset, signed
+    umull   r12, lr, r6, r3
+    cmp     r3, #0
+    sublt   lr, lr, r6                      @ a negative factor read as unsigned: take it back
+    mla     lr, r3, r7, lr
+    mov     r12, r12, lsr #31
+    orr     r12, r12, lr, lsl #1
+    ldr     r3, [r2, #STRIP_EYE]
+    add     r12, r12, r3
+    mov     r0, r0, lsr #16                 @ log2 of the base height
+    rsb     r3, r0, #24
+    mov     r12, r12, lsl r3
+    str     r12, [sp, #4 + SP_JOB + 8]
+    @ dv = z'/d_y >> (6 + base log2), low word.
+    add     r3, r0, #6
+    mov     r12, r6, lsr r3
+    rsb     r3, r3, #32
+    orr     r12, r12, r7, lsl r3
+    str     r12, [sp, #4 + SP_JOB + 12]
+    @ dst = page + top·240 + (2x, or x & ~1 where two pixels share a halfword); the kernel.
+    ldr     r0, [r11, #RUN_PAGE]
+    rsb     r1, r1, r1, lsl #4
+    add     r0, r0, r1, lsl #4
+    ldr     r3, [r11, #RUN_NATIVE]
+    ldr     r12, [r2, #STRIP_K_EVEN]
+    cmp     r3, #0
+    addeq   r0, r0, r9, lsl #1
+    bicne   r1, r9, #1
+    addne   r0, r0, r1
+    tstne   r9, #1
+    ldrne   r12, [r2, #STRIP_K_ODD]
+    str     r0, [sp, #4 + SP_JOB]
+    add     r0, sp, #4 + SP_JOB
+    mov     lr, pc
+    bx      r12
+    ldr     lr, [sp], #4
+    bx      lr
+    .size pc_wall_run, . - pc_wall_run
+
+    @ A column kernel that draws nothing: the set-up benchmark's stand-in (VramCanvas's
+    @ without_kernels), so that the loop is timed up to its kernel calls.
+    .global pc_column_skip
+    .type pc_column_skip, %function
+    .align 2
+pc_column_skip:
+    bx      lr
+    .size pc_column_skip, . - pc_column_skip
+
+    @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
+    @ compiler emits after this file.
