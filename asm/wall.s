@@ -69,27 +69,26 @@
     .equ STRIP_K_EVEN, 24
     .equ STRIP_K_ODD, 28
 
-    @ The stack frame: the strips' rows, the kernels' job, the run's first column and its t/z'.
+    @ The stack frame: the strips' rows, the kernels' job, and t/z' less x times its step.
     .equ SP_ROWS0, 0
     .equ SP_ROWS1, 4
     .equ SP_JOB, 8
-    .equ SP_FIRST, 32
-    .equ SP_AOD, 36
+    .equ SP_AOD, 32
     .equ SP_FRAME, 40
 
     @ \dst = clamp((horizon − ((scale·inv + 2^29) >> 30)) >> 8, 0, height), as
-    @ SteppedWall::rows. r2 = horizon, r3 = height, r10 = 1/z'; \lo, \hi scratch.
-    .macro WALL_ROW dst, scale, lo, hi
+    @ SteppedWall::rows, with r10 = 1/z'; \lo, \hi scratch (\dst may be \scale).
+    .macro WALL_ROW dst, scale, horizon, height, lo, hi
     mov     \lo, #0x20000000
     mov     \hi, #0
     smlal   \lo, \hi, \scale, r10
     mov     \lo, \lo, lsr #30
     orr     \lo, \lo, \hi, lsl #2
-    rsb     \lo, \lo, r2
+    rsb     \lo, \lo, \horizon
     mov     \dst, \lo, asr #8
     bic     \dst, \dst, \dst, asr #31
-    cmp     \dst, r3
-    movgt   \dst, r3
+    cmp     \dst, \height
+    movgt   \dst, \height
     .endm
 
     @ Draws the strip at \strip, rows at [sp, #\rows], through .Lstrip.
@@ -124,8 +123,11 @@ pc_wall_run:
     mov     r11, r0
     ldr     r9, [r11, #RUN_COLUMN]
     ldr     r10, [r11, #RUN_INV]
+    @ t/z' at column x is base + x·step: the base, wrapping like the steps.
     ldr     r0, [r11, #RUN_AOD]
-    str     r9, [sp, #SP_FIRST]
+    ldr     r1, [r11, #RUN_AOD_STEP]
+    mul     r2, r9, r1
+    sub     r0, r0, r2
     str     r0, [sp, #SP_AOD]
     mov     r5, #0
     ldr     r0, [r11, #RUN_RESUME]
@@ -144,108 +146,100 @@ pc_wall_run:
     ldr     r0, [r11, #RUN_STOP]
     cmp     r9, r0
     bge     .Ldone
-    ldr     r2, [r11, #RUN_HORIZON]
-    ldr     r3, [r11, #RUN_HEIGHT]
-    ldr     r4, [r11, #RUN_SCALE0]
-    WALL_ROW r6, r4, r0, r1                 @ r6: the ceiling's row
-    ldr     r4, [r11, #RUN_SCALE1]
-    WALL_ROW r7, r4, r0, r1                 @ r7: the floor's row
-    @ The clip window: r4 top, r8 bottom (column_windows from here).
-    ldr     r0, [r11, #RUN_CLIP]
-    ldr     r0, [r0, r9, lsl #2]
-    mov     r4, r0, lsl #16
-    mov     r4, r4, asr #16
-    mov     r8, r0, asr #16
-    cmp     r6, r4
-    movlt   r6, r4                          @ ceiling row = max(ceiling, clip top)
-    cmp     r7, r8
-    movgt   r7, r8                          @ floor row = min(floor, clip bottom)
+    add     r0, r11, #RUN_SCALE0
+    ldmia   r0, {r1, r4, r6, r7, r8, r12}   @ the scales, horizon, height
+    WALL_ROW r2, r1, r8, r12, r0, r3        @ r2: the ceiling's row
+    WALL_ROW r3, r4, r8, r12, r0, r1        @ r3: the floor's row
+    add     r0, r11, #RUN_KIND
+    ldmia   r0, {r1, r4, r6, r7}            @ kind, the clip, ceiling and floor windows
+    @ The clip window: r8 top, r12 bottom (column_windows from here).
+    ldr     r0, [r4, r9, lsl #2]
+    mov     r8, r0, lsl #16
+    mov     r8, r8, asr #16
+    mov     r12, r0, asr #16
+    cmp     r2, r8
+    movlt   r2, r8                          @ ceiling row = max(ceiling, clip top)
+    cmp     r3, r12
+    movgt   r3, r12                         @ floor row = min(floor, clip bottom)
     @ The ceiling window, (clip top, min(ceiling row, clip bottom)), and the floor window,
     @ (max(floor row, clip top), clip bottom).
-    cmp     r6, r8
-    movlt   r0, r6
-    movge   r0, r8
-    orr     r0, r4, r0, lsl #16
-    ldr     r1, [r11, #RUN_CEILING]
-    str     r0, [r1, r9, lsl #2]
-    cmp     r7, r4
-    movgt   r0, r7
-    movle   r0, r4
-    orr     r0, r0, r8, lsl #16
-    ldr     r1, [r11, #RUN_FLOOR]
-    str     r0, [r1, r9, lsl #2]
-    ldr     r12, [r11, #RUN_KIND]
-    ldr     r1, [r11, #RUN_CLIP]
-    ands    r0, r12, #3
+    cmp     r2, r12
+    movlt   r0, r2
+    movge   r0, r12
+    orr     r0, r8, r0, lsl #16
+    str     r0, [r6, r9, lsl #2]
+    cmp     r3, r8
+    movgt   r0, r3
+    movle   r0, r8
+    orr     r0, r0, r12, lsl #16
+    str     r0, [r7, r9, lsl #2]
+    ands    r0, r1, #3
     bne     .Lportal
     @ Solid: the clip window closes; one strip, from the ceiling row to the floor row.
-    str     r0, [r1, r9, lsl #2]
-    cmp     r6, r7
+    str     r0, [r4, r9, lsl #2]
+    cmp     r2, r3
     bge     .Lnext
-    orr     r0, r6, r7, lsl #16
+    orr     r0, r2, r3, lsl #16
     mov     r1, #0
-    str     r0, [sp, #SP_ROWS0]
-    str     r1, [sp, #SP_ROWS1]
+    stmia   sp, {r0, r1}                    @ the strips' rows
     b       .Ltexture
 
 .Lportal:
     cmp     r0, #1
     bne     .Lstripped
     @ An opening: the clip window from the ceiling row to the floor row, no strip.
-    cmp     r7, r6
-    movlt   r7, r6
-    orr     r0, r6, r7, lsl #16
-    str     r0, [r1, r9, lsl #2]
+    cmp     r3, r2
+    movlt   r3, r2
+    orr     r0, r2, r3, lsl #16
+    str     r0, [r4, r9, lsl #2]
     b       .Lnext
 
 .Lstripped:
-    @ The neighbour's rows, clamped: r8 its ceiling's, lr its floor's.
-    ldr     r4, [r11, #RUN_SCALE2]
-    WALL_ROW r8, r4, r0, r1
-    cmp     r8, r6
-    movlt   r8, r6                          @ max(neighbour ceiling, ceiling row)
-    cmp     r7, r6
-    movge   r0, r7
-    movlt   r0, r6                          @ max(floor row, ceiling row)
-    cmp     r8, r0
-    movgt   r8, r0
-    ldr     r4, [r11, #RUN_SCALE3]
-    WALL_ROW lr, r4, r0, r1
-    cmp     r8, r7
-    movlt   r0, r8
-    movge   r0, r7                          @ min(neighbour ceiling row, floor row)
-    cmp     lr, r0
-    movlt   lr, r0
-    cmp     lr, r7
-    movgt   lr, r7
+    @ The neighbour's rows, clamped: r6 its ceiling's, r7 its floor's.
+    add     r0, r11, #RUN_SCALE2
+    ldmia   r0, {r6, r7, r8, r12}           @ its scales, horizon, height
+    WALL_ROW r6, r6, r8, r12, r0, lr
+    cmp     r6, r2
+    movlt   r6, r2                          @ max(neighbour ceiling, ceiling row)
+    cmp     r3, r2
+    movge   r0, r3
+    movlt   r0, r2                          @ max(floor row, ceiling row)
+    cmp     r6, r0
+    movgt   r6, r0
+    WALL_ROW r7, r7, r8, r12, r0, lr
+    cmp     r6, r3
+    movlt   r0, r6
+    movge   r0, r3                          @ min(neighbour ceiling row, floor row)
+    cmp     r7, r0
+    movlt   r7, r0
+    cmp     r7, r3
+    movgt   r7, r3
     @ The opening: from the neighbour's ceiling row (upper strip) or the ceiling row, to the
     @ neighbour's floor row (lower strip) or the floor row; the strips where drawn.
-    tst     r12, #0x100
-    moveq   r2, r6
-    movne   r2, r8
-    tst     r12, #0x200
-    moveq   r3, r7
-    movne   r3, lr
-    cmp     r3, r2
-    movlt   r3, r2
-    orr     r2, r2, r3, lsl #16
-    ldr     r1, [r11, #RUN_CLIP]
-    str     r2, [r1, r9, lsl #2]
+    tst     r1, #0x100
+    moveq   r8, r2
+    movne   r8, r6
+    tst     r1, #0x200
+    moveq   r12, r3
+    movne   r12, r7
+    cmp     r12, r8
+    movlt   r12, r8
+    orr     r0, r8, r12, lsl #16
+    str     r0, [r4, r9, lsl #2]
     mov     r0, #0
-    tst     r12, #0x100
+    tst     r1, #0x100
     beq     1f
-    cmp     r6, r8
-    orrlt   r0, r6, r8, lsl #16
+    cmp     r2, r6
+    orrlt   r0, r2, r6, lsl #16
 1:
-    mov     r1, #0
-    tst     r12, #0x200
+    mov     r8, #0
+    tst     r1, #0x200
     beq     2f
-    cmp     lr, r7
-    orrlt   r1, lr, r7, lsl #16
+    cmp     r7, r3
+    orrlt   r8, r7, r3, lsl #16
 2:
-    str     r0, [sp, #SP_ROWS0]
-    str     r1, [sp, #SP_ROWS1]
-    orrs    r0, r0, r1
+    stmia   sp, {r0, r8}                    @ the strips' rows
+    orrs    r0, r0, r8
     beq     .Lnext
 
 .Ltexture:
@@ -298,11 +292,9 @@ pc_wall_run:
     add     r0, r0, #1
     mov     r8, r0, lsr #1                  @ r8: z' in 24.8
     @ t/z' at this column, then t = (t/z')·z' >> 8, clamped to 0..2^30.
-    ldr     r0, [sp, #SP_FIRST]
     ldr     r1, [r11, #RUN_AOD_STEP]
     ldr     r2, [sp, #SP_AOD]
-    sub     r0, r9, r0
-    mla     r1, r0, r1, r2
+    mla     r1, r9, r1, r2
     smull   r2, r3, r1, r8
     mov     r4, r2, lsr #8
     orr     r4, r4, r3, lsl #24
@@ -314,30 +306,27 @@ pc_wall_run:
     cmp     r4, #0x40000000
     movhi   r4, #0x40000000
 1:
+    add     lr, r11, #RUN_LENGTH
+    ldmia   lr, {r0, r1, r2, r3, r6, r7}    @ length, x offset, 1/d_y, light mode, base, colormap
     @ u = t·length >> 30, plus the x offset (24.8).
-    ldr     r1, [r11, #RUN_LENGTH]
-    smull   r2, r3, r4, r1
-    mov     r2, r2, lsr #30
-    orr     r2, r2, r3, lsl #2
-    ldr     r1, [r11, #RUN_X_OFFSET]
-    add     r4, r2, r1                      @ r4: u
-    @ z'/d_y = z'·(1/d_y) in 24.8 × 2^30; the mip ratio is its bits from 38 up.
-    ldr     r1, [r11, #RUN_IFOC]
-    smull   r6, r7, r8, r1                  @ r6/r7: z'/d_y
+    smull   r12, lr, r4, r0
+    mov     r12, r12, lsr #30
+    orr     r12, r12, lr, lsl #2
+    add     r4, r12, r1                     @ r4: u
     @ The light: no colormap, one row, or the row of base − z'/16 units, clamped to 0..255.
-    ldr     r1, [r11, #RUN_LIGHT_MODE]
-    ldr     r0, [r11, #RUN_COLORMAP]
-    cmp     r1, #2
+    cmp     r3, #2
     bne     1f
-    ldr     r1, [r11, #RUN_LIGHT_BASE]
-    sub     r1, r1, r8, asr #12
-    bic     r1, r1, r1, asr #31
-    cmp     r1, #255
-    movgt   r1, #255
-    mov     r1, r1, lsr #3
-    add     r0, r0, r1, lsl #8
+    sub     r6, r6, r8, asr #12
+    bic     r6, r6, r6, asr #31
+    cmp     r6, #255
+    movgt   r6, #255
+    mov     r6, r6, lsr #3
+    add     r7, r7, r6, lsl #8
 1:
-    mov     r8, r0                          @ r8: the colormap row (0: unlit)
+    mov     r3, r7                          @ the colormap row (0: unlit)
+    @ z'/d_y = z'·(1/d_y) in 24.8 × 2^30; the mip ratio is its bits from 38 up.
+    smull   r6, r7, r8, r2                  @ r6/r7: z'/d_y
+    mov     r8, r3                          @ r8: the colormap row
     mov     r12, r7, asr #6                 @ r12: the mip ratio
     WALL_LEVEL_CHECK RUN_STRIP0, SP_ROWS0
     WALL_LEVEL_CHECK RUN_STRIP1, SP_ROWS1
@@ -375,12 +364,10 @@ pc_wall_run:
     @ The run's state at column r9: its accumulators, the counts.
     str     r9, [r11, #RUN_COLUMN]
     str     r10, [r11, #RUN_INV]
-    ldr     r1, [sp, #SP_FIRST]
     ldr     r2, [r11, #RUN_AOD_STEP]
     ldr     r3, [sp, #SP_AOD]
-    sub     r1, r9, r1
-    mla     r2, r1, r2, r3
-    str     r2, [r11, #RUN_AOD]
+    mla     r1, r9, r2, r3
+    str     r1, [r11, #RUN_AOD]
     ldr     r1, [r11, #RUN_PIXELS]
     ldr     r2, [r11, #RUN_STRIPS]
     mov     r3, r5, lsl #16
