@@ -1,4 +1,5 @@
-//! Rasterizers: the portable Rust twins of the ARM kernels in `asm/`.
+//! Rasterizers: the portable Rust twins of the ARM kernels in `asm/`, the [`Canvas`] they draw
+//! on, and the job of the ARM wall loop ([`wall_run`], whose twin is the renderer's own loop).
 //!
 //! Every kernel in `asm/*.s` has a twin here with the same arguments and the same arithmetic
 //! (including wrap-around), so the host can render exactly what the ROM renders; an emulator test
