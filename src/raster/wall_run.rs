@@ -330,3 +330,145 @@ impl<'a> WallRun<'a> {
         (self.column_pixels, self.strips_drawn)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn steps() -> WallSteps {
+        WallSteps {
+            inverse_depth: 1 << 24,
+            inverse_depth_step: 0,
+            along_over_depth: 0,
+            along_over_depth_step: 0,
+            scales: [0; 4],
+            horizon: 40 << 8,
+            height: 80,
+        }
+    }
+
+    fn texturing() -> RunTexturing {
+        RunTexturing {
+            length: 64 << 8,
+            x_offset: 0,
+            inverse_focal_y: 1 << 24,
+            horizon_row: 40,
+        }
+    }
+
+    fn level(texels: &[u8], width_log2: u32, height_log2: u32) -> StripRunLevel<'_> {
+        StripRunLevel {
+            eye_to_anchor: 0,
+            base_height_log2: 6,
+            ratio_low: 0,
+            ratio_high: 1,
+            level: 0,
+            width_log2,
+            height_log2,
+            texels,
+        }
+    }
+
+    #[test]
+    fn a_run_needs_windows_past_its_last_column_and_a_column() {
+        let mut windows = [[Window::EMPTY; 120]; 3];
+        let [clip, ceiling, floor] = &mut windows;
+        let texels = [0u8; 64 * 64];
+        let strips = [level(&texels, 6, 6), level(&texels, 6, 6)];
+        let make =
+            |start, stop, clip: &mut [Window], ceiling: &mut [Window], floor: &mut [Window]| {
+                WallRun::new(
+                    steps(),
+                    WallKind::Solid,
+                    start,
+                    stop,
+                    clip,
+                    ceiling,
+                    floor,
+                    texturing(),
+                    RunLight::Off,
+                    strips,
+                )
+                .is_some()
+            };
+        assert!(make(0, 120, clip, ceiling, floor));
+        assert!(
+            !make(0, 121, clip, ceiling, floor),
+            "a column past the windows"
+        );
+        assert!(!make(5, 5, clip, ceiling, floor), "no column");
+        assert!(!make(-1, 5, clip, ceiling, floor), "a negative column");
+        assert!(
+            !make(0, 100, clip, &mut ceiling[..99], floor),
+            "a short window slice"
+        );
+    }
+
+    #[test]
+    fn a_strip_level_the_kernels_cannot_take_is_refused() {
+        let mut windows = [[Window::EMPTY; 120]; 3];
+        let [clip, ceiling, floor] = &mut windows;
+        let texels = [0u8; 64 * 64];
+        let good = level(&texels, 6, 6);
+        let mut run = WallRun::new(
+            steps(),
+            WallKind::Portal {
+                upper: true,
+                lower: true,
+            },
+            0,
+            120,
+            clip,
+            ceiling,
+            floor,
+            texturing(),
+            RunLight::Off,
+            [good, good],
+        )
+        .expect("a valid run");
+        assert!(run.strip_ready(0) && run.strip_ready(1));
+        // Too few texels for the level's size, a height no kernel takes, a base height out of
+        // range: each leaves the strip with no level (an empty range, so the loop asks again).
+        run.set_strip(0, level(&texels[..64 * 63], 6, 6));
+        assert!(!run.strip_ready(0));
+        run.set_strip(1, level(&texels[..64 * 4], 6, 2));
+        assert!(!run.strip_ready(1));
+        run.set_strip(
+            1,
+            StripRunLevel {
+                base_height_log2: 9,
+                ..good
+            },
+        );
+        assert!(!run.strip_ready(1));
+        run.set_strip(1, good);
+        assert!(run.strip_ready(1));
+        assert!(run.strips[0].ratio_low > run.strips[0].ratio_high);
+    }
+
+    #[test]
+    fn pending_strips_unpack_their_rows() {
+        let mut windows = [[Window::EMPTY; 120]; 3];
+        let [clip, ceiling, floor] = &mut windows;
+        let texels = [0u8; 64 * 64];
+        let strips = [level(&texels, 6, 6), level(&texels, 6, 6)];
+        let mut run = WallRun::new(
+            steps(),
+            WallKind::Solid,
+            3,
+            9,
+            clip,
+            ceiling,
+            floor,
+            texturing(),
+            RunLight::Off,
+            strips,
+        )
+        .expect("a valid run");
+        assert_eq!(run.pending_strips(), None);
+        run.resume = 1;
+        run.resume_rows = [12 | 40 << 16, 0];
+        assert_eq!(run.pending_strips(), Some([(12, 40), (0, 0)]));
+        assert_eq!((run.column(), run.stop()), (3, 9));
+    }
+}
