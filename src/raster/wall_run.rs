@@ -369,63 +369,56 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_run_needs_windows_past_its_last_column_and_a_column() {
-        let mut windows = [[Window::EMPTY; 120]; 3];
-        let [clip, ceiling, floor] = &mut windows;
-        let texels = [0u8; 64 * 64];
-        let strips = [level(&texels, 6, 6), level(&texels, 6, 6)];
-        let make =
-            |start, stop, clip: &mut [Window], ceiling: &mut [Window], floor: &mut [Window]| {
-                WallRun::new(
-                    steps(),
-                    WallKind::Solid,
-                    start,
-                    stop,
-                    clip,
-                    ceiling,
-                    floor,
-                    texturing(),
-                    RunLight::Off,
-                    strips,
-                )
-                .is_some()
-            };
-        assert!(make(0, 120, clip, ceiling, floor));
-        assert!(
-            !make(0, 121, clip, ceiling, floor),
-            "a column past the windows"
-        );
-        assert!(!make(5, 5, clip, ceiling, floor), "no column");
-        assert!(!make(-1, 5, clip, ceiling, floor), "a negative column");
-        assert!(
-            !make(0, 100, clip, &mut ceiling[..99], floor),
-            "a short window slice"
-        );
-    }
-
-    #[test]
-    fn a_strip_level_the_kernels_cannot_take_is_refused() {
-        let mut windows = [[Window::EMPTY; 120]; 3];
-        let [clip, ceiling, floor] = &mut windows;
-        let texels = [0u8; 64 * 64];
-        let good = level(&texels, 6, 6);
-        let mut run = WallRun::new(
+    /// A run over `windows` (clip, ceiling, floor) with every other input fixed.
+    fn run<'a>(
+        windows: &'a mut [&'a mut [Window]; 3],
+        kind: WallKind,
+        columns: (i32, i32),
+        strips: [StripRunLevel<'a>; 2],
+    ) -> Option<WallRun<'a>> {
+        let [clip, ceiling, floor] = windows;
+        WallRun::new(
             steps(),
-            WallKind::Portal {
-                upper: true,
-                lower: true,
-            },
-            0,
-            120,
+            kind,
+            columns.0,
+            columns.1,
             clip,
             ceiling,
             floor,
             texturing(),
             RunLight::Off,
-            [good, good],
+            strips,
         )
-        .expect("a valid run");
+    }
+
+    #[test]
+    fn a_run_needs_windows_past_its_last_column_and_a_column() {
+        let texels = [0u8; 64 * 64];
+        let strips = [level(&texels, 6, 6), level(&texels, 6, 6)];
+        let [mut clip, mut ceiling, mut floor] = [[Window::EMPTY; 120]; 3];
+        let mut check = |columns, short: bool| {
+            let ceiling_len = if short { 99 } else { 120 };
+            let mut windows = [&mut clip[..], &mut ceiling[..ceiling_len], &mut floor[..]];
+            run(&mut windows, WallKind::Solid, columns, strips).is_some()
+        };
+        assert!(check((0, 120), false));
+        assert!(!check((0, 121), false), "a column past the windows");
+        assert!(!check((5, 5), false), "no column");
+        assert!(!check((-1, 5), false), "a negative column");
+        assert!(!check((0, 100), true), "a short window slice");
+    }
+
+    #[test]
+    fn a_strip_level_the_kernels_cannot_take_is_refused() {
+        let texels = [0u8; 64 * 64];
+        let good = level(&texels, 6, 6);
+        let [mut clip, mut ceiling, mut floor] = [[Window::EMPTY; 120]; 3];
+        let mut windows = [&mut clip[..], &mut ceiling[..], &mut floor[..]];
+        let portal = WallKind::Portal {
+            upper: true,
+            lower: true,
+        };
+        let mut run = run(&mut windows, portal, (0, 120), [good, good]).expect("a valid run");
         assert!(run.strip_ready(0) && run.strip_ready(1));
         // Too few texels for the level's size, a height no kernel takes, a base height out of
         // range: each leaves the strip with no level (an empty range, so the loop asks again).
@@ -433,13 +426,11 @@ mod tests {
         assert!(!run.strip_ready(0));
         run.set_strip(1, level(&texels[..64 * 4], 6, 2));
         assert!(!run.strip_ready(1));
-        run.set_strip(
-            1,
-            StripRunLevel {
-                base_height_log2: 9,
-                ..good
-            },
-        );
+        let tall_base = StripRunLevel {
+            base_height_log2: 9,
+            ..good
+        };
+        run.set_strip(1, tall_base);
         assert!(!run.strip_ready(1));
         run.set_strip(1, good);
         assert!(run.strip_ready(1));
@@ -448,23 +439,11 @@ mod tests {
 
     #[test]
     fn pending_strips_unpack_their_rows() {
-        let mut windows = [[Window::EMPTY; 120]; 3];
-        let [clip, ceiling, floor] = &mut windows;
         let texels = [0u8; 64 * 64];
         let strips = [level(&texels, 6, 6), level(&texels, 6, 6)];
-        let mut run = WallRun::new(
-            steps(),
-            WallKind::Solid,
-            3,
-            9,
-            clip,
-            ceiling,
-            floor,
-            texturing(),
-            RunLight::Off,
-            strips,
-        )
-        .expect("a valid run");
+        let [mut clip, mut ceiling, mut floor] = [[Window::EMPTY; 120]; 3];
+        let mut windows = [&mut clip[..], &mut ceiling[..], &mut floor[..]];
+        let mut run = run(&mut windows, WallKind::Solid, (3, 9), strips).expect("a valid run");
         assert_eq!(run.pending_strips(), None);
         run.resume = 1;
         run.resume_rows = [12 | 40 << 16, 0];

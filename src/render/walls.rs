@@ -713,6 +713,36 @@ mod row_tests {
     use super::*;
     use proptest::prelude::*;
 
+    /// A 240×160 or 120×80 viewport with its horizon `look` rows off the middle.
+    fn test_viewport(wide: bool, look: i32) -> Viewport {
+        let mut viewport = if wide {
+            Viewport::new(240, 160)
+        } else {
+            Viewport::new(120, 80)
+        };
+        viewport.horizon_y = (viewport.horizon_y + look).clamp(0, viewport.height);
+        viewport
+    }
+
+    /// The wall between the eye-space points `[ax, az]` and `[bx, bz]` (times `scale`, 24.8
+    /// bits), turned to face the eye, and the columns it owns; `None` if it owns none.
+    fn front_facing_wall(
+        viewport: &Viewport,
+        [ax, az, bx, bz]: [i32; 4],
+        scale: i32,
+    ) -> Option<(EyePoint, EyePoint, i32, i32)> {
+        let a = EyePoint::new(Fx24_8::from_bits(ax * scale), Fx24_8::from_bits(az * scale));
+        let b = EyePoint::new(Fx24_8::from_bits(bx * scale), Fx24_8::from_bits(bz * scale));
+        // A back-facing wall owns nothing; the same wall seen from its front does.
+        let (a, b) = if owned_columns(viewport, a, b).0 < owned_columns(viewport, a, b).1 {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        let (start, stop) = owned_columns(viewport, a, b);
+        (start < stop).then_some((a, b, start, stop))
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(3000))]
         /// The stepped rows are the rows computed afresh at every column, bit for bit, at every
@@ -727,20 +757,11 @@ mod row_tests {
             wide in any::<bool>(),
             look in -40i32..=40,
         ) {
-            let mut viewport = if wide { Viewport::new(240, 160) } else { Viewport::new(120, 80) };
-            viewport.horizon_y = (viewport.horizon_y + look).clamp(0, viewport.height);
-            let a = EyePoint::new(Fx24_8::from_bits(ax * scale), Fx24_8::from_bits(az * scale));
-            let b = EyePoint::new(Fx24_8::from_bits(bx * scale), Fx24_8::from_bits(bz * scale));
-            // A back-facing wall owns nothing; the same wall seen from its front does.
-            let (a, b) = if owned_columns(&viewport, a, b).0 < owned_columns(&viewport, a, b).1 {
-                (a, b)
-            } else {
-                (b, a)
-            };
-            let (start, stop) = owned_columns(&viewport, a, b);
-            if start >= stop {
+            let viewport = test_viewport(wide, look);
+            let Some((a, b, start, stop)) = front_facing_wall(&viewport, [ax, az, bx, bz], scale)
+            else {
                 return Ok(());
-            }
+            };
             let projector = WallProjector::new(&viewport, a, b);
             let stepper = projector.stepper(start);
             let heights = heights.map(Fx24_8::from_bits);
@@ -765,18 +786,11 @@ mod row_tests {
             scale in prop_oneof![Just(1i32), Just(37), Just(256), Just(2048)],
             wide in any::<bool>(),
         ) {
-            let viewport = if wide { Viewport::new(240, 160) } else { Viewport::new(120, 80) };
-            let a = EyePoint::new(Fx24_8::from_bits(ax * scale), Fx24_8::from_bits(az * scale));
-            let b = EyePoint::new(Fx24_8::from_bits(bx * scale), Fx24_8::from_bits(bz * scale));
-            let (a, b) = if owned_columns(&viewport, a, b).0 < owned_columns(&viewport, a, b).1 {
-                (a, b)
-            } else {
-                (b, a)
-            };
-            let (start, stop) = owned_columns(&viewport, a, b);
-            if start >= stop {
+            let viewport = test_viewport(wide, 0);
+            let Some((a, b, start, stop)) = front_facing_wall(&viewport, [ax, az, bx, bz], scale)
+            else {
                 return Ok(());
-            }
+            };
             let first_stepper = WallProjector::new(&viewport, a, b).stepper(start);
             let (first, end) = first_stepper.unclamped_columns(stop - start);
             let range = i64::from(SMALLEST_INVERSE_DEPTH)..=1 << 30;
@@ -806,19 +820,11 @@ mod row_tests {
             wide in any::<bool>(),
             look in -40i32..=40,
         ) {
-            let mut viewport = if wide { Viewport::new(240, 160) } else { Viewport::new(120, 80) };
-            viewport.horizon_y = (viewport.horizon_y + look).clamp(0, viewport.height);
-            let a = EyePoint::new(Fx24_8::from_bits(ax * scale), Fx24_8::from_bits(az * scale));
-            let b = EyePoint::new(Fx24_8::from_bits(bx * scale), Fx24_8::from_bits(bz * scale));
-            let (a, b) = if owned_columns(&viewport, a, b).0 < owned_columns(&viewport, a, b).1 {
-                (a, b)
-            } else {
-                (b, a)
-            };
-            let (start, stop) = owned_columns(&viewport, a, b);
-            if start >= stop {
+            let viewport = test_viewport(wide, look);
+            let Some((a, b, start, stop)) = front_facing_wall(&viewport, [ax, az, bx, bz], scale)
+            else {
                 return Ok(());
-            }
+            };
             let mut stepper = WallProjector::new(&viewport, a, b).stepper(start);
             let heights = heights.map(Fx24_8::from_bits);
             let Some(mut wall) = SteppedWall::new(&viewport, heights, &stepper, stop - start) else {
