@@ -91,25 +91,22 @@
     movgt   \dst, \height
     .endm
 
-    @ Draws the strip at \strip, rows at [sp, #\rows], through .Lstrip.
-    .macro WALL_STRIP strip, rows
-    ldr     r0, [sp, #\rows]
+    @ Draws the strip at \strip, rows in r0, through .Lstrip.
+    .macro WALL_STRIP strip
     add     r2, r11, #\strip
     bl      .Lstrip
     .endm
 
-    @ Every drawn strip's level must select the mip ratio r12, or the run stops.
-    .macro WALL_LEVEL_CHECK strip, rows
-    ldr     r0, [sp, #\rows]
-    cmp     r0, #0
-    beq     1f
+    @ Stops the run unless the strip at \strip's level selects the mip ratio r7 >> 6 (r7 the
+    @ high word of z'/d_y). Keeps r0.
+    .macro WALL_LEVEL_CHECK strip
+    mov     r12, r7, asr #6
     ldr     r1, [r11, #\strip + STRIP_LOW]
     ldr     r2, [r11, #\strip + STRIP_HIGH]
     cmp     r12, r1
     blt     .Lmiss
     cmp     r12, r2
     bgt     .Lmiss
-1:
     .endm
 
     .section .iwram_render.pc_wall_run, "ax", %progbits
@@ -327,18 +324,21 @@ pc_wall_run:
     @ z'/d_y = z'·(1/d_y) in 24.8 × 2^30; the mip ratio is its bits from 38 up.
     smull   r6, r7, r8, r2                  @ r6/r7: z'/d_y
     mov     r8, r3                          @ r8: the colormap row
-    mov     r12, r7, asr #6                 @ r12: the mip ratio
-    WALL_LEVEL_CHECK RUN_STRIP0, SP_ROWS0
-    WALL_LEVEL_CHECK RUN_STRIP1, SP_ROWS1
+    @ Each drawn strip: its level must select the mip ratio (z'/d_y's bits from 38 up), or
+    @ the run stops with the strips still to draw; a drawn strip leaves the pending rows.
     ldr     r0, [sp, #SP_ROWS0]
     cmp     r0, #0
     beq     3f
-    WALL_STRIP RUN_STRIP0, SP_ROWS0
+    WALL_LEVEL_CHECK RUN_STRIP0
+    WALL_STRIP RUN_STRIP0
+    mov     r0, #0
+    str     r0, [sp, #SP_ROWS0]
 3:
     ldr     r0, [sp, #SP_ROWS1]
     cmp     r0, #0
     beq     .Lnext
-    WALL_STRIP RUN_STRIP1, SP_ROWS1
+    WALL_LEVEL_CHECK RUN_STRIP1
+    WALL_STRIP RUN_STRIP1
 
 .Lnext:
     ldr     r0, [r11, #RUN_INV_STEP]
