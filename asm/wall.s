@@ -18,9 +18,10 @@
 @  64 length  68 x_offset  72 inverse_focal_y  76 light_mode (0 off, 1 fixed, 2 depth)
 @  80 light_base  84 colormap  88 recip_seeds (u16[1024])  92 horizon_row  96 page  100 native
 @ 104 column_pixels  108 strips_drawn  112 miss_ratio  116 resume  120 resume_rows[2]
-@ 128 strips[0], 160 strips[1]: +0 eye_to_anchor (low word)  +4 shape (level | log2 height << 8
+@ 128 strips[0], 164 strips[1]: +0 eye_to_anchor (low word)  +4 shape (level | log2 height << 8
 @     | log2 base height << 16)  +8 ratio_low  +12 ratio_high  +16 width_mask  +20 texels
-@     +24 kernel_even  +28 kernel_odd
+@     +24 kernel_even  +28 kernel_odd  +32 kernel_both (240 wide: the byte-store kernel that
+@     writes both pixels of a halfword)
 @
 @ Registers kept across columns: r11 the run, r10 1/z', r9 the column, r5 the pixels drawn and
 @ (from bit 16) the strips drawn. The kernels keep r4-r11. The stack holds the column's strip
@@ -58,7 +59,7 @@
     .equ RUN_RESUME, 116
     .equ RUN_RESUME_ROWS, 120
     .equ RUN_STRIP0, 128
-    .equ RUN_STRIP1, 160
+    .equ RUN_STRIP1, 164
 
     .equ STRIP_EYE, 0
     .equ STRIP_SHAPE, 4
@@ -68,6 +69,7 @@
     .equ STRIP_TEXELS, 20
     .equ STRIP_K_EVEN, 24
     .equ STRIP_K_ODD, 28
+    .equ STRIP_K_BOTH, 32
 
     @ The stack frame: the strips' rows, the kernels' job, and t/z' less x times its step.
     .equ SP_ROWS0, 0
@@ -428,16 +430,39 @@ pc_wall_run:
     str     r12, [sp, #4 + SP_JOB + 12]
     @ dst = page + top·240 + (2x, or x & ~1 where two pixels share a halfword); the kernel.
     ldr     r0, [r11, #RUN_PAGE]
-    rsb     r1, r1, r1, lsl #4
-    add     r0, r0, r1, lsl #4
+    rsb     r3, r1, r1, lsl #4
+    add     r0, r0, r3, lsl #4
     ldr     r3, [r11, #RUN_NATIVE]
-    ldr     r12, [r2, #STRIP_K_EVEN]
     cmp     r3, #0
     addeq   r0, r0, r9, lsl #1
-    bicne   r1, r9, #1
-    addne   r0, r0, r1
-    tstne   r9, #1
-    ldrne   r12, [r2, #STRIP_K_ODD]
+    ldreq   r12, [r2, #STRIP_K_EVEN]
+    beq     .Lstrip_call
+    tst     r9, #1
+    bne     .Lstrip_odd
+    @ 240 wide, an even column: read-modify-write keeps the odd neighbour's byte, unless
+    @ the neighbour's rows here are still undrawn (inside its clip window, which holds
+    @ exactly the rows some later wall, plane or sector draws): then one byte store writes
+    @ both, and the neighbour's own pixels overwrite its half later.
+    add     r0, r0, r9
+    ldr     r12, [r2, #STRIP_K_EVEN]
+    cmp     r9, #239
+    bge     .Lstrip_call
+    ldr     r3, [r11, #RUN_CLIP]
+    add     r3, r3, r9, lsl #2
+    ldr     r3, [r3, #4]                    @ the clip window of column x + 1
+    mov     lr, r3, lsl #16
+    cmp     r1, lr, asr #16
+    blt     .Lstrip_call                    @ the strip starts above it
+    ldr     lr, [sp, #4 + SP_JOB + 16]
+    add     lr, r1, lr                      @ the strip's bottom
+    cmp     lr, r3, asr #16
+    ldrle   r12, [r2, #STRIP_K_BOTH]
+    b       .Lstrip_call
+.Lstrip_odd:
+    bic     r3, r9, #1
+    add     r0, r0, r3
+    ldr     r12, [r2, #STRIP_K_ODD]
+.Lstrip_call:
     str     r0, [sp, #4 + SP_JOB]
     add     r0, sp, #4 + SP_JOB
     mov     lr, pc

@@ -150,12 +150,13 @@ const _: () = {
     assert!(offset_of!(WallRun, resume) == 116);
     assert!(offset_of!(WallRun, resume_rows) == 120);
     assert!(offset_of!(WallRun, strips) == 128);
-    assert!(size_of::<StripRun>() == 32);
+    assert!(size_of::<StripRun>() == 36);
     assert!(offset_of!(StripRun, shape) == 4);
     assert!(offset_of!(StripRun, width_mask) == 16);
     assert!(offset_of!(StripRun, texels) == 20);
     assert!(offset_of!(StripRun, kernel_odd) == 28);
-    assert!(size_of::<WallRun>() == 192);
+    assert!(offset_of!(StripRun, kernel_both) == 32);
+    assert!(size_of::<WallRun>() == 204);
 };
 
 /// The argument block of the column kernels (`asm/column.s`).
@@ -402,6 +403,7 @@ impl Canvas for VramCanvas {
         assert!(
             (0..=self.resolution.width() as i32).contains(&run.stop)
                 && (0..=self.resolution.height() as i32).contains(&run.steps.height)
+                && run.window_columns as usize >= self.resolution.width()
         );
         let native = self.resolution.pixels_per_halfword() == 2;
         let lit = usize::from(run.light_mode != 0);
@@ -411,22 +413,20 @@ impl Canvas for VramCanvas {
                 continue;
             }
             let height = (strip.height_log2() - COLUMN_LOG2_HEIGHTS.start()) as usize;
-            let (even, odd) = match (self.kernels, native) {
-                (false, _) => (
-                    pc_column_skip as ColumnKernel,
-                    pc_column_skip as ColumnKernel,
-                ),
-                (true, false) => (
-                    COLUMN_KERNELS[0][lit][height],
-                    COLUMN_KERNELS[0][lit][height],
-                ),
-                (true, true) => (
-                    COLUMN_KERNELS[1][lit][height],
-                    COLUMN_KERNELS[2][lit][height],
-                ),
+            // Packing 0 stores a byte, which VRAM writes to both halves of its halfword: the
+            // doubled pixels at 120 wide, and at 240 an even column whose odd neighbour is
+            // still to be drawn.
+            let kernel = |packing: usize| {
+                if self.kernels {
+                    COLUMN_KERNELS[packing][lit][height] as usize
+                } else {
+                    pc_column_skip as usize
+                }
             };
-            strip.kernel_even = even as usize;
-            strip.kernel_odd = odd as usize;
+            let (even, odd) = if native { (1, 2) } else { (0, 0) };
+            strip.kernel_even = kernel(even);
+            strip.kernel_odd = kernel(odd);
+            strip.kernel_both = kernel(0);
         }
         run.page = self.page.base.cast::<u8>();
         run.native = u32::from(native);

@@ -134,9 +134,11 @@ pub(crate) struct StripRun {
     pub(crate) ratio_high: i32,
     pub(crate) width_mask: u32,
     pub(crate) texels: *const u8,
-    /// The canvas's column kernels for this height: for even (or doubled) and odd columns.
+    /// The canvas's column kernels for this height: for even (or doubled) and odd columns, and
+    /// where two pixels share a halfword, the one that stores both with one byte store.
     pub(crate) kernel_even: usize,
     pub(crate) kernel_odd: usize,
+    pub(crate) kernel_both: usize,
 }
 
 impl StripRun {
@@ -159,6 +161,7 @@ impl StripRun {
             texels: level.texels.as_ptr(),
             kernel_even: 0,
             kernel_odd: 0,
+            kernel_both: 0,
         }
     }
 
@@ -177,6 +180,7 @@ impl StripRun {
         texels: core::ptr::null(),
         kernel_even: 0,
         kernel_odd: 0,
+        kernel_both: 0,
     };
 }
 
@@ -224,6 +228,9 @@ pub struct WallRun<'a> {
     pub(crate) resume: u32,
     pub(crate) resume_rows: [u32; 2],
     pub(crate) strips: [StripRun; 2],
+    /// The columns every window slice holds (the loop reads the clip window one column past
+    /// the current one where two pixels share a halfword; the canvas checks it has them).
+    pub(crate) window_columns: u32,
     borrows: PhantomData<(&'a mut [Window], &'a [u8])>,
 }
 
@@ -282,6 +289,7 @@ impl<'a> WallRun<'a> {
             resume: 0,
             resume_rows: [0; 2],
             strips: strips.map(StripRun::of),
+            window_columns: clip.len().min(ceiling.len()).min(floor.len()) as u32,
             borrows: PhantomData,
         })
     }
