@@ -420,7 +420,7 @@ impl Canvas for VramCanvas {
                 if self.kernels {
                     COLUMN_KERNELS[packing][lit][height] as usize
                 } else {
-                    pc_column_skip as usize
+                    pc_column_skip as ColumnKernel as usize
                 }
             };
             let (even, odd) = if native { (1, 2) } else { (0, 0) };
