@@ -59,6 +59,30 @@ pub enum WallKind {
 }
 
 impl WallKind {
+    /// A portal drawing an upper strip or not, and a lower strip or not.
+    pub const fn portal(upper: bool, lower: bool) -> WallKind {
+        if upper || lower {
+            WallKind::Portal { upper, lower }
+        } else {
+            WallKind::Opening
+        }
+    }
+
+    /// Whether its columns draw each strip (the wall's own, or a portal's upper; a portal's
+    /// lower).
+    pub const fn draws(self) -> [bool; 2] {
+        match self {
+            WallKind::Solid => [true, false],
+            WallKind::Opening => [false, false],
+            WallKind::Portal { upper, lower } => [upper, lower],
+        }
+    }
+
+    /// Whether its columns read the rows of the neighbour's heights (a portal with a strip).
+    pub const fn reads_neighbour(self) -> bool {
+        matches!(self, WallKind::Portal { .. })
+    }
+
     /// The word the loop reads: 0, 1 or 2 in the low bits, the strips in bits 8 and 9.
     const fn word(self) -> u32 {
         match self {
@@ -314,11 +338,6 @@ impl<'a> WallRun<'a> {
         self.column
     }
 
-    /// The columns' end.
-    pub fn stop(&self) -> i32 {
-        self.stop
-    }
-
     /// Whether strip `index` has a level (a texture of a height the kernels take).
     pub fn strip_ready(&self, index: usize) -> bool {
         self.strips
@@ -456,6 +475,6 @@ mod tests {
         run.resume = 1;
         run.resume_rows = [12 | 40 << 16, 0];
         assert_eq!(run.pending_strips(), Some([(12, 40), (0, 0)]));
-        assert_eq!((run.column(), run.stop()), (3, 9));
+        assert_eq!((run.column(), run.stop), (3, 9));
     }
 }

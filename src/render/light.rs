@@ -1,7 +1,8 @@
 //! The light rule: a sector's level plus a depth falloff, turned into a colormap row so a lit
 //! pixel costs one byte load. The oracle calls these same functions.
 
-use portalcast_format::{colormap_row, LIGHT_NEUTRAL};
+use crate::raster::wall_run::RunLight;
+use portalcast_format::{colormap_row, Colormap, LIGHT_NEUTRAL};
 
 /// Lighting quality, a run-time knob.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -45,6 +46,25 @@ pub const fn light_row(sector_light: u8, depth: i32, lighting: Lighting) -> Opti
         _ => Some(colormap_row(light_level(sector_light, depth, lighting))),
     }
 }
+
+/// [`light_row`] as a canvas's wall loop applies it column by column (`asm/wall.s`): no
+/// colormap, the sector's one row, or the row of `light + DEPTH_BOOST − (z' >> 12)` (z' in
+/// 24.8) clamped to `0..=255` and shifted right by 3, of `colormap`.
+pub fn run_light(sector_light: u8, lighting: Lighting, colormap: &Colormap) -> RunLight<'_> {
+    match lighting {
+        Lighting::Off => RunLight::Off,
+        Lighting::Sector => RunLight::Fixed(&colormap[colormap_row(sector_light)]),
+        Lighting::SectorDepth => RunLight::Depth {
+            base: i32::from(sector_light) + DEPTH_BOOST,
+            colormap,
+        },
+    }
+}
+
+// The loop's depth rule is `light_level`'s only while a step is 16 units (`z' >> 12` is
+// `(z' >> 8) / 16`) and a colormap row 8 levels.
+const _: () = assert!(DEPTH_UNITS_PER_STEP == 16);
+const _: () = assert!(colormap_row(255) == 31 && colormap_row(8) == 1 && colormap_row(7) == 0);
 
 #[cfg(test)]
 mod tests {

@@ -18,18 +18,9 @@ use super::walls::{
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
 use crate::raster::column::ColumnTexture;
-use crate::raster::wall_run::{
-    RunLight, RunTexturing, StripRunLevel, WallKind, WallRun, WallRunEnd,
-};
+use crate::raster::wall_run::{RunTexturing, StripRunLevel, WallKind, WallRun, WallRunEnd};
 use crate::raster::Canvas;
-use crate::render::light::{light_row, Lighting, DEPTH_BOOST, DEPTH_UNITS_PER_STEP};
-use portalcast_format::colormap_row;
-
-// The ARM wall loop (`asm/wall.s`) lights a column with the row of `base − (z' >> 12)` (z' in
-// 24.8), clamped to 0..=255, shifted right by 3: the light rule's steps must stay 16 units and
-// its rows 8 levels.
-const _: () = assert!(DEPTH_UNITS_PER_STEP == 16);
-const _: () = assert!(colormap_row(255) == 31 && colormap_row(8) == 1 && colormap_row(7) == 0);
+use crate::render::light::{light_row, run_light};
 use core::cell::Cell;
 use core::convert::Infallible;
 
@@ -779,11 +770,11 @@ impl<W: WindowStore> Renderer<W> {
         stop: i32,
     ) {
         let viewport = &scene.view.viewport;
-        let portal = job.portal;
+        let kind = job.kind();
         let mut rows = WallRows::new(
             viewport,
             job.heights(),
-            portal.is_some(),
+            kind.reads_neighbour(),
             &stepper,
             stop - start,
         );
@@ -794,7 +785,7 @@ impl<W: WindowStore> Renderer<W> {
                 canvas,
                 stats,
                 job,
-                portal,
+                kind,
                 || stepper.texturing(),
                 column_rows,
                 column,
@@ -826,7 +817,7 @@ impl<W: WindowStore> Renderer<W> {
         });
         // The canvas loops draw textured strips only; a strip of a missing texture is drawn
         // blank by the renderer's loop.
-        if job.drawn_strips().all(|strip| strip.texture.is_some()) {
+        if job.drawn_strips_textured() {
             resume = self.run_wall(scene, canvas, stats, job, wall, start, stop);
         }
         if let Some(WallResume {
@@ -855,14 +846,6 @@ impl<W: WindowStore> Renderer<W> {
         start: i32,
         stop: i32,
     ) -> Option<WallResume> {
-        let kind = match job.portal {
-            None => WallKind::Solid,
-            Some(portal) if !portal.upper_drawn && !portal.lower_drawn => WallKind::Opening,
-            Some(portal) => WallKind::Portal {
-                upper: portal.upper_drawn,
-                lower: portal.lower_drawn,
-            },
-        };
         let view = scene.view;
         let texturing = RunTexturing {
             length: job.length.to_bits(),
@@ -870,19 +853,11 @@ impl<W: WindowStore> Renderer<W> {
             inverse_focal_y: scene.inverse_focal_y as i32,
             horizon_row: view.viewport.horizon_y,
         };
-        let colormap = scene.assets.colormap;
-        let light = match view.lighting {
-            Lighting::Off => RunLight::Off,
-            Lighting::Sector => RunLight::Fixed(&colormap[colormap_row(job.sector.light)]),
-            Lighting::SectorDepth => RunLight::Depth {
-                base: i32::from(job.sector.light) + DEPTH_BOOST,
-                colormap,
-            },
-        };
+        let light = run_light(job.sector.light, view.lighting, scene.assets.colormap);
         let windows = self.windows.windows();
         let mut run = WallRun::new(
             wall.steps(),
-            kind,
+            job.kind(),
             start,
             stop,
             &mut windows.clip,
@@ -946,17 +921,15 @@ impl<W: WindowStore> Renderer<W> {
             wall.step();
             start += 1;
         }
-        let portal = job.portal;
-        // The neighbour's rows matter only where the portal has a strip (`column_windows`).
-        let neighbour_rows = portal.is_some_and(|portal| portal.upper_drawn || portal.lower_drawn);
+        let kind = job.kind();
         for column in start..stop {
-            let rows = wall.rows(neighbour_rows);
+            let rows = wall.rows(kind.reads_neighbour());
             self.wall_column(
                 scene,
                 canvas,
                 stats,
                 job,
-                portal,
+                kind,
                 || wall.texturing(),
                 rows,
                 column,
@@ -999,12 +972,12 @@ impl<W: WindowStore> Renderer<W> {
         canvas: &mut impl Canvas,
         stats: &mut FrameStats,
         job: &mut WallJob,
-        portal: Option<PortalJob>,
+        kind: WallKind,
         texturing: impl FnOnce() -> (Fx24_8, Fx2_30),
         rows: [i32; ROW_HEIGHTS],
         column: i32,
     ) {
-        let strips = column_windows(self.windows.windows(), portal, rows, column as usize);
+        let strips = column_windows(self.windows.windows(), kind, rows, column as usize);
         if strips.iter().all(|(top, bottom)| top >= bottom) {
             // Nothing of the wall is drawn in this column (an open portal, or a clipped strip):
             // its texture column is not needed.
@@ -1127,7 +1100,7 @@ impl<W: WindowStore> Renderer<W> {
 #[inline(always)]
 fn column_windows(
     windows: &mut ColumnWindows,
-    portal: Option<PortalJob>,
+    kind: WallKind,
     rows: [i32; ROW_HEIGHTS],
     x: usize,
 ) -> [(i32, i32); 2] {
@@ -1144,18 +1117,18 @@ fn column_windows(
     windows.floor[x] = window(floor_row.max(clip_top), clip_bottom);
     // The rows of the column's strips (`job.strips`, empty where not drawn), and the clip
     // window the column leaves for the sectors behind it.
-    match portal {
-        None => {
+    match kind {
+        WallKind::Solid => {
             windows.clip[x] = Window::EMPTY;
             [(ceiling_row, floor_row), (0, 0)]
         }
         // An opening with no strip (the neighbour's ceiling and floor are not inside this
         // sector's): the neighbour's rows are not read.
-        Some(portal) if !portal.upper_drawn && !portal.lower_drawn => {
+        WallKind::Opening => {
             windows.clip[x] = window(ceiling_row, floor_row.max(ceiling_row));
             [(0, 0), (0, 0)]
         }
-        Some(portal) => {
+        WallKind::Portal { upper, lower } => {
             let neighbour_ceiling_row = neighbour_ceiling
                 .max(ceiling_row)
                 .min(floor_row.max(ceiling_row));
@@ -1166,24 +1139,24 @@ fn column_windows(
             // show the sky), the neighbour gets the rows down from this sector's ceiling
             // line: its own ceiling (sky) fills them, and no row between the two ceiling
             // lines is left undrawn.
-            let opening_top = if portal.upper_drawn {
+            let opening_top = if upper {
                 neighbour_ceiling_row
             } else {
                 ceiling_row
             };
-            let opening_bottom = if portal.lower_drawn {
+            let opening_bottom = if lower {
                 neighbour_floor_row
             } else {
                 floor_row
             };
             windows.clip[x] = window(opening_top, opening_bottom.max(opening_top));
             [
-                if portal.upper_drawn {
+                if upper {
                     (ceiling_row, neighbour_ceiling_row)
                 } else {
                     (0, 0)
                 },
-                if portal.lower_drawn {
+                if lower {
                     (neighbour_floor_row, floor_row)
                 } else {
                     (0, 0)
@@ -1266,16 +1239,20 @@ struct WallJob<'s> {
 }
 
 impl<'s> WallJob<'s> {
-    /// The strips its columns can draw: a solid wall's, a portal's upper and lower where drawn.
-    fn drawn_strips(&self) -> impl Iterator<Item = &StripTexture<'s>> {
-        let (first, second) = match &self.portal {
-            None => (true, false),
-            Some(portal) => (portal.upper_drawn, portal.lower_drawn),
-        };
+    /// Solid, or a portal with or without strips: what its columns draw and leave open.
+    fn kind(&self) -> WallKind {
+        match &self.portal {
+            None => WallKind::Solid,
+            Some(portal) => WallKind::portal(portal.upper_drawn, portal.lower_drawn),
+        }
+    }
+
+    /// Whether every strip its columns draw (a solid wall's, a portal's upper and lower where
+    /// drawn) has a texture.
+    fn drawn_strips_textured(&self) -> bool {
+        let [first, second] = self.kind().draws();
         let [upper, lower] = &self.strips;
-        [(first, upper), (second, lower)]
-            .into_iter()
-            .filter_map(|(drawn, strip)| drawn.then_some(strip))
+        (!first || upper.texture.is_some()) && (!second || lower.texture.is_some())
     }
 
     /// The heights above the eye whose rows each column needs, in the order of

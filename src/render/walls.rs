@@ -330,19 +330,13 @@ pub const ROW_HEIGHTS: usize = 4;
 /// evaluates each column as before.
 #[derive(Clone, Copy, Debug)]
 pub enum WallRows {
-    /// `1/z'` within `[SMALLEST_INVERSE_DEPTH, 2^30]` over every column of the wall.
+    /// `1/z'` within `[SMALLEST_INVERSE_DEPTH, 2^30]` over every column of the wall: the rows
+    /// of a [`SteppedWall`] (its `t/z'` unused).
     Stepped {
-        /// `1/z'` of the current column (units of 2^-30): within `[SMALLEST_INVERSE_DEPTH, 2^30]`.
-        inverse_depth: i32,
-        /// Its step per column (`|step| ≤ 2^30`: both ends of the wall are in that range).
-        inverse_depth_step: i32,
-        /// `d_y·h` per height, in 24.8 (below 2^29 in magnitude).
-        scales: [i32; ROW_HEIGHTS],
-        /// `cy` in 24.8 plus the 127 of [`Fx24_8::first_pixel_at_or_after`]'s rounding.
-        horizon: i32,
-        /// The viewport's height: rows are clamped to `[0, height]`.
-        height: i32,
-        /// Whether the wall is a portal, whose neighbour's heights (the last two) are read.
+        /// The wall's 32-bit `1/z'` and row constants.
+        wall: SteppedWall,
+        /// Whether the wall is a portal with a strip, whose neighbour's heights (the last two)
+        /// are read.
         neighbour: bool,
     },
     /// Each column's rows from its clamped `1/z'`.
@@ -369,33 +363,19 @@ impl WallRows {
         stepper: &WallStepper,
         columns: i32,
     ) -> WallRows {
-        let first = stepper.inverse_depth;
-        // One column steps nowhere: its step (unbounded where the wall is seen edge on) is
-        // never used, and is kept out of the products.
-        let step = if columns > 1 {
-            stepper.inverse_depth_step
-        } else {
-            0
-        };
-        let last = first + step * i64::from(columns - 1);
-        let range = i64::from(SMALLEST_INVERSE_DEPTH)..=1 << 30;
-        if !(range.contains(&first) && range.contains(&last)) {
-            return WallRows::Exact {
-                inverse_depth: first,
-                inverse_depth_step: step,
+        match SteppedWall::rows_of(viewport, heights, stepper, columns) {
+            Some(wall) => WallRows::Stepped { wall, neighbour },
+            None => WallRows::Exact {
+                inverse_depth: stepper.inverse_depth,
+                // One column steps nowhere: its step is never used (see `rows_of`).
+                inverse_depth_step: if columns > 1 {
+                    stepper.inverse_depth_step
+                } else {
+                    0
+                },
                 heights,
                 viewport: *viewport,
-            };
-        }
-        // |d_y·h| < 2^29: 24.8 heights within HEIGHT_DIFF_MAX, d_y ≤ 120.
-        let scale = |height: Fx24_8| height.mul_int(viewport.focal_y).to_bits();
-        WallRows::Stepped {
-            inverse_depth: first as i32,
-            inverse_depth_step: step as i32,
-            scales: heights.map(scale),
-            horizon: (viewport.horizon_y << 8) + 127,
-            height: viewport.height,
-            neighbour,
+            },
         }
     }
 
@@ -403,32 +383,10 @@ impl WallRows {
     #[inline(always)]
     pub fn next_column(&mut self) -> [i16; ROW_HEIGHTS] {
         match self {
-            WallRows::Stepped {
-                inverse_depth,
-                inverse_depth_step,
-                scales,
-                horizon,
-                height,
-                neighbour,
-            } => {
-                let row = |scale: i32| {
-                    // d_y·h·(1/z') + ½ in 24.8 × 2^30: below 2^59. The offset in 24.8 is below
-                    // 2^29 in magnitude.
-                    let offset =
-                        ((i64::from(scale) * i64::from(*inverse_depth) + (1 << 29)) >> 30) as i32;
-                    let y = *horizon - offset;
-                    // max then min: `clamp` would carry a panic path for a bound it cannot miss.
-                    (y >> 8).max(0).min(*height) as i16
-                };
-                let mut rows = [row(scales[0]), row(scales[1]), 0, 0];
-                // A solid wall has no neighbour: its last two heights are never read.
-                if *neighbour {
-                    rows[2] = row(scales[2]);
-                    rows[3] = row(scales[3]);
-                }
-                // Past the wall's last column the sum may leave i32 (by at most 2^30); it is
-                // never read then.
-                *inverse_depth = inverse_depth.wrapping_add(*inverse_depth_step);
+            WallRows::Stepped { wall, neighbour } => {
+                // Rows lie in `[0, height]`: i16 holds them.
+                let rows = wall.rows(*neighbour).map(|row| row as i16);
+                wall.step();
                 rows
             }
             WallRows::Exact { .. } => self.next_exact_column(),
@@ -472,17 +430,44 @@ impl WallRows {
 /// are such walls; the wall loop keeps this state in registers (Doom's `R_RenderSegLoop` steps
 /// its `rw_scale` and `topfrac` the same way).
 #[derive(Clone, Copy, Debug)]
-pub struct SteppedWall {
-    inverse_depth: i32,
-    inverse_depth_step: i32,
-    along_over_depth: i32,
-    along_over_depth_step: i32,
-    scales: [i32; ROW_HEIGHTS],
-    horizon: i32,
-    height: i32,
-}
+pub struct SteppedWall(WallSteps);
 
 impl SteppedWall {
+    /// The rows of `heights` on the `columns ≥ 1` columns `stepper` starts at, with no `t/z'`
+    /// (zero); `None` where `1/z'` needs a clamp at the first or the last column (and so,
+    /// being affine, somewhere).
+    fn rows_of(
+        viewport: &Viewport,
+        heights: [Fx24_8; ROW_HEIGHTS],
+        stepper: &WallStepper,
+        columns: i32,
+    ) -> Option<SteppedWall> {
+        let first = stepper.inverse_depth;
+        // One column steps nowhere: its step (unbounded where the wall is seen edge on) is
+        // never used, and is kept out of the products.
+        let step = if columns > 1 {
+            stepper.inverse_depth_step
+        } else {
+            0
+        };
+        let last = first + step * i64::from(columns - 1);
+        let range = i64::from(SMALLEST_INVERSE_DEPTH)..=1 << 30;
+        if !(range.contains(&first) && range.contains(&last)) {
+            return None;
+        }
+        // |d_y·h| < 2^29: 24.8 heights within HEIGHT_DIFF_MAX, d_y ≤ 120.
+        let scale = |height: Fx24_8| height.mul_int(viewport.focal_y).to_bits();
+        Some(SteppedWall(WallSteps {
+            inverse_depth: first as i32,
+            inverse_depth_step: step as i32,
+            along_over_depth: 0,
+            along_over_depth_step: 0,
+            scales: heights.map(scale),
+            horizon: (viewport.horizon_y << 8) + 127,
+            height: viewport.height,
+        }))
+    }
+
     /// The wall `stepper` starts on, over its `columns ≥ 1` columns, with the rows of `heights`
     /// (see [`WallRows::new`]); `None` where a column needs a clamp or a 64-bit accumulator.
     pub fn new(
@@ -491,18 +476,8 @@ impl SteppedWall {
         stepper: &WallStepper,
         columns: i32,
     ) -> Option<SteppedWall> {
-        let WallRows::Stepped {
-            inverse_depth,
-            inverse_depth_step,
-            scales,
-            horizon,
-            height,
-            ..
-        } = WallRows::new(viewport, heights, true, stepper, columns)
-        else {
-            return None;
-        };
-        // As in `WallRows::new`: one column steps nowhere, so its step is kept out.
+        let SteppedWall(rows) = SteppedWall::rows_of(viewport, heights, stepper, columns)?;
+        // As in `rows_of`: one column steps nowhere, so its step is kept out.
         let along_step = if columns > 1 {
             stepper.along_over_depth_step
         } else {
@@ -513,56 +488,40 @@ impl SteppedWall {
             .checked_mul(i64::from(columns - 1))
             .and_then(|run| run.checked_add(first))?;
         i32::try_from(last).ok()?;
-        Some(SteppedWall {
-            inverse_depth,
-            inverse_depth_step,
+        Some(SteppedWall(WallSteps {
             along_over_depth: i32::try_from(first).ok()?,
             along_over_depth_step: i32::try_from(along_step).ok()?,
-            scales,
-            horizon,
-            height,
-        })
+            ..rows
+        }))
     }
 
     /// Its accumulators and row constants, as a canvas's own wall loop takes them.
     pub fn steps(&self) -> WallSteps {
-        WallSteps {
-            inverse_depth: self.inverse_depth,
-            inverse_depth_step: self.inverse_depth_step,
-            along_over_depth: self.along_over_depth,
-            along_over_depth_step: self.along_over_depth_step,
-            scales: self.scales,
-            horizon: self.horizon,
-            height: self.height,
-        }
+        self.0
     }
 
     /// The wall at the column a canvas's loop left `steps` at.
     pub fn from_steps(steps: WallSteps) -> SteppedWall {
-        SteppedWall {
-            inverse_depth: steps.inverse_depth,
-            inverse_depth_step: steps.inverse_depth_step,
-            along_over_depth: steps.along_over_depth,
-            along_over_depth_step: steps.along_over_depth_step,
-            scales: steps.scales,
-            horizon: steps.horizon,
-            height: steps.height,
-        }
+        SteppedWall(steps)
     }
 
     /// The current column's rows of the four heights, unclipped (in `[0, height]`): those of
     /// [`WallRows::next_column`]. Without a `neighbour` (a solid wall) the last two read 0.
     #[inline(always)]
     pub fn rows(&self, neighbour: bool) -> [i32; ROW_HEIGHTS] {
-        let inverse_depth = i64::from(self.inverse_depth);
+        let wall = &self.0;
+        let inverse_depth = i64::from(wall.inverse_depth);
         let row = |scale: i32| {
+            // d_y·h·(1/z') + ½ in 24.8 × 2^30: below 2^59. The offset in 24.8 is below 2^29 in
+            // magnitude. max then min: `clamp` would carry a panic path for a bound it cannot
+            // miss.
             let offset = ((i64::from(scale) * inverse_depth + (1 << 29)) >> 30) as i32;
-            ((self.horizon - offset) >> 8).max(0).min(self.height)
+            ((wall.horizon - offset) >> 8).max(0).min(wall.height)
         };
         if neighbour {
-            self.scales.map(row)
+            wall.scales.map(row)
         } else {
-            [row(self.scales[0]), row(self.scales[1]), 0, 0]
+            [row(wall.scales[0]), row(wall.scales[1]), 0, 0]
         }
     }
 
@@ -570,8 +529,8 @@ impl SteppedWall {
     /// which on such a wall is one reciprocal and one 32×32-bit product.
     #[inline(always)]
     pub fn texturing(&self) -> (Fx24_8, Fx2_30) {
-        let depth = Fx2_30::from_bits(self.inverse_depth).recip_fx24_8();
-        let along = (i64::from(self.along_over_depth) * i64::from(depth.to_bits())) >> 8;
+        let depth = Fx2_30::from_bits(self.0.inverse_depth).recip_fx24_8();
+        let along = (i64::from(self.0.along_over_depth) * i64::from(depth.to_bits())) >> 8;
         (depth, Fx2_30::from_bits(along.clamp(0, 1 << 30) as i32))
     }
 
@@ -579,10 +538,11 @@ impl SteppedWall {
     /// never read then.
     #[inline(always)]
     pub fn step(&mut self) {
-        self.inverse_depth = self.inverse_depth.wrapping_add(self.inverse_depth_step);
-        self.along_over_depth = self
+        let wall = &mut self.0;
+        wall.inverse_depth = wall.inverse_depth.wrapping_add(wall.inverse_depth_step);
+        wall.along_over_depth = wall
             .along_over_depth
-            .wrapping_add(self.along_over_depth_step);
+            .wrapping_add(wall.along_over_depth_step);
     }
 }
 
