@@ -10,7 +10,8 @@
 @   +16 count     u32        rows to draw, at least 1
 @   +20 colormap  *const u8  256-entry light row (lit variants only)
 @
-@ Variants, for each texture height 8..256 (the shift must be an immediate):
+@ Variants, for each texture height 8..256 (the shift must be an immediate), and the unlit ones
+@ once more for the sky's height (pc_col_*_unlit_sky):
 @   pc_col_dbl_{unlit,lit}_hN   120-wide modes: STRB to VRAM writes the byte to both halves of
 @                               the halfword, so one store draws a logical pixel 2 screen pixels
 @                               wide. dst = page + row*240 + 2*x.
@@ -87,17 +88,32 @@
     .size \name, . - \name
     .endm
 
-    .section .iwram.pc_column, "ax", %progbits
+    @ Two banks share their IWRAM run addresses (linker.ld): the lit kernels and the unlit ones.
+    @ src/hw/kernels.rs copies in the bank a call needs before it calls into it.
+    .section .iwram_kernels_lit.pc_column, "ax", %progbits
     .arm
-
     .irp log2h, 3, 4, 5, 6, 7, 8
-    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, dbl, (32 - \log2h), 0, 2
     COLUMN_KERNEL pc_col_dbl_lit_h\log2h, dbl, (32 - \log2h), 1, 2
-    COLUMN_KERNEL pc_col_even_unlit_h\log2h, even, (32 - \log2h), 0, 2
     COLUMN_KERNEL pc_col_even_lit_h\log2h, even, (32 - \log2h), 1, 2
-    COLUMN_KERNEL pc_col_odd_unlit_h\log2h, odd, (32 - \log2h), 0, 2
     COLUMN_KERNEL pc_col_odd_lit_h\log2h, odd, (32 - \log2h), 1, 2
     .endr
+
+    .section .iwram_kernels_unlit.pc_column, "ax", %progbits
+    .arm
+    .irp log2h, 3, 4, 5, 6, 7, 8
+    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, dbl, (32 - \log2h), 0, 2
+    COLUMN_KERNEL pc_col_even_unlit_h\log2h, even, (32 - \log2h), 0, 2
+    COLUMN_KERNEL pc_col_odd_unlit_h\log2h, odd, (32 - \log2h), 0, 2
+    .endr
+
+    @ The sky's unlit columns, at its height only (PC_SKY_SHIFT = 32 − log2 of it, set by
+    @ src/hw/kernels.rs from the compiled assets), outside the banks: a lit frame draws its sky
+    @ without loading the unlit bank.
+    .section .iwram.pc_column_sky, "ax", %progbits
+    .arm
+    COLUMN_KERNEL pc_col_dbl_unlit_sky, dbl, PC_SKY_SHIFT, 0, 2
+    COLUMN_KERNEL pc_col_even_unlit_sky, even, PC_SKY_SHIFT, 0, 2
+    COLUMN_KERNEL pc_col_odd_unlit_sky, odd, PC_SKY_SHIFT, 0, 2
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

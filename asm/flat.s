@@ -74,14 +74,19 @@
     .size \name, . - \name
     .endm
 
-    .section .iwram.pc_flat, "ax", %progbits
+    @ The lit and the unlit bank (see asm/column.s).
+    .section .iwram_kernels_lit.pc_flat, "ax", %progbits
     .arm
+    .irp k, 3, 4, 5, 6
+    FLAT_KERNEL pc_flat_dbl_lit_k\k, dbl, \k, 1, 3
+    FLAT_KERNEL pc_flat_pair_lit_k\k, pair, \k, 1, 2
+    .endr
 
+    .section .iwram_kernels_unlit.pc_flat, "ax", %progbits
+    .arm
     .irp k, 3, 4, 5, 6
     FLAT_KERNEL pc_flat_dbl_unlit_k\k, dbl, \k, 0, 3
-    FLAT_KERNEL pc_flat_dbl_lit_k\k, dbl, \k, 1, 3
     FLAT_KERNEL pc_flat_pair_unlit_k\k, pair, \k, 0, 2
-    FLAT_KERNEL pc_flat_pair_lit_k\k, pair, \k, 1, 2
     .endr
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the

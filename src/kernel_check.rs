@@ -49,6 +49,12 @@ impl Lcg {
 /// Columns and spans drawn per call.
 pub const JOBS_PER_KIND: u32 = 160;
 
+/// Whether column job `job` is drawn unlit: one run of six jobs (one per texture height) in
+/// three.
+fn unlit_column(job: u32) -> bool {
+    (job / 6) % 3 == 0
+}
+
 /// Draws the kernel check for `seed` on `canvas`.
 pub fn draw(canvas: &mut impl Canvas, seed: u32) {
     let mut rng = Lcg(seed);
@@ -68,8 +74,12 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             v: rng.next(),
             // Steps from a fraction of a texel to many texels per row, both directions.
             dv: rng.next() >> rng.below(12),
-            colormap: if job % 3 == 0 { None } else { Some(&COLORMAP) },
+            // Every sixth run of six (one job per height) unlit.
+            colormap: if unlit_column(job) { None } else { Some(&COLORMAP) },
         };
+        // The unlit kernels draw only while their bank is in, else the lit ones draw with an
+        // identity row: half the unlit runs each way.
+        canvas.prefer_lighting(!(unlit_column(job) && (job / 18) % 2 == 0));
         canvas.column(
             rng.below(width) as usize,
             row as usize,
@@ -93,6 +103,7 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
         // Half the spans halved (every flat size, lit and unlit): at 240 wide they take the
         // doubled kernels with a doubled step, and odd ends step back.
         canvas.set_halved_flats((job / 4) % 2 == 1);
+        canvas.prefer_lighting(!(job % 3 == 1 && (job / 12) % 2 == 0));
         canvas.flat(
             rng.below(height) as usize,
             x as usize,

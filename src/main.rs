@@ -534,6 +534,8 @@ mod rom {
         }
         let colormap: [u8; 256] = core::array::from_fn(|index| (255 - index) as u8);
         let column_cost = |canvas: &mut VramCanvas, lit: bool, x: usize| {
+            // The kernel bank of the lighting measured, brought in before the clock starts.
+            canvas.prefer_lighting(lit);
             let mut run = |count: usize| {
                 let column = ColumnTexture {
                     texels: &texels[..64],
@@ -549,6 +551,7 @@ mod rom {
             (run(160) - run(32)) * 100 / 128
         };
         let flat_cost = |canvas: &mut VramCanvas, lit: bool| {
+            canvas.prefer_lighting(lit);
             let mut run = |count: usize| {
                 let flat = FlatTexture {
                     texels: &texels,
@@ -576,6 +579,7 @@ mod rom {
             (flat_cost(&mut wide, false), flat_cost(&mut wide, true));
         // 160 doubled pixels do not fit a 120-wide row: measure the doubled span on 120 vs 32.
         let flat_dbl = |canvas: &mut VramCanvas, lit: bool| {
+            canvas.prefer_lighting(lit);
             let mut run = |count: usize| {
                 let flat = FlatTexture {
                     texels: &texels,

@@ -105,6 +105,11 @@ impl SpanTarget for VramPage {
     }
 }
 
+// The sky's height, for its column kernels in asm/column.s (set before the file is assembled).
+core::arch::global_asm!(
+    ".equ PC_SKY_SHIFT, {shift}",
+    shift = const 32 - crate::assets::SKY_LOG2_HEIGHT,
+);
 core::arch::global_asm!(include_str!("../../asm/column.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
@@ -219,6 +224,104 @@ static FLAT_KERNELS: [[[FlatKernel; 4]; 2]; 2] = [
     ],
 ];
 
+/// The sky's unlit column kernels by packing (doubled, even, odd), at the sky's height: outside
+/// the kernel banks.
+static SKY_COLUMN_KERNELS: [ColumnKernel; 3] =
+    kernel_table!(ColumnJob; pc_col_dbl_unlit_sky, pc_col_even_unlit_sky, pc_col_odd_unlit_sky);
+
+extern "C" {
+    static __kernels_lit_start: u8;
+    static __kernels_lit_end: u8;
+    static __kernels_lit_position_in_rom: u8;
+    static __kernels_unlit_start: u8;
+    static __kernels_unlit_end: u8;
+    static __kernels_unlit_position_in_rom: u8;
+}
+
+/// The bank of kernels in IWRAM: 0 none yet (at boot), 1 the lit kernels, 2 the unlit ones
+/// (linker.ld: the two share their run addresses).
+static LOADED_BANK: gba::prelude::GbaCell<u8> = gba::prelude::GbaCell::new(0);
+
+/// The kernel banks: [`KernelBank::ensure`] is the only way to a bank's kernels.
+struct KernelBank;
+
+impl KernelBank {
+    /// Whether the lit bank is the one in IWRAM.
+    #[inline(always)]
+    fn lit_loaded() -> bool {
+        LOADED_BANK.read() == 1
+    }
+
+    /// Brings the lit (or the unlit) bank into IWRAM unless it is there.
+    #[inline(always)]
+    fn ensure(lit: bool) {
+        let wanted = if lit { 1 } else { 2 };
+        if LOADED_BANK.read() != wanted {
+            KernelBank::load(lit);
+        }
+    }
+
+    /// Copies a bank's image from ROM over the other's run addresses.
+    #[inline(never)]
+    fn load(lit: bool) {
+        let (start, end, source) = if lit {
+            (
+                &raw const __kernels_lit_start as usize,
+                &raw const __kernels_lit_end as usize,
+                &raw const __kernels_lit_position_in_rom as usize,
+            )
+        } else {
+            (
+                &raw const __kernels_unlit_start as usize,
+                &raw const __kernels_unlit_end as usize,
+                &raw const __kernels_unlit_position_in_rom as usize,
+            )
+        };
+        for offset in (0..end - start).step_by(4) {
+            // SAFETY: linker.ld places the bank's image at `source` in ROM and its run addresses
+            // `start..end` in IWRAM, word aligned (asserted there), over the other bank's code
+            // only. No kernel is running: the kernels are leaves, called from this file only,
+            // each call after `ensure`, and no interrupt handler calls one. Volatile, so the
+            // stores are kept and stay before the calls that follow (the compiler does not see
+            // the code it runs).
+            unsafe {
+                let word = ((source + offset) as *const u32).read_volatile();
+                ((start + offset) as *mut u32).write_volatile(word);
+            }
+        }
+        LOADED_BANK.write(if lit { 1 } else { 2 });
+    }
+
+    /// The bank index (0 unlit, 1 lit) of the kernels that draw with `colormap`, brought in if
+    /// needed, and the row they read. Unlit draws take the lit bank with an identity row when
+    /// that bank is in: a blank span or the menu in a lit frame costs no copy.
+    #[inline(always)]
+    fn for_colormap(colormap: Option<&[u8; 256]>) -> (usize, *const u8) {
+        match colormap {
+            Some(row) => {
+                KernelBank::ensure(true);
+                (1, row.as_ptr())
+            }
+            None if KernelBank::lit_loaded() => (1, IDENTITY_ROW.as_ptr()),
+            None => {
+                KernelBank::ensure(false);
+                (0, core::ptr::null())
+            }
+        }
+    }
+}
+
+/// The colormap row that changes nothing, for unlit draws through lit kernels.
+static IDENTITY_ROW: [u8; 256] = {
+    let mut row = [0u8; 256];
+    let mut index = 0;
+    while index < 256 {
+        row[index] = index as u8;
+        index += 1;
+    }
+    row
+};
+
 /// The back page in VRAM as a [`Canvas`]: columns and spans go to the asm kernels.
 pub struct VramCanvas {
     page: VramPage,
@@ -301,19 +404,27 @@ impl Canvas for VramCanvas {
             1 => (0, 2 * x),
             _ => (1 + x % 2, x & !1),
         };
+        let sky = texture.colormap.is_none()
+            && texture.log2_height == crate::assets::SKY_LOG2_HEIGHT;
+        let (kernel, colormap) = if sky || !self.kernels {
+            (SKY_COLUMN_KERNELS[packing], colormap_pointer(texture.colormap))
+        } else {
+            let (bank, colormap) = KernelBank::for_colormap(texture.colormap);
+            (COLUMN_KERNELS[packing][bank][height_index], colormap)
+        };
         let job = ColumnJob {
             dst: self.row_address(row).wrapping_add(byte_column),
             texels: texture.texels.as_ptr(),
             v: texture.v,
             dv: texture.dv,
             count: count as u32,
-            colormap: colormap_pointer(texture.colormap),
+            colormap,
         };
-        let kernel = COLUMN_KERNELS[packing][usize::from(texture.colormap.is_some())][height_index];
         if self.kernels {
             // SAFETY: the column lies inside the page (checked above), the texel column holds
             // 2^log2_height bytes and every index the kernel forms is below that; the
-            // colormap, if used, has 256 entries.
+            // colormap, if used, has 256 entries; the kernel is the sky's (for its height) or
+            // its bank's, which `KernelBank::for_colormap` brought in.
             unsafe { kernel(&job) };
         }
     }
@@ -331,7 +442,6 @@ impl Canvas for VramCanvas {
                 && side < FLAT_KERNELS[0][0].len()
                 && texture.texels.len() == 1 << (2 * texture.log2_side)
         );
-        let lit = usize::from(texture.colormap.is_some());
         let (mut x, mut count, mut texture) = (x, count, *texture);
         if self.resolution.pixels_per_halfword() == 2 {
             // Whole halfwords go to the pair kernel; a pixel sharing its halfword with a
@@ -374,6 +484,12 @@ impl Canvas for VramCanvas {
             _ if self.halved_flats => (0, x / 2, count / 2, texture.step.0.wrapping_mul(2)),
             _ => (1, x / 2, count / 2, texture.step.0),
         };
+        let (bank, colormap) = if self.kernels {
+            KernelBank::for_colormap(texture.colormap)
+        } else {
+            let lit = texture.colormap.is_some();
+            (usize::from(lit), colormap_pointer(texture.colormap))
+        };
         let job = FlatJob {
             dst: self
                 .row_address(row)
@@ -383,18 +499,26 @@ impl Canvas for VramCanvas {
             pos: texture.pos.0,
             step,
             count: halfwords as u32,
-            colormap: colormap_pointer(texture.colormap),
+            colormap,
         };
-        let kernel = FLAT_KERNELS[pairs][lit][side];
+        let kernel = FLAT_KERNELS[pairs][bank][side];
         if self.kernels {
             // SAFETY: the run lies inside the page row (checked above); the flat holds 4^k
-            // texels and the kernel's index is below that by construction of its masks.
+            // texels and the kernel's index is below that by construction of its masks; the
+            // kernel's bank is in (`KernelBank::for_colormap`), and its colormap row has 256
+            // entries.
             unsafe { kernel(&job) };
         }
     }
 
     fn set_halved_flats(&mut self, halved: bool) {
         self.halved_flats = halved;
+    }
+
+    fn prefer_lighting(&mut self, lit: bool) {
+        if self.kernels {
+            KernelBank::ensure(lit);
+        }
     }
 
     fn wall_run(&mut self, run: &mut WallRun) -> Option<WallRunEnd> {
@@ -406,7 +530,13 @@ impl Canvas for VramCanvas {
                 && run.window_columns as usize >= self.resolution.width()
         );
         let native = self.resolution.pixels_per_halfword() == 2;
-        let lit = usize::from(run.light_mode != 0);
+        let lit = run.light_mode != 0;
+        if self.kernels {
+            // The loop hands its strips' kernels the run's row (none when unlit): the bank
+            // of its lighting.
+            KernelBank::ensure(lit);
+        }
+        let lit = usize::from(lit);
         for strip in &mut run.strips {
             if strip.texels.is_null() {
                 // No level yet: the loop stops before drawing it and asks for one.
@@ -435,7 +565,8 @@ impl Canvas for VramCanvas {
         // of them at a kernel's height and its column index is masked to its width, the
         // colormap row index is at most 31 of the 32-row table; the assertion above keeps
         // every column below the page's width and every row below its height; the kernels
-        // are this canvas's for the strip's height and lighting.
+        // are this canvas's for the strip's height and lighting, from the bank `ensure` brought
+        // in.
         let end = unsafe { pc_wall_run(run) };
         Some(if end == 0 {
             WallRunEnd::Done

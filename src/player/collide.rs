@@ -38,7 +38,7 @@
 //! pleasant. The pushes use square roots and divisions rounded away from the wall (never short
 //! of the radius by more than a rounding step).
 
-use portalcast_format::{MapTables, Sector, Vertex, Wall};
+use portalcast_format::{MapTables, Sector, Vertex, Wall, NO_PORTAL, NO_TEXTURE};
 
 use crate::math::{segment_contact, Fx24_8, SegmentContact, WorldPoint};
 use crate::render::ratio::leading_zeros;
@@ -196,7 +196,7 @@ fn slide_step(
     let bounds = Bounds::around(from, step, reach);
     let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
     // Room for a few segments, which is quick to clear; more take the slower path.
-    let mut few = [(0, 0); FEW_SEGMENTS];
+    let mut few = [&NO_SEGMENT; FEW_SEGMENTS];
     match Obstacles::near(map, sector, &bounds, body, &mut few, target) {
         Some(obstacles) => {
             // Nothing to push against and the step ends strictly inside its sector: what
@@ -224,7 +224,7 @@ fn slide_step_among_many(
     bounds: &Bounds,
     target: Bits,
 ) -> (WorldPoint, u16) {
-    let mut many = [(0, 0); MAX_SEGMENTS];
+    let mut many = [&NO_SEGMENT; MAX_SEGMENTS];
     match Obstacles::near(map, sector, bounds, body, &mut many, target) {
         Some(obstacles) => try_moves(map, sector, from, step, body, &obstacles),
         None => unreachable!("a list of MAX_SEGMENTS segments drops the rest"),
@@ -535,12 +535,25 @@ impl Bounds {
 /// more takes a slower path with room for [`MAX_SEGMENTS`].
 const FEW_SEGMENTS: usize = 8;
 
-/// The blocking segments near one step, as their walls' vertex indices in a list the caller
-/// provides: clearing room for [`MAX_SEGMENTS`] segments on every step cost more than the rest
-/// of a step without pushes, and most steps find none.
+/// What fills the room of a segment list before [`Obstacles::near`] writes it.
+const NO_SEGMENT: Wall = Wall {
+    start: 0,
+    end: 0,
+    portal: NO_PORTAL,
+    texture: NO_TEXTURE,
+    upper_texture: NO_TEXTURE,
+    lower_texture: NO_TEXTURE,
+    x_offset: 0,
+    y_offset: 0,
+    length_fx8: 0,
+};
+
+/// The blocking segments near one step, as their walls in a list the caller provides: clearing
+/// room for [`MAX_SEGMENTS`] segments on every step cost more than the rest of a step without
+/// pushes, and most steps find none.
 struct Obstacles<'a, 'm> {
     vertices: &'m [Vertex],
-    ends: &'a [(u16, u16)],
+    ends: &'a [&'m Wall],
     /// Whether the step's whole target is strictly inside the step's sector.
     target_inside: bool,
 }
@@ -559,7 +572,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         sector: u16,
         bounds: &Bounds,
         body: &Body,
-        ends: &'a mut [(u16, u16)],
+        ends: &'a mut [&'m Wall],
         target: Bits,
     ) -> Option<Obstacles<'a, 'm>> {
         let mut target_inside = true;
@@ -600,7 +613,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
                     }
                     _ => {
                         if count < ends.len().min(MAX_SEGMENTS) {
-                            ends[count] = (wall.start, wall.end);
+                            ends[count] = wall;
                             count += 1;
                         } else if ends.len() < MAX_SEGMENTS {
                             return None;
@@ -616,15 +629,17 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         })
     }
 
-    /// The segments' ends in 24.8 bits.
-    fn segments(&self) -> impl Iterator<Item = (Bits, Bits)> + '_ {
+    /// The segments: their ends in 24.8 bits, and their walls' lengths.
+    fn segments(&self) -> impl Iterator<Item = Segment> + '_ {
         let bits = |index: u16| {
             let vertex = self.vertices[usize::from(index)];
             (vertex.x * 256, vertex.y * 256)
         };
-        self.ends
-            .iter()
-            .map(move |&(start, end)| (bits(start), bits(end)))
+        self.ends.iter().map(move |wall| Segment {
+            a: bits(wall.start),
+            b: bits(wall.end),
+            length_fx8: wall.length_fx8,
+        })
     }
 
     /// `p` pushed out of the segments: a few passes, edges before vertices in each. And whether
@@ -638,13 +653,16 @@ impl<'a, 'm> Obstacles<'a, 'm> {
     }
 
     /// [`Obstacles::push_out`] with at least one segment. Out of line: most steps have none.
+    /// In IWRAM on the GBA: the steps that slide along walls, corners above all, run it over
+    /// every segment a few times, and from the cartridge it made them the slowest ticks.
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.player_push_out")]
     fn push_out_of_some(&self, mut p: Bits) -> (Bits, bool) {
         for _ in 0..PUSH_PASSES {
             let mut moved = false;
             for contact in [Contact::Edge, Contact::Vertex] {
-                for (a, b) in self.segments() {
-                    if let Some(push) = push_from_segment(p, a, b, contact) {
+                for segment in self.segments() {
+                    if let Some(push) = push_from_segment(p, &segment, contact) {
                         p = (p.0 + push.0, p.1 + push.1);
                         moved = true;
                     }
@@ -670,15 +688,24 @@ impl<'a, 'm> Obstacles<'a, 'm> {
     #[inline(never)]
     fn overlap_of_some(&self, p: Bits) -> i64 {
         self.segments()
-            .flat_map(|(a, b)| {
+            .flat_map(|segment| {
                 [Contact::Edge, Contact::Vertex]
                     .into_iter()
-                    .filter_map(move |contact| push_from_segment(p, a, b, contact))
+                    .filter_map(move |contact| push_from_segment(p, &segment, contact))
             })
             .map(|(x, y)| wide(x.abs().max(y.abs())))
             .max()
             .unwrap_or(0)
     }
+}
+
+/// A blocking segment: a wall's ends in 24.8 bits, `a` to `b` (its front on the right, where
+/// its sector is), and the wall's [`Wall::length_fx8`].
+#[derive(Clone, Copy)]
+struct Segment {
+    a: Bits,
+    b: Bits,
+    length_fx8: i32,
 }
 
 /// Which part of a segment a push comes from.
@@ -690,9 +717,10 @@ enum Contact {
     Vertex,
 }
 
-/// The push (24.8 bits) that moves `p` to [`RADIUS`] from segment `a b`, if the disc overlaps
+/// The push (24.8 bits) that moves `p` to [`RADIUS`] from `segment`, if the disc overlaps
 /// the part of the segment `contact` names; rounded away from the segment.
-fn push_from_segment(p: Bits, a: Bits, b: Bits, contact: Contact) -> Option<Bits> {
+fn push_from_segment(p: Bits, segment: &Segment, contact: Contact) -> Option<Bits> {
+    let Segment { a, b, length_fx8 } = *segment;
     // Most segments near a step are farther than the radius from every part of it: a box
     // test rejects them before any product.
     let beyond = |p: i32, a: i32, b: i32| p < a.min(b) - RADIUS_BITS || p > a.max(b) + RADIUS_BITS;
@@ -741,7 +769,7 @@ fn push_from_segment(p: Bits, a: Bits, b: Bits, contact: Contact) -> Option<Bits
     let (units_x, units_y) = (dx >> 8, dy >> 8);
     let units_squared = (units_x * units_x + units_y * units_y) as u32;
     debug_assert!(wide(units_squared as i32) << 16 == length_squared);
-    let length = i64::from(ceil_sqrt_65536_times(units_squared));
+    let length = ceil_length(length_fx8, units_squared);
     let reach = wide(RADIUS_BITS) * length;
     // Along the normal (-dy, dx)/length by (reach - area)/length: the area grows by exactly
     // reach - area, to the radius (times the rounded-up length).
@@ -757,30 +785,17 @@ fn push_from_segment(p: Bits, a: Bits, b: Bits, contact: Contact) -> Option<Bits
     ))
 }
 
-/// `ceil(√(65536·m))`, digit by digit on 32-bit words: two bits of the radicand a step, m's
-/// and then the 8 pairs of zeros of the factor 65536. The root stays under 2^23 and the
-/// remainder under twice the root.
-fn ceil_sqrt_65536_times(m: u32) -> u32 {
-    let (mut root, mut remainder) = (0u32, 0u32);
-    let mut step = |pair: u32| {
-        remainder = (remainder << 2) | pair;
-        let trial = (root << 2) | 1;
-        root <<= 1;
-        if remainder >= trial {
-            remainder -= trial;
-            root |= 1;
-        }
-    };
-    if m != 0 {
-        let pairs = (64 - leading_zeros(u64::from(m))).div_ceil(2);
-        for index in (0..pairs).rev() {
-            step((m >> (2 * index)) & 3);
-        }
-    }
-    for _ in 0..8 {
-        step(0);
-    }
-    root + u32::from(remainder != 0)
+/// `ceil(√(65536·m))`, the length in 24.8 bits rounded up of a wall whose squared length is
+/// `m` square units, from the map compiler's `floor_fx8` (`floor(√(65536·m))`, its
+/// [`Wall::length_fx8`]): one more unless the root is exact. No square root per push.
+fn ceil_length(floor_fx8: i32, m: u32) -> i64 {
+    let floor = i64::from(floor_fx8);
+    let scaled = i64::from(m) << 16;
+    debug_assert!(
+        floor * floor <= scaled && (floor + 1) * (floor + 1) > scaled,
+        "the wall's length_fx8 {floor_fx8} is not the floor of the root of {m}·65536"
+    );
+    floor + i64::from(floor * floor != scaled)
 }
 
 /// `n / d` rounded away from zero, for `0 < d < 2^31`.
@@ -977,7 +992,8 @@ mod tests {
         }
     }
 
-    use portalcast_format::{PlayerStart, NO_PORTAL, NO_TEXTURE};
+    use portalcast_assets::wall_length_fx8;
+    use portalcast_format::PlayerStart;
 
     /// A square room from −30 to 30 units on each axis, clockwise (y down), each side split
     /// into `pieces` collinear solid walls.
@@ -1005,8 +1021,10 @@ mod tests {
                 lower_texture: NO_TEXTURE,
                 x_offset: 0,
                 y_offset: 0,
-                // Collision never reads a wall's length (the renderer does).
-                length_fx8: 0,
+                length_fx8: wall_length_fx8(
+                    vertices[usize::from(index)],
+                    vertices[usize::from((index + 1) % count)],
+                ),
             })
             .collect();
         let sectors = vec![Sector {
@@ -1056,13 +1074,12 @@ mod tests {
             Delta::default(),
             2 * RADIUS_BITS + 256,
         );
-        let mut few = [(0, 0); FEW_SEGMENTS];
+        let mut few = [&NO_SEGMENT; FEW_SEGMENTS];
         assert!(Obstacles::near(&map, 0, &bounds, &STANDING, &mut few, (0, 0)).is_none());
-        let mut many = [(0, 0); MAX_SEGMENTS];
+        let mut many = [&NO_SEGMENT; MAX_SEGMENTS];
         let obstacles = Obstacles::near(&map, 0, &bounds, &STANDING, &mut many, (0, 0))
             .expect("room for every segment");
-        let in_wall_order: Vec<(u16, u16)> =
-            walls.iter().map(|wall| (wall.start, wall.end)).collect();
+        let in_wall_order: Vec<&Wall> = walls.iter().collect();
         assert_eq!(obstacles.ends, &in_wall_order[..]);
         assert!(obstacles.target_inside);
         // A step toward the east wall (split at y = 0, in front of the disc) stops the disc at
@@ -1111,15 +1128,14 @@ mod tests {
     }
 
     #[test]
-    fn the_lengths_root_is_the_ceiling_of_the_square_root() {
+    fn the_length_rounded_up_is_the_ceiling_of_the_square_root() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let check = |m: u32| {
             let n = u64::from(m) << 16;
-            assert_eq!(
-                u64::from(ceil_sqrt_65536_times(m)),
-                isqrt_ceil(n),
-                "m = {m}"
-            );
+            // What the map compiler stores: the same rule as its walls' (a wall from the origin
+            // with m = dx² + dy² has the same length as any other of that squared length).
+            let floor_fx8 = n.isqrt() as i32;
+            assert_eq!(ceil_length(floor_fx8, m) as u64, isqrt_ceil(n), "m = {m}");
         };
         for m in [
             0,
@@ -1197,13 +1213,16 @@ mod tests {
     #[test]
     fn an_edge_push_lands_exactly_on_the_radius_of_a_straight_wall() {
         // Wall along +x at y = 0, front (inside) toward +y; the disc 10 units in front.
-        let a = (0, 0);
-        let b = (256 * 256, 0);
+        let wall = Segment {
+            a: (0, 0),
+            b: (256 * 256, 0),
+            length_fx8: 256 * 256,
+        };
         let p = (100 * 256, 10 * 256);
-        let push = push_from_segment(p, a, b, Contact::Edge).expect("overlaps");
+        let push = push_from_segment(p, &wall, Contact::Edge).expect("overlaps");
         assert_eq!(push, (0, 6 * 256));
         // From behind, the wall does not push.
-        assert_eq!(push_from_segment((p.0, -p.1), a, b, Contact::Edge), None);
+        assert_eq!(push_from_segment((p.0, -p.1), &wall, Contact::Edge), None);
     }
 
     #[test]

@@ -104,6 +104,15 @@ pub trait Canvas {
         let _ = surface;
     }
 
+    /// Says whether the next calls draw lit (through a colormap row) or unlit: a canvas whose
+    /// kernels for the two are not all in fast memory at once (the GBA's kernel banks,
+    /// `hw::kernels`) brings in the ones asked for. The renderer says it once a frame, from the
+    /// view's lighting. Every call draws the same pixels whatever was said.
+    #[inline]
+    fn prefer_lighting(&mut self, lit: bool) {
+        let _ = lit;
+    }
+
     /// Draws the columns of `run` with the canvas's own column loop, if it has one (the GBA's
     /// ARM wall loop, `asm/wall.s`), and says how the run ended; `None` if it has none, and then
     /// nothing is drawn: the renderer draws the columns with its own loop, the loop's twin.

@@ -20,7 +20,7 @@ use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
 use crate::raster::column::ColumnTexture;
 use crate::raster::wall_run::{RunTexturing, StripRunLevel, WallKind, WallRun, WallRunEnd};
 use crate::raster::Canvas;
-use crate::render::light::{light_row, run_light};
+use crate::render::light::{light_row, run_light, Lighting};
 use core::cell::Cell;
 use core::convert::Infallible;
 
@@ -369,6 +369,7 @@ impl<W: WindowStore> Renderer<W> {
         let width = view.viewport.width as usize;
         let height = view.viewport.height as i16;
         debug_assert_eq!(width, canvas.resolution().width());
+        canvas.prefer_lighting(view.lighting != Lighting::Off);
         // The counters live on the stack (IWRAM on the GBA), not in the renderer's memory
         // (EWRAM): the wall columns and strips count into them.
         let mut stats = FrameStats::default();

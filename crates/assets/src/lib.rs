@@ -32,7 +32,7 @@ use image::RgbaImage;
 use portalcast_format::{Colormap, MapTables, Palette, Sky, Sprite, Texture, NO_TEXTURE, SKY};
 
 pub use diag::{CompileErrors, Diagnostic, Loc};
-pub use map_build::{Catalog, CompiledMap};
+pub use map_build::{wall_length_fx8, Catalog, CompiledMap};
 
 /// Extension of text maps.
 pub const TEXT_MAP_EXTENSION: &str = "map";
