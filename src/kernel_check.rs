@@ -52,7 +52,13 @@ pub const JOBS_PER_KIND: u32 = 160;
 /// Whether column job `job` is drawn unlit: one run of six jobs (one per texture height) in
 /// three.
 fn unlit_column(job: u32) -> bool {
-    (job / 6) % 3 == 0
+    (job / 6).is_multiple_of(3)
+}
+
+/// Whether flat job `job` is drawn unlit: one run of four jobs (one per flat size) in three, so
+/// that the unlit runs, by the halving's runs of four, alternate halved and full.
+fn unlit_flat(job: u32) -> bool {
+    (job / 4) % 3 == 1
 }
 
 /// Draws the kernel check for `seed` on `canvas`.
@@ -74,12 +80,16 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             v: rng.next(),
             // Steps from a fraction of a texel to many texels per row, both directions.
             dv: rng.next() >> rng.below(12),
-            // Every sixth run of six (one job per height) unlit.
-            colormap: if unlit_column(job) { None } else { Some(&COLORMAP) },
+            // One run of six jobs (one per height) in three unlit.
+            colormap: if unlit_column(job) {
+                None
+            } else {
+                Some(&COLORMAP)
+            },
         };
         // The unlit kernels draw only while their bank is in, else the lit ones draw with an
         // identity row: half the unlit runs each way.
-        canvas.prefer_lighting(!(unlit_column(job) && (job / 18) % 2 == 0));
+        canvas.prefer_lighting(!(unlit_column(job) && (job / 18).is_multiple_of(2)));
         canvas.column(
             rng.below(width) as usize,
             row as usize,
@@ -98,12 +108,17 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             log2_side,
             pos: PackedUv(rng.next()),
             step: PackedUv::pack(step(&mut rng), step(&mut rng), log2_side),
-            colormap: if job % 3 == 1 { None } else { Some(&COLORMAP) },
+            // One run of four jobs (one per side) in three unlit.
+            colormap: if unlit_flat(job) {
+                None
+            } else {
+                Some(&COLORMAP)
+            },
         };
         // Half the spans halved (every flat size, lit and unlit): at 240 wide they take the
         // doubled kernels with a doubled step, and odd ends step back.
         canvas.set_halved_flats((job / 4) % 2 == 1);
-        canvas.prefer_lighting(!(job % 3 == 1 && (job / 12) % 2 == 0));
+        canvas.prefer_lighting(!(unlit_flat(job) && (job / 24).is_multiple_of(2)));
         canvas.flat(
             rng.below(height) as usize,
             x as usize,

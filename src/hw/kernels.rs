@@ -277,14 +277,21 @@ impl KernelBank {
                 &raw const __kernels_unlit_position_in_rom as usize,
             )
         };
-        for offset in (0..end - start).step_by(4) {
-            // SAFETY: linker.ld places the bank's image at `source` in ROM and its run addresses
-            // `start..end` in IWRAM, word aligned (asserted there), over the other bank's code
-            // only. No kernel is running: the kernels are leaves, called from this file only,
-            // each call after `ensure`, and no interrupt handler calls one. Volatile, so the
-            // stores are kept and stay before the calls that follow (the compiler does not see
-            // the code it runs).
-            unsafe {
+        let blocks = (end - start) / 32;
+        // SAFETY: linker.ld places the bank's image at `source` in ROM and its run addresses
+        // `start..end` in IWRAM, word aligned (asserted there), over the other bank's code only.
+        // No kernel is running: the kernels are leaves, called from this file only, each call
+        // after `ensure`, and no interrupt handler calls one. The copy is the gba crate's
+        // eight-word LDM/STM loop (in IWRAM), then the last words one at a time; volatile, so
+        // the stores stay before the calls that follow (the compiler does not see the code it
+        // runs).
+        unsafe {
+            gba::mem::copy_u32x8_unchecked(
+                start as *mut [u32; 8],
+                source as *const [u32; 8],
+                blocks,
+            );
+            for offset in (blocks * 32..end - start).step_by(4) {
                 let word = ((source + offset) as *const u32).read_volatile();
                 ((start + offset) as *mut u32).write_volatile(word);
             }
@@ -404,10 +411,13 @@ impl Canvas for VramCanvas {
             1 => (0, 2 * x),
             _ => (1 + x % 2, x & !1),
         };
-        let sky = texture.colormap.is_none()
-            && texture.log2_height == crate::assets::SKY_LOG2_HEIGHT;
+        let sky =
+            texture.colormap.is_none() && texture.log2_height == crate::assets::SKY_LOG2_HEIGHT;
         let (kernel, colormap) = if sky || !self.kernels {
-            (SKY_COLUMN_KERNELS[packing], colormap_pointer(texture.colormap))
+            (
+                SKY_COLUMN_KERNELS[packing],
+                colormap_pointer(texture.colormap),
+            )
         } else {
             let (bank, colormap) = KernelBank::for_colormap(texture.colormap);
             (COLUMN_KERNELS[packing][bank][height_index], colormap)

@@ -13,6 +13,10 @@
 //! `B`, `B<cond>`, `BL`) and refuses one that leaves the overlay for `.iwram_render`, or that lands
 //! on one of lld's thunks in `.iwram_render` under the overlay's own bytes.
 //!
+//! The kernel banks (`.iwram_kernels_lit`, `.iwram_kernels_unlit`) share their run addresses
+//! too, and one is copied over the other at run time: their code must branch only within its
+//! own bank, which this checks the same way.
+//!
 //! Indirect jumps (`BX`, loads into `pc`) are not followed: the overlay's are returns, its jump
 //! table and its own thunks, whose targets are in the ROM.
 
@@ -21,6 +25,8 @@ use object::{Object, ObjectSection, ObjectSymbol};
 /// The section names of linker.ld.
 const OVERLAY: &str = ".bench_iwram";
 const REPLACED: &str = ".iwram_render";
+/// The kernel banks, which share their run addresses (linker.ld).
+const KERNEL_BANKS: [&str; 2] = [".iwram_kernels_lit", ".iwram_kernels_unlit"];
 
 /// A range of run addresses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,10 +144,68 @@ pub fn stray_branches(
     problems
 }
 
-/// Checks a linked ROM ELF (see the module's documentation). A ROM without the two sections
-/// passes.
+/// The branches of a kernel bank (`branches`, from its own bytes) that leave it: once the
+/// other bank is loaded over it, nothing outside may be reached by a direct branch that
+/// assumed this one, so its kernels must be leaves.
+pub fn branches_out_of_bank(branches: &[(u32, u32)], bank: Span) -> Vec<String> {
+    branches
+        .iter()
+        .filter(|(_, to)| !bank.contains(*to))
+        .map(|(from, to)| format!("0x{from:08x} branches to 0x{to:08x}, outside its bank"))
+        .collect()
+}
+
+/// The mapping symbols (`$a`, `$t`, `$d`) of `section`, sorted by address.
+fn modes_of(file: &object::File, section: &object::Section) -> Vec<(u32, Mode)> {
+    let mut modes: Vec<(u32, Mode)> = file
+        .symbols()
+        .filter(|symbol| symbol.section_index() == Some(section.index()))
+        .filter_map(|symbol| {
+            let mode = match symbol.name().unwrap_or("").split('.').next() {
+                Some("$a") => Mode::Arm,
+                Some("$t") => Mode::Thumb,
+                Some("$d") => Mode::Data,
+                _ => return None,
+            };
+            Some((symbol.address() as u32, mode))
+        })
+        .collect();
+    modes.sort_by_key(|&(address, _)| address);
+    modes
+}
+
+/// Checks that the kernel banks' code branches only within its own bank (see
+/// [`branches_out_of_bank`]). A ROM without them passes.
+fn check_kernel_banks(file: &object::File) -> Result<(), String> {
+    for name in KERNEL_BANKS {
+        let Some(bank) = file.section_by_name(name) else {
+            continue;
+        };
+        let code = bank
+            .data()
+            .map_err(|error| format!("the bytes of {name}: {error}"))?;
+        let span = Span {
+            start: bank.address() as u32,
+            end: (bank.address() + bank.size()) as u32,
+        };
+        let problems = branches_out_of_bank(&branches(code, span, &modes_of(file, &bank)), span);
+        if !problems.is_empty() {
+            return Err(format!(
+                "the kernel bank {name} branches out of itself:\n  {}\nits kernels must be \
+                 leaves: the other bank is loaded over it (linker.ld), and lld may place a \
+                 thunk for the branch inside it.",
+                problems.join("\n  ")
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Checks a linked ROM ELF (see the module's documentation), and that the kernel banks are
+/// leaves. A ROM without the sections passes.
 pub fn check(elf: &[u8]) -> Result<(), String> {
     let file = object::File::parse(elf).map_err(|error| format!("not an ELF: {error}"))?;
+    check_kernel_banks(&file)?;
     let (Some(overlay), Some(replaced)) = (
         file.section_by_name(OVERLAY),
         file.section_by_name(REPLACED),
@@ -252,6 +316,18 @@ mod tests {
             branches(&code, at, &[(0x100, Mode::Thumb)]),
             vec![(0x100, 0x108), (0x102, 0xFE)]
         );
+    }
+
+    #[test]
+    fn a_bank_may_branch_only_within_itself() {
+        let bank = Span {
+            start: 0x0300_4000,
+            end: 0x0300_5000,
+        };
+        let inside = [(0x0300_4010, 0x0300_4000), (0x0300_4ffc, 0x0300_4ffc)];
+        assert!(branches_out_of_bank(&inside, bank).is_empty());
+        let out = [(0x0300_4010, 0x0300_5000), (0x0300_4020, 0x0800_0000)];
+        assert_eq!(branches_out_of_bank(&out, bank).len(), 2);
     }
 
     #[test]
