@@ -262,6 +262,7 @@ impl KernelBank {
     }
 
     /// Copies a bank's image from ROM over the other's run addresses.
+    #[cold]
     #[inline(never)]
     fn load(lit: bool) {
         let (start, end, source) = if lit {

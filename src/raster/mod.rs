@@ -10,10 +10,11 @@ pub mod flat;
 pub mod span;
 pub mod wall_run;
 
-/// A column window: rows `top..bottom` (half-open). `top >= bottom` means empty. `repr(C)`:
-/// the ARM wall loop reads and writes one as a word, `top` in its low half.
+/// A column window: rows `top..bottom` (half-open). `top >= bottom` means empty. `repr(C)`,
+/// word aligned: the ARM wall loop reads and writes one as a word, `top` in its low half, and
+/// `make_spans` compares two with one word compare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-#[repr(C)]
+#[repr(C, align(4))]
 pub struct Window {
     /// First row in the window.
     pub top: i16,
@@ -28,6 +29,13 @@ impl Window {
     /// True if no row is in the window.
     pub const fn is_empty(self) -> bool {
         self.top >= self.bottom
+    }
+
+    /// The window as the word the ARM wall loop stores: `top` in the low half. Two windows are
+    /// equal if and only if their words are.
+    #[inline(always)]
+    pub const fn word(self) -> u32 {
+        (self.top as u16 as u32) | ((self.bottom as u16 as u32) << 16)
     }
 }
 

@@ -14,18 +14,24 @@ pub fn make_spans(
     mut emit: impl FnMut(usize, usize, usize),
 ) {
     let mut old = Window::EMPTY;
+    // The column before's window as stored, as a word (`old` is it normalised: an empty window
+    // is EMPTY).
+    let mut stored_before = Window::EMPTY.word();
     let mut x = first_column;
     for &window in windows {
-        let new = if window.is_empty() {
-            Window::EMPTY
-        } else {
-            window
-        };
-        // Most columns have the rows of the column before, or none as before: no span ends or
-        // starts there, and the scan moves on at once.
-        if new != old {
-            change_rows(old, new, x, span_start, &mut emit);
-            old = new;
+        // Most columns have the window of the column before: no span ends or starts there,
+        // and the scan moves on after one word compare.
+        if window.word() != stored_before {
+            stored_before = window.word();
+            let new = if window.is_empty() {
+                Window::EMPTY
+            } else {
+                window
+            };
+            if new != old {
+                change_rows(old, new, x, span_start, &mut emit);
+                old = new;
+            }
         }
         x += 1;
     }
