@@ -159,16 +159,31 @@ use crate::assets;
 use portalcast_format::{Align4, Texture};
 
 #[link_section = ".ewram_bss"]
-static mut TEXEL_COPY: Align4<[u8; assets::TEXEL_BLOB_LEN]> = Align4([0; assets::TEXEL_BLOB_LEN]);
+static mut TEXEL_COPY: Align4<[u8; assets::TEXEL_EWRAM_LEN]> = Align4([0; assets::TEXEL_EWRAM_LEN]);
+
+// The EWRAM the asset compiler gives textures (`portalcast_format::memory`) is what the engine's
+// own statics leave: a renderer grown past its share stops the build here, naming the
+// constant, rather than in the linker.
+const _: () = {
+    use portalcast_format::memory::{ewram_texel_budget, EWRAM_ENGINE_BYTES, TEXTURE_ENTRY_BYTES};
+    assert!(
+        core::mem::size_of::<GbaRenderer>() <= EWRAM_ENGINE_BYTES,
+        "the renderer's EWRAM outgrew EWRAM_ENGINE_BYTES (crates/format/src/memory.rs)"
+    );
+    assert!(core::mem::size_of::<Texture<'static>>() <= TEXTURE_ENTRY_BYTES);
+    assert!(assets::TEXEL_EWRAM_LEN <= ewram_texel_budget(assets::TEXTURE_COUNT));
+};
 #[link_section = ".ewram_bss"]
 static mut EWRAM_TEXTURES: MaybeUninit<[Texture<'static>; assets::TEXTURE_COUNT]> =
     MaybeUninit::uninit();
 static mut TEXTURES_TAKEN: bool = false;
 
-/// The texture placement knob's EWRAM side: copies every texel (both layouts, all mip levels)
-/// from the cartridge to EWRAM and returns the textures re-pointed there. EWRAM reads cost 3
-/// cycles a byte against the cartridge's 5 (WAITCNT 0x4317, sequential or not: the kernels'
-/// texel loads are random). Done once; later calls return the same table.
+/// The texture placement knob's EWRAM side: copies the texels (both layouts, all mip levels) of
+/// the textures the asset compiler placed in EWRAM (the hottest that fit, at the start of the
+/// blob: `assets::TEXEL_EWRAM_LEN` bytes) from the cartridge and returns the textures, those
+/// re-pointed there and the others still in the cartridge. EWRAM reads cost 3 cycles a byte
+/// against the cartridge's 5 (WAITCNT 0x4317, sequential or not: the kernels' texel loads are
+/// random). Done once; later calls return the same table.
 pub fn textures_in_ewram() -> &'static [Texture<'static>] {
     // SAFETY: single-threaded, and the flag makes the copy and the table's initialisation
     // happen once, before the only shared references to either are made; the interrupt
@@ -179,14 +194,15 @@ pub fn textures_in_ewram() -> &'static [Texture<'static>] {
         let taken = &raw mut TEXTURES_TAKEN;
         if !*taken {
             *taken = true;
-            let copy_slot: *mut Align4<[u8; assets::TEXEL_BLOB_LEN]> = &raw mut TEXEL_COPY;
-            let copy: &'static mut [u8; assets::TEXEL_BLOB_LEN] = &mut (*copy_slot).0;
-            copy.copy_from_slice(&assets::TEXEL_BLOB.0);
+            let copy_slot: *mut Align4<[u8; assets::TEXEL_EWRAM_LEN]> = &raw mut TEXEL_COPY;
+            let copy: &'static mut [u8; assets::TEXEL_EWRAM_LEN] = &mut (*copy_slot).0;
+            copy.copy_from_slice(&assets::TEXEL_BLOB.0[..assets::TEXEL_EWRAM_LEN]);
             let copy: &'static [u8] = copy;
             let blob = assets::TEXEL_BLOB.0.as_ptr() as usize;
-            let rebase = |texels: &[u8]| {
+            // Texels in the copied prefix are read from the copy; the rest from the cartridge.
+            let rebase = |texels: &'static [u8]| {
                 let offset = texels.as_ptr() as usize - blob;
-                &copy[offset..offset + texels.len()]
+                copy.get(offset..offset + texels.len()).unwrap_or(texels)
             };
             let moved: [Texture<'static>; assets::TEXTURE_COUNT] = core::array::from_fn(|index| {
                 let texture = assets::TEXTURES[index];

@@ -4,9 +4,10 @@ use std::fmt::Write as _;
 use std::io;
 use std::path::{Path, PathBuf};
 
+use portalcast_format::memory::{ewram_texel_budget, EWRAM_BYTES};
 use portalcast_format::{PlayerStart, Sector, Thing, Vertex, Wall};
 
-use crate::{Compiled, CompiledMap};
+use crate::{placement, Compiled, CompiledMap};
 
 /// Name of the generated Rust file in `OUT_DIR`.
 pub const ASSETS_RS: &str = "assets.rs";
@@ -26,7 +27,6 @@ const SPRITE_DESCRIPTOR_BYTES: usize = 2 * TARGET_SLICE_BYTES + 4;
 const MAP_DESCRIPTOR_BYTES: usize = 5 * TARGET_SLICE_BYTES + core::mem::size_of::<PlayerStart>();
 
 const IWRAM_BYTES: usize = 32 * 1024;
-const EWRAM_BYTES: usize = 256 * 1024;
 
 /// Appends `data` to `blob`, padded to a multiple of 4 so the next piece stays word-aligned.
 /// Returns its offset.
@@ -38,7 +38,12 @@ fn append(blob: &mut Vec<u8>, data: &[u8]) -> usize {
 }
 
 struct Blobs {
+    /// Every texture's texels: first those the ROM copies to EWRAM, then the rest.
     texels: Vec<u8>,
+    /// Bytes at the start of `texels` that the ROM copies to EWRAM.
+    ewram_len: usize,
+    /// Per texture: whether its texels are in the EWRAM part.
+    in_ewram: Vec<bool>,
     /// Per texture: (offset of columns, offset of rows).
     texture_offsets: Vec<(usize, usize)>,
     sprites: Vec<u8>,
@@ -46,17 +51,39 @@ struct Blobs {
 }
 
 fn blobs(compiled: &Compiled) -> Blobs {
+    let textures = &compiled.textures;
+    let bytes: Vec<usize> = textures.iter().map(placement::blob_bytes).collect();
+    let in_ewram = placement::textures_in_ewram(compiled);
+    // The EWRAM part first (table order), then the rest: the ROM copies one prefix.
     let mut texels = Vec::new();
-    let texture_offsets = compiled
-        .textures
+    let mut texture_offsets = vec![(0, 0); textures.len()];
+    for part in [true, false] {
+        for (index, texture) in textures.iter().enumerate() {
+            if in_ewram[index] == part {
+                texture_offsets[index] = (
+                    append(&mut texels, &texture.columns),
+                    append(&mut texels, &texture.rows),
+                );
+            }
+        }
+        if part {
+            debug_assert_eq!(
+                texels.len(),
+                bytes
+                    .iter()
+                    .zip(&in_ewram)
+                    .filter(|(_, &chosen)| chosen)
+                    .map(|(bytes, _)| bytes)
+                    .sum::<usize>()
+            );
+        }
+    }
+    let ewram_len = bytes
         .iter()
-        .map(|t| {
-            (
-                append(&mut texels, &t.columns),
-                append(&mut texels, &t.rows),
-            )
-        })
-        .collect();
+        .zip(&in_ewram)
+        .filter(|(_, &chosen)| chosen)
+        .map(|(bytes, _)| bytes)
+        .sum();
     let mut sprites = Vec::new();
     let sprite_offsets = compiled
         .sprites
@@ -65,6 +92,8 @@ fn blobs(compiled: &Compiled) -> Blobs {
         .collect();
     Blobs {
         texels,
+        ewram_len,
+        in_ewram,
         texture_offsets,
         sprites,
         sprite_offsets,
@@ -120,12 +149,16 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
         s,
         "/// Bytes of texels of every texture, both layouts, all mip levels.\n\
          pub const TEXEL_BLOB_LEN: usize = {};\n\
+         /// Bytes at the start of [`TEXEL_BLOB`] that the ROM copies to EWRAM: the textures that\n\
+         /// fit the EWRAM the engine leaves them, hottest first; the others stay in the cartridge.\n\
+         pub const TEXEL_EWRAM_LEN: usize = {};\n\
          /// Number of textures in [`TEXTURES`].\n\
          pub const TEXTURE_COUNT: usize = {};\n\
          /// The texels every entry of [`TEXTURES`] is a slice of (the ROM can copy it to faster\n\
          /// memory and re-point the textures).\n\
          pub static TEXEL_BLOB: {FORMAT}::Align4<[u8; TEXEL_BLOB_LEN]> = {FORMAT}::Align4(*include_bytes!({}));",
         blobs.texels.len(),
+        blobs.ewram_len,
         compiled.textures.len(),
         blob(TEXEL_BLOB)
     );
@@ -440,6 +473,34 @@ pub(crate) fn size_report(compiled: &Compiled) -> String {
         compiled.sky.as_ref().map_or(0, |s| s.texels.len()),
     );
     ram("sprite texels".into(), blobs.sprites.len());
+    let budget = ewram_texel_budget(compiled.textures.len());
+    let left: Vec<(&str, usize)> = compiled
+        .textures
+        .iter()
+        .zip(&blobs.in_ewram)
+        .filter(|(_, &chosen)| !chosen)
+        .map(|(t, _)| (t.name.as_str(), placement::blob_bytes(t)))
+        .collect();
+    let _ = writeln!(
+        r,
+        "EWRAM texture copy: {} of {} bytes the engine leaves textures, {}",
+        blobs.ewram_len,
+        budget,
+        if left.is_empty() {
+            "every texture".to_owned()
+        } else {
+            format!(
+                "{} of {}; the others are read from the cartridge, 5 cycles a texel against \
+                 EWRAM's 3 (smaller textures would fit): {}",
+                counted(compiled.textures.len() - left.len(), "texture"),
+                compiled.textures.len(),
+                left.iter()
+                    .map(|(name, bytes)| format!("{name} ({bytes} bytes)"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }
+    );
     if !compiled.left_out.is_empty() {
         let _ = writeln!(
             r,

@@ -22,6 +22,7 @@ mod map_grid;
 mod map_text;
 pub mod numeric_tables;
 mod palette;
+mod placement;
 mod source;
 mod texels;
 
@@ -155,6 +156,19 @@ impl Compiled {
     /// Textures used by some map, sorted by name; walls and sectors index this list.
     pub fn textures(&self) -> &[CompiledTexture] {
         &self.textures
+    }
+
+    /// Per texture (in [`Compiled::textures`]' order): whether the ROM copies its texels to
+    /// EWRAM. The hottest textures (the most map area) that fit the EWRAM the engine leaves
+    /// them (`portalcast_format::memory::ewram_texel_budget`) go; the others are read from the
+    /// cartridge.
+    pub fn textures_in_ewram(&self) -> Vec<bool> {
+        placement::textures_in_ewram(self)
+    }
+
+    /// Bytes of a texture's texels in the ROM's blob (both layouts, each padded to a word).
+    pub fn texture_bytes(texture: &CompiledTexture) -> usize {
+        placement::blob_bytes(texture)
     }
 
     /// The sky, if some sector shows it.

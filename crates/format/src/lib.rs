@@ -15,6 +15,7 @@
 
 pub mod limits;
 mod map;
+pub mod memory;
 mod texture;
 
 pub use map::{MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY};

@@ -58,6 +58,7 @@ pub fn extreme_maps() -> Vec<ExtremeMap> {
         portals(),
         star(),
         thin(),
+        vault(),
     ];
     maps.sort_by_key(|map| map.name);
     maps
@@ -73,6 +74,7 @@ pub fn write_extreme_assets(dir: &Path, assets: &Path) -> TaskResult<Vec<PathBuf
     for folder in ["textures", "sky", "sprites"] {
         copy_pngs(&assets.join(folder), &dir.join(folder))?;
     }
+    write_vault_textures(&dir.join("textures"))?;
     let maps_dir = dir.join("maps");
     std::fs::create_dir_all(&maps_dir).map_err(|error| io_error(&maps_dir, &error))?;
     let mut written = Vec::new();
@@ -615,6 +617,66 @@ fn long() -> ExtremeMap {
     ExtremeMap {
         name: "long",
         extreme: "a 16384-unit corridor seen end to end",
+        text: builder.text(),
+    }
+}
+
+/// Textures of the `vault` map: [`VAULT_TEXTURES`] of them, 256 texels a side, each used by
+/// walls or by floors and ceilings so that its mip chain takes about 85 KB: together more than
+/// the EWRAM the engine leaves textures (`portalcast_format::memory::ewram_texel_budget`).
+pub const VAULT_TEXTURES: usize = 4;
+
+/// The name of the `vault` map's texture `index`.
+fn vault_texture(index: usize) -> &'static str {
+    ["vault0", "vault1", "vault2", "vault3"][index]
+}
+
+/// Writes the `vault` textures as PNGs into `textures`: a pattern that differs in every texel
+/// of each (so that a texel read from the wrong place shows), the same bytes on every run.
+fn write_vault_textures(textures: &Path) -> TaskResult<()> {
+    for index in 0..VAULT_TEXTURES {
+        let image = image::RgbImage::from_fn(256, 256, |x, y| {
+            let seed = (x * 7 + y * 13 + index as u32 * 71) as u8;
+            image::Rgb([seed, (x ^ y) as u8, (x.wrapping_mul(y) >> 3) as u8 ^ seed])
+        });
+        let mut bytes = Vec::new();
+        image
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+            .map_err(|error| TaskError(format!("encoding {}: {error}", vault_texture(index))))?;
+        write_if_changed(
+            &textures.join(format!("{}.png", vault_texture(index))),
+            &bytes,
+        )?;
+    }
+    Ok(())
+}
+
+/// `vault`: four rooms in a row whose walls, floors and ceilings use the [`VAULT_TEXTURES`]
+/// large textures: more texels than fit EWRAM, so the ROM reads the coldest from the cartridge.
+fn vault() -> ExtremeMap {
+    let mut builder = MapBuilder::new(
+        "More texture texels than EWRAM holds: four rooms of 256-texel textures.",
+        (64 * 256, 128 * 256, 0),
+    );
+    for room in 0..4 {
+        let x0 = 256 * room as i32;
+        let (floor, wall) = (vault_texture(room % 2), vault_texture(2 + room % 2));
+        builder.sector(
+            SectorSpec::new(
+                rectangle(x0, 0, x0 + 256, 256, &[]),
+                16 * (room % 2) as i32,
+                Ceiling::Texture(192, floor),
+            )
+            .textures(floor, wall)
+            .light(160),
+        );
+    }
+    ExtremeMap {
+        name: "vault",
+        extreme: "more texture texels than EWRAM holds (the coldest stay in the cartridge)",
         text: builder.text(),
     }
 }

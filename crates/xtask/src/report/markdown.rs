@@ -429,7 +429,7 @@ fn knobs(doc: &mut String, measurements: &Measurements) {
          knobs (`src/render/view.rs`; the Start menu changes each live):\n\n\
          - `lighting`: `off`, `sector` (each sector's light level), `depth` (sector light \
            darkened with distance, through the colormap);\n\
-         - `tex`: texels read from the EWRAM copy (`ewram`) or the cartridge (`rom`);\n\
+         - `tex`: texels read from the EWRAM copy (`ewram`: the textures that fit it, the most used first; all of the shipped ones) or the cartridge (`rom`);\n\
          - `prep`: the thesis' scene preprocessing: `on` plans the portal walk first and draws \
            each sector once over the touching columns of its visits (`src/render/visits.rs`), \
            `off` draws each visit as the walk reaches it;\n\

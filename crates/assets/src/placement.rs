@@ -1,0 +1,116 @@
+//! Which textures the ROM copies to EWRAM: the hottest that fit the EWRAM its engine leaves them
+//! ([`portalcast_format::memory::ewram_texel_budget`]); the others are read from the cartridge
+//! (slower, 5 cycles a byte against 3), so a texture set of any size builds.
+
+use portalcast_format::{Wall, SKY};
+
+use crate::{Compiled, CompiledMap, CompiledTexture};
+
+/// Bytes a texture's texels take in the blob: both layouts, each padded to a word.
+pub(crate) fn blob_bytes(texture: &CompiledTexture) -> usize {
+    texture.columns.len().next_multiple_of(4) + texture.rows.len().next_multiple_of(4)
+}
+
+/// Per texture of `compiled` (in table order): whether the ROM copies it to EWRAM.
+pub(crate) fn textures_in_ewram(compiled: &Compiled) -> Vec<bool> {
+    let textures = &compiled.textures;
+    let bytes: Vec<usize> = textures.iter().map(blob_bytes).collect();
+    let heat = texture_heat(textures.len(), &compiled.maps);
+    in_ewram(
+        &bytes,
+        &heat,
+        portalcast_format::memory::ewram_texel_budget(textures.len()),
+    )
+}
+
+/// How much of the maps each texture covers, in square world units times 256: a wall's length
+/// times the height it shows the texture over (the whole wall, or an upper or lower strip), and
+/// a floor's or ceiling's area. The more of the world a texture covers, the more pixels it is
+/// likely to draw, so the EWRAM copy takes the hottest first.
+pub(crate) fn texture_heat(texture_count: usize, maps: &[CompiledMap]) -> Vec<u64> {
+    let mut heat = vec![0u64; texture_count];
+    let mut add = |texture: u16, amount: i64| {
+        if let Some(slot) = heat.get_mut(usize::from(texture)) {
+            *slot = slot.saturating_add(amount.max(0) as u64);
+        }
+    };
+    for map in maps {
+        for sector in &map.sectors {
+            let first = usize::from(sector.first_wall);
+            let walls: &[Wall] = &map.walls[first..first + usize::from(sector.wall_count)];
+            let length = |wall: &Wall| i64::from(wall.length_fx8);
+            let height = i64::from(sector.ceil_z - sector.floor_z);
+            for wall in walls {
+                match wall.neighbour() {
+                    None => add(wall.texture, length(wall) * height),
+                    Some(next) => {
+                        let next = &map.sectors[usize::from(next)];
+                        let upper = i64::from(sector.ceil_z - next.ceil_z);
+                        let lower = i64::from(next.floor_z - sector.floor_z);
+                        add(wall.upper_texture, length(wall) * upper);
+                        add(wall.lower_texture, length(wall) * lower);
+                    }
+                }
+            }
+            // Twice the area (the shoelace sum over the sector's clockwise outline), times 128.
+            let doubled_area: i64 = walls
+                .iter()
+                .map(|wall| {
+                    let (a, b) = (
+                        map.vertices[usize::from(wall.start)],
+                        map.vertices[usize::from(wall.end)],
+                    );
+                    i64::from(a.x) * i64::from(b.y) - i64::from(b.x) * i64::from(a.y)
+                })
+                .sum::<i64>()
+                .abs();
+            add(sector.floor_texture, doubled_area * 128);
+            if sector.ceil_texture != SKY {
+                add(sector.ceil_texture, doubled_area * 128);
+            }
+        }
+    }
+    heat
+}
+
+/// Which of the textures (`bytes` each, `heat` each) go to EWRAM within `budget` bytes: the
+/// hottest first (ties by index), each that still fits, so a large cold texture never keeps
+/// smaller hot ones out.
+pub(crate) fn in_ewram(bytes: &[usize], heat: &[u64], budget: usize) -> Vec<bool> {
+    let mut order: Vec<usize> = (0..bytes.len()).collect();
+    order.sort_by_key(|&index| (core::cmp::Reverse(heat[index]), index));
+    let mut chosen = vec![false; bytes.len()];
+    let mut used = 0usize;
+    for index in order {
+        if used + bytes[index] <= budget {
+            used += bytes[index];
+            chosen[index] = true;
+        }
+    }
+    chosen
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_hottest_that_fit_go_first() {
+        // 100 bytes of room: the hottest (index 1) fits, the next (index 0, 80 bytes) does not,
+        // the colder small one (index 2) still does.
+        let chosen = in_ewram(&[80, 60, 40, 50], &[50, 90, 10, 0], 100);
+        assert_eq!(chosen, vec![false, true, true, false]);
+        // Everything fits: everything goes.
+        assert_eq!(in_ewram(&[8, 8], &[0, 0], 16), vec![true, true]);
+        // Nothing fits.
+        assert_eq!(in_ewram(&[8], &[5], 4), vec![false]);
+    }
+
+    #[test]
+    fn equal_heat_keeps_the_table_order() {
+        assert_eq!(
+            in_ewram(&[10, 10, 10], &[7, 7, 7], 20),
+            vec![true, true, false]
+        );
+    }
+}
