@@ -330,6 +330,38 @@ pub fn elf_path_in(target_dir: &Path, isa: EngineIsa) -> PathBuf {
 /// the error holds the lines a failed build script printed (cargo shows them indented after
 /// `--- stderr`: for build.rs, the asset compiler's diagnostics), or the last lines of the
 /// output if there are none.
+/// Recognises the warnings that the ROM profile's `-Ctarget-feature=-thumb-mode` (Cargo.toml,
+/// `[profile.rom.package.portalcast]`: the engine compiled as ARM while the target stays Thumb)
+/// makes rustc and LLVM print on every build of the engine, and its build script: expected, the
+/// same each time, and saying nothing about the code. [`run_keeping_build_script_errors`] shows
+/// every other line.
+#[derive(Default)]
+pub struct ArmProfileNoise {
+    /// Inside one of those warnings, whose note lines run to a blank line.
+    in_warning: bool,
+}
+
+impl ArmProfileNoise {
+    /// Whether `line`, the next line of cargo's output, is worth showing.
+    pub fn keep(&mut self, line: &str) -> bool {
+        if self.in_warning {
+            self.in_warning = !line.trim().is_empty();
+            return false;
+        }
+        if line.starts_with("warning: ") && line.ends_with("`-Ctarget-feature`: `thumb-mode`") {
+            self.in_warning = true;
+            return false;
+        }
+        let llvm =
+            line == "'-thumb-mode' is not a recognized feature for this target (ignoring feature)";
+        // Each of the engine's units has that one warning; a count above one has others too.
+        let count = line.starts_with("warning: `portalcast` (")
+            && (line.ends_with(") generated 1 warning")
+                || line.ends_with(") generated 1 warning (1 duplicate)"));
+        !(llvm || count)
+    }
+}
+
 fn run_keeping_build_script_errors(command: &mut Command, what: &str) -> TaskResult<()> {
     use std::io::BufRead;
     let mut child = command
@@ -337,10 +369,13 @@ fn run_keeping_build_script_errors(command: &mut Command, what: &str) -> TaskRes
         .spawn()
         .map_err(|error| TaskError(format!("{what}: could not start {command:?}: {error}")))?;
     let mut lines = Vec::new();
+    let mut noise = ArmProfileNoise::default();
     if let Some(stderr) = child.stderr.take() {
         for line in std::io::BufReader::new(stderr).lines() {
             let line = line.map_err(|error| TaskError(format!("{what}: {error}")))?;
-            eprintln!("{line}");
+            if noise.keep(&line) {
+                eprintln!("{line}");
+            }
             lines.push(line);
         }
     }
