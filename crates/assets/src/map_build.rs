@@ -193,6 +193,9 @@ pub(crate) fn build(
     }
     let outlines: Vec<Outline<'_>> = outlines.into_iter().flatten().collect();
     check_portals(source, &outlines, &mut errors);
+    if errors.is_empty() {
+        check_overlaps(source, &outlines, &mut errors);
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -681,6 +684,67 @@ fn check_portals(source: &SourceMap, outlines: &[Outline<'_>], errors: &mut Vec<
     }
 }
 
+/// Refuses two sectors whose insides overlap (issue 16): sectors may touch along walls and at
+/// corners, but one piece of ground in two sectors would be drawn by both and the player could
+/// stand in either. Exact: two convex outlines have disjoint insides if and only if the line
+/// through some wall of one has the whole other outline on its outer side or on it (the
+/// separating axis theorem; every outline is convex by now). A box test skips most pairs.
+/// Sectors on different layers, when room over room lands, will be allowed to.
+fn check_overlaps(source: &SourceMap, outlines: &[Outline<'_>], errors: &mut Vec<Located>) {
+    let corners: Vec<Vec<Point>> = outlines
+        .iter()
+        .map(|outline| {
+            outline
+                .walls
+                .iter()
+                .map(|wall| point(source, wall.start))
+                .collect()
+        })
+        .collect();
+    let boxes: Vec<(Point, Point)> = corners
+        .iter()
+        .map(|points| {
+            let (mut low, mut high) = (points[0], points[0]);
+            for &(x, y) in points {
+                low = (low.0.min(x), low.1.min(y));
+                high = (high.0.max(x), high.1.max(y));
+            }
+            (low, high)
+        })
+        .collect();
+    // Every wall of `a` has the inside on its right (cross > 0): `b` lies wholly outside the
+    // line through one of them, or on it.
+    let separated_by_a_wall_of = |a: &[Point], b: &[Point]| {
+        (0..a.len()).any(|index| {
+            let (start, end) = (a[index], a[(index + 1) % a.len()]);
+            b.iter().all(|&p| cross(start, end, p) <= 0)
+        })
+    };
+    for later in 0..outlines.len() {
+        for earlier in 0..later {
+            let ((low_a, high_a), (low_b, high_b)) = (boxes[earlier], boxes[later]);
+            let boxes_overlap = low_a.0 < high_b.0
+                && low_b.0 < high_a.0
+                && low_a.1 < high_b.1
+                && low_b.1 < high_a.1;
+            if !boxes_overlap
+                || separated_by_a_wall_of(&corners[earlier], &corners[later])
+                || separated_by_a_wall_of(&corners[later], &corners[earlier])
+            {
+                continue;
+            }
+            let (here, there) = (&source.sectors[later], &source.sectors[earlier]);
+            errors.push((
+                here.loc,
+                format!(
+                    "{} overlaps {} (line {}): some ground lies inside both; sectors may only meet along walls and at corners, so move or split their outlines",
+                    here.label, there.label, there.loc.line
+                ),
+            ));
+        }
+    }
+}
+
 /// Formats a 24.8 value for messages.
 fn fx8(value: i64) -> String {
     let text = format!("{:.4}", value as f64 / 256.0);
@@ -990,6 +1054,8 @@ fn locate(
             place.loc,
             format!("{what} at {at} is in no sector; move it inside one"),
         )),
+        // Overlapping sectors are refused before a place is located (`check_overlaps`); kept
+        // so that a place is never silently given to one of two.
         ([a, b, ..], []) => errors.push((
             place.loc,
             format!(
