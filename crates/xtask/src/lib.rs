@@ -10,6 +10,7 @@ pub mod bench_logging;
 pub mod bench_math;
 pub mod bench_tick;
 pub mod extreme_maps;
+mod map_builder;
 pub mod overlay;
 
 use std::fmt;

@@ -1,0 +1,203 @@
+//! Writes `.map` text from convex sector outlines: an edge two sectors share (in opposite
+//! directions) becomes a portal pair, every other edge a solid wall, so a generated map cannot
+//! have an unpaired portal. Used by the map generators (`extreme_maps`, `generated_maps`).
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+/// A map point: integer x and y, y drawn downward.
+pub(crate) type Point = (i32, i32);
+
+/// A sector's ceiling: a texture at a height, or the sky at a height.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Ceiling {
+    Texture(i32, &'static str),
+    Sky(i32),
+}
+
+/// One convex sector: its outline clockwise on the top-down view with y down (positive
+/// shoelace sum), heights, textures and light. `wall_keys` adds `key=value` words to the wall
+/// from outline point `i` to point `i + 1`.
+#[derive(Clone, Debug)]
+pub(crate) struct SectorSpec {
+    pub outline: Vec<Point>,
+    pub floor: i32,
+    pub ceiling: Ceiling,
+    pub floor_texture: &'static str,
+    pub wall_texture: &'static str,
+    pub light: u8,
+    pub wall_keys: Vec<(usize, String)>,
+}
+
+impl SectorSpec {
+    pub(crate) fn new(outline: Vec<Point>, floor: i32, ceiling: Ceiling) -> SectorSpec {
+        SectorSpec {
+            outline,
+            floor,
+            ceiling,
+            floor_texture: "tiles",
+            wall_texture: "brick",
+            light: 160,
+            wall_keys: Vec::new(),
+        }
+    }
+
+    pub(crate) fn textures(mut self, floor: &'static str, wall: &'static str) -> SectorSpec {
+        self.floor_texture = floor;
+        self.wall_texture = wall;
+        self
+    }
+
+    pub(crate) fn light(mut self, light: u8) -> SectorSpec {
+        self.light = light;
+        self
+    }
+}
+
+/// A rectangle `[x0, x1] × [y0, y1]` as a clockwise outline (y down), with extra points on its
+/// edges (each must lie on one; they split the edges for portals).
+pub(crate) fn rectangle(x0: i32, y0: i32, x1: i32, y1: i32, splits: &[Point]) -> Vec<Point> {
+    let mut outline = Vec::new();
+    let corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)];
+    for (index, &from) in corners.iter().enumerate() {
+        let to = corners[(index + 1) % 4];
+        outline.push(from);
+        let mut between: Vec<Point> = splits
+            .iter()
+            .copied()
+            .filter(|&p| on_open_segment(from, to, p))
+            .collect();
+        between
+            .sort_by_key(|&(x, y)| (i64::from(x - from.0)).abs() + (i64::from(y - from.1)).abs());
+        between.dedup();
+        outline.extend(between);
+    }
+    outline
+}
+
+pub(crate) fn on_open_segment(a: Point, b: Point, p: Point) -> bool {
+    let cross =
+        i64::from(b.0 - a.0) * i64::from(p.1 - a.1) - i64::from(b.1 - a.1) * i64::from(p.0 - a.0);
+    let dot =
+        i64::from(p.0 - a.0) * i64::from(b.0 - a.0) + i64::from(p.1 - a.1) * i64::from(b.1 - a.1);
+    let length = i64::from(b.0 - a.0).pow(2) + i64::from(b.1 - a.1).pow(2);
+    cross == 0 && dot > 0 && dot < length
+}
+
+/// Twice the signed area (the shoelace sum): positive for the stored, clockwise-with-y-down
+/// orientation.
+pub(crate) fn shoelace(outline: &[Point]) -> i64 {
+    (0..outline.len())
+        .map(|i| {
+            let (a, b) = (outline[i], outline[(i + 1) % outline.len()]);
+            i64::from(a.0) * i64::from(b.1) - i64::from(b.0) * i64::from(a.1)
+        })
+        .sum()
+}
+
+/// Builds a map's text from sector outlines: shared edges become portals (with both strip
+/// textures, which the compiler accepts where the heights hide them), the rest solid walls.
+pub(crate) struct MapBuilder {
+    comment: String,
+    /// The generator's file, named in the map's header.
+    generator: &'static str,
+    sectors: Vec<SectorSpec>,
+    player: (i32, i32, u32),
+}
+
+impl MapBuilder {
+    /// `player` is x and y in 1/256 units and the angle in degrees.
+    pub(crate) fn new(comment: &str, player: (i32, i32, u32)) -> MapBuilder {
+        MapBuilder::by("crates/xtask/src/extreme_maps.rs", comment, player)
+    }
+
+    /// [`MapBuilder::new`] for a map that `generator` (a source file) writes.
+    pub(crate) fn by(generator: &'static str, comment: &str, player: (i32, i32, u32)) -> MapBuilder {
+        MapBuilder {
+            generator,
+            comment: comment.to_string(),
+            sectors: Vec::new(),
+            player,
+        }
+    }
+
+    pub(crate) fn sector(&mut self, spec: SectorSpec) -> usize {
+        assert!(
+            shoelace(&spec.outline) > 0,
+            "sector {} is not clockwise (y down)",
+            self.sectors.len()
+        );
+        self.sectors.push(spec);
+        self.sectors.len() - 1
+    }
+
+    pub(crate) fn text(&self) -> String {
+        let mut text = String::new();
+        for line in self.comment.lines() {
+            writeln!(text, "# {line}").expect("writing to a String");
+        }
+        writeln!(
+            text,
+            "# Generated by {}; do not edit by hand.",
+            self.generator
+        )
+        .expect("writing to a String");
+        // Vertices in order of first use, named by index.
+        let mut names: HashMap<Point, usize> = HashMap::new();
+        let mut order = Vec::new();
+        let mut edges: HashMap<(Point, Point), usize> = HashMap::new();
+        for (index, sector) in self.sectors.iter().enumerate() {
+            let count = sector.outline.len();
+            for i in 0..count {
+                let point = sector.outline[i];
+                names.entry(point).or_insert_with(|| {
+                    order.push(point);
+                    order.len() - 1
+                });
+                let previous = edges.insert((point, sector.outline[(i + 1) % count]), index);
+                assert!(previous.is_none(), "edge {point:?} used twice one way");
+            }
+        }
+        for (index, (x, y)) in order.iter().enumerate() {
+            writeln!(text, "vertex v{index} {x} {y}").expect("writing to a String");
+        }
+        for (index, sector) in self.sectors.iter().enumerate() {
+            let ceiling = match sector.ceiling {
+                Ceiling::Texture(z, texture) => format!("ceil={z} ceil_tex={texture}"),
+                Ceiling::Sky(z) => format!("ceil={z} ceil_tex=sky"),
+            };
+            writeln!(
+                text,
+                "sector s{index} floor={} {ceiling} floor_tex={} light={}",
+                sector.floor, sector.floor_texture, sector.light
+            )
+            .expect("writing to a String");
+            let count = sector.outline.len();
+            for i in 0..count {
+                let (a, b) = (sector.outline[i], sector.outline[(i + 1) % count]);
+                let kind = match edges.get(&(b, a)) {
+                    Some(&other) => format!("portal=s{other} upper=trim lower=step"),
+                    None => format!("tex={}", sector.wall_texture),
+                };
+                let extra: String = sector
+                    .wall_keys
+                    .iter()
+                    .filter(|(wall, _)| *wall == i)
+                    .map(|(_, keys)| format!(" {keys}"))
+                    .collect();
+                writeln!(text, "  wall v{} v{} {kind}{extra}", names[&a], names[&b])
+                    .expect("writing to a String");
+            }
+        }
+        let (x, y, angle) = self.player;
+        writeln!(
+            text,
+            "player {} {} angle={angle}",
+            f64::from(x) / 256.0,
+            f64::from(y) / 256.0
+        )
+        .expect("writing to a String");
+        text
+    }
+}
+
