@@ -341,6 +341,14 @@ const KNOWN_FAULTS: &[(&str, &str)] = &[
         "star sampled -213486 -29275 8192 6765 0 66 120x80",
         "0.167 % surfaces differ, 0 holes, missed sectors [89, 92, 101], 0 pixels not written once",
     ),
+    (
+        "vault 1/256 from a wall 65535 32768 8192 0 0 0 120x80",
+        "0.833 % surfaces differ, 0 holes, missed sectors [], 0 pixels not written once",
+    ),
+    (
+        "vault 1/256 from a wall 196607 32768 8192 0 0 2 120x80",
+        "0.625 % surfaces differ, 0 holes, missed sectors [], 0 pixels not written once",
+    ),
 ];
 
 /// A pose's key as [`KNOWN_FAULTS`] lists it.

@@ -423,8 +423,23 @@ impl Fx24_8 {
     #[inline]
     #[track_caller]
     pub const fn dot_fx16_16(a: Fx24_8, fa: Fx16_16, b: Fx24_8, fb: Fx16_16) -> Fx24_8 {
-        let sum = a.0 as i64 * fa.0 as i64 + b.0 as i64 * fb.0 as i64;
-        Fx24_8(narrow(round_shift_i64(sum, 16)))
+        Fx24_8::from_product_fx16_16(Fx24_8::dot_fx16_16_unrounded(a, fa, b, fb))
+    }
+
+    /// [`dot_fx16_16`](Self::dot_fx16_16) before its rounding: `a·fa + b·fb` exactly, in
+    /// 2^-24 units (a 40.24 value in an i64; within the declared world it stays under 2^40).
+    #[inline]
+    pub const fn dot_fx16_16_unrounded(a: Fx24_8, fa: Fx16_16, b: Fx24_8, fb: Fx16_16) -> i64 {
+        a.0 as i64 * fa.0 as i64 + b.0 as i64 * fb.0 as i64
+    }
+
+    /// A product of 24.8 and 16.16 values in 2^-24 units (as
+    /// [`dot_fx16_16_unrounded`](Self::dot_fx16_16_unrounded) gives it) rounded to 24.8, to
+    /// nearest as [`dot_fx16_16`](Self::dot_fx16_16) rounds.
+    #[inline]
+    #[track_caller]
+    pub const fn from_product_fx16_16(product: i64) -> Fx24_8 {
+        Fx24_8(narrow(round_shift_i64(product, 16)))
     }
 
     /// `self · rhs` with a 2.30 factor, result in 16.16 (8 more fractional bits than

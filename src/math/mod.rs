@@ -78,6 +78,6 @@ pub use geometry::{
     SegmentContact, Side, WorldPoint,
 };
 pub use projection::{
-    clip_to_near_plane, ClippedSegment, EyeFrame, EyePoint, Viewport, NEAR_DEPTH,
+    clip_to_near_plane, ClippedSegment, ExactEyePoint, EyeFrame, EyePoint, Viewport, NEAR_DEPTH,
 };
 pub use recip::{recip_pow2, recip_pow2_exact, recip_small, RECIP_SMALL_MAX};

@@ -69,6 +69,36 @@ impl EyePoint {
     }
 }
 
+/// A point in eye space exactly where the view's 16.16 sine and cosine put it, before the
+/// rounding to 24.8 of [`EyePoint`]: each coordinate is a sum of products of a 24.8 offset and a
+/// 16.16 factor, in 2^-24 units. Which wall owns a column is decided on these
+/// ([`Viewport::side_of_exact_column_ray`]): the column's ray is then the one the view's sine
+/// and cosine define, the ray the oracle casts too, so no rounding of the vertex can give a
+/// column to another wall (issue 16).
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct ExactEyePoint {
+    x: i64,
+    z: i64,
+}
+
+impl ExactEyePoint {
+    /// The point rounded to 24.8: [`EyeFrame::to_eye`]'s result.
+    #[inline]
+    #[track_caller]
+    pub const fn rounded(self) -> EyePoint {
+        EyePoint {
+            x: Fx24_8::from_product_fx16_16(self.x),
+            z: Fx24_8::from_product_fx16_16(self.z),
+        }
+    }
+
+    /// Whether the point is in front of the eye (`z' > 0`, exactly).
+    #[inline]
+    pub const fn in_front(self) -> bool {
+        self.z > 0
+    }
+}
+
 /// The eye's position and orientation, with the sine and cosine looked up once.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub struct EyeFrame {
@@ -110,11 +140,18 @@ impl EyeFrame {
     #[inline]
     #[track_caller]
     pub fn to_eye(&self, p: WorldPoint) -> EyePoint {
+        self.to_eye_exact(p).rounded()
+    }
+
+    /// [`to_eye`](Self::to_eye) before its rounding: exact.
+    #[inline]
+    #[track_caller]
+    pub fn to_eye_exact(&self, p: WorldPoint) -> ExactEyePoint {
         let dx = p.x - self.position.x;
         let dy = p.y - self.position.y;
-        EyePoint {
-            x: Fx24_8::dot_fx16_16(dx, -self.sin, dy, self.cos),
-            z: Fx24_8::dot_fx16_16(dx, self.cos, dy, self.sin),
+        ExactEyePoint {
+            x: Fx24_8::dot_fx16_16_unrounded(dx, -self.sin, dy, self.cos),
+            z: Fx24_8::dot_fx16_16_unrounded(dx, self.cos, dy, self.sin),
         }
     }
 
@@ -188,6 +225,46 @@ impl Viewport {
         } else {
             Side::On
         }
+    }
+
+    /// [`side_of_column_ray`](Self::side_of_column_ray) of the exact point `q`: compares
+    /// `2·d·x'` with `(2(c − cx) + 1)·z'` in i64 on the unrounded coordinates (each product stays
+    /// under 2^48 within the declared limits).
+    #[inline]
+    #[track_caller]
+    pub const fn side_of_exact_column_ray(&self, q: ExactEyePoint, column: i32) -> Side {
+        let ray_x = (2 * (column - self.centre_x()) + 1) as i64 * q.z;
+        let point_x = 2 * self.focal_x as i64 * q.x;
+        if point_x < ray_x {
+            Side::Left
+        } else if point_x > ray_x {
+            Side::Right
+        } else {
+            Side::On
+        }
+    }
+
+    /// [`first_column_at_or_after`](Self::first_column_at_or_after) of the exact point `q`
+    /// (in front of the eye): the rounded point's column, moved by the exact test. Rounding
+    /// moves a projection by far less than a column, so that is a step at most, usually none.
+    #[inline]
+    #[track_caller]
+    pub const fn first_column_at_or_after_exact(&self, q: ExactEyePoint) -> i32 {
+        debug_assert!(q.in_front(), "projection needs a point in front of the eye");
+        let rounded = q.rounded();
+        let mut column = if rounded.z.to_bits() > 0 {
+            self.first_column_at_or_after(rounded)
+        } else {
+            self.centre_x()
+        };
+        while column > 0 && !matches!(self.side_of_exact_column_ray(q, column - 1), Side::Right) {
+            column -= 1;
+        }
+        while column < self.width && matches!(self.side_of_exact_column_ray(q, column), Side::Right)
+        {
+            column += 1;
+        }
+        column
     }
 
     /// The first column whose centre is at or right of the projection of `p`: `ceil(x − ½)`

@@ -292,13 +292,15 @@ impl VertexCache {
                 return (cached.point, cached.first_column);
             }
         }
-        let point = scene.view.eye.to_eye(vertex(scene.map, index));
+        let exact = scene.view.eye.to_eye_exact(vertex(scene.map, index));
+        let point = exact.rounded();
         let viewport = &scene.view.viewport;
         // In front of the eye the exact split of any range is the vertex's first column,
-        // clamped into it (`VertexSplit::from_first_column`): found once a frame by the exact
-        // bisection over the whole width instead of over each visit's columns.
+        // clamped into it (`VertexSplit::from_first_column`): found once a frame over the
+        // whole width instead of over each visit's columns, on the unrounded point, so that the
+        // column's ray decides, not the rounding (`ExactEyePoint`).
         let first_column = if point.z.to_bits() > 0 {
-            viewport.first_column_at_or_after(point)
+            viewport.first_column_at_or_after_exact(exact)
         } else {
             NO_COLUMN
         };
@@ -1201,7 +1203,9 @@ impl Ownership {
     fn vertex(&self, scene: &Scene, vertices: &VertexCache, index: u16) -> (EyePoint, VertexSplit) {
         let (point, first_column) = vertices.get(scene, index);
         let split = if first_column == NO_COLUMN {
-            VertexSplit::new(&scene.view.viewport, point, self.first, self.end)
+            // At or behind the eye (rare): the exact point again, split by bisection.
+            let exact = scene.view.eye.to_eye_exact(vertex(scene.map, index));
+            VertexSplit::new_exact(&scene.view.viewport, exact, self.first, self.end)
         } else {
             VertexSplit::from_first_column(first_column, self.first, self.end)
         };

@@ -15,7 +15,7 @@
 //! (`NEAR_DEPTH`), so an eye closer than that to a wall sees it as at the near plane.
 
 use super::ratio::{ratio, ratio_shifted, Divisor};
-use crate::math::{EyePoint, Fx24_8, Fx2_30, Side, Viewport, NEAR_DEPTH};
+use crate::math::{ExactEyePoint, EyePoint, Fx24_8, Fx2_30, Side, Viewport, NEAR_DEPTH};
 use crate::raster::wall_run::WallSteps;
 
 /// The columns `[start, end)` where a monotone predicate over `0..width` holds.
@@ -63,12 +63,28 @@ pub struct VertexSplit {
 impl VertexSplit {
     /// The split of the columns `[first, end)` (`first < end`) by the eye-space point `p`.
     pub fn new(viewport: &Viewport, p: EyePoint, first: i32, end: i32) -> VertexSplit {
+        VertexSplit::by_side(first, end, |c| {
+            viewport.side_of_column_ray(p, c) == Side::Right
+        })
+    }
+
+    /// [`VertexSplit::new`] of the exact point `q`: what the renderer's column ownership uses
+    /// ([`ExactEyePoint`]).
+    pub fn new_exact(viewport: &Viewport, q: ExactEyePoint, first: i32, end: i32) -> VertexSplit {
+        VertexSplit::by_side(first, end, |c| {
+            viewport.side_of_exact_column_ray(q, c) == Side::Right
+        })
+    }
+
+    /// The split of `[first, end)` by a point right of the rays of the columns where `right`
+    /// says so (a prefix or a suffix of them).
+    fn by_side(first: i32, end: i32, right: impl Fn(i32) -> bool) -> VertexSplit {
         debug_assert!(first < end, "an empty column range");
-        let right_first = viewport.side_of_column_ray(p, first) == Side::Right;
+        let right_first = right(first);
         let (mut low, mut high) = (first + 1, end);
         while low < high {
             let middle = (low + high) / 2;
-            if (viewport.side_of_column_ray(p, middle) == Side::Right) == right_first {
+            if right(middle) == right_first {
                 low = middle + 1;
             } else {
                 high = middle;

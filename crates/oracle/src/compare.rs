@@ -148,6 +148,38 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
     result
 }
 
+/// How far, in pixels, the two extra oracle renders of [`compare_with_row_tolerance`] move every
+/// row's ray up and down: four times the 24.8 rounding step of the engine's rows. An edge the
+/// oracle puts closer than this to a row centre is below the engine's row precision: which of
+/// the two surfaces the row shows there is a rounding, not an error.
+pub const ROW_TOLERANCE_PX: f64 = 1.0 / 128.0;
+
+/// [`compare`] with the oracle's `frame`, except that a sector counts as missed only if the
+/// oracle shows it in `frame` and in both frames rendered with the rows moved by
+/// ±[`ROW_TOLERANCE_PX`] (`moved`): a sliver of a sector a pixel high whose only row centre lies
+/// within that distance of its edge (a far floor between two steps) is not a missed sector.
+/// The other measures are `frame`'s, unchanged.
+pub fn compare_with_row_tolerance(
+    engine_surfaces: &[Surface],
+    engine_indices: &[u8],
+    frame: &Frame,
+    moved: [&Frame; 2],
+) -> Comparison {
+    let mut result = compare(engine_surfaces, engine_indices, frame);
+    let shown = |frame: &Frame| -> BTreeSet<u16> {
+        frame
+            .surfaces
+            .iter()
+            .filter_map(|&surface| frame.sector_of(surface))
+            .collect()
+    };
+    let (up, down) = (shown(moved[0]), shown(moved[1]));
+    result
+        .missed_sectors
+        .retain(|sector| up.contains(sector) && down.contains(sector));
+    result
+}
+
 /// The row span (topmost, bottommost) of each wall surface in column `x`.
 fn wall_rows(
     surfaces: &[Surface],

@@ -10,7 +10,9 @@
 //! # The ray of a pixel
 //!
 //! Conventions of `docs/ARCHITECTURE.md`: forward `f = (cos a, sin a)`, right
-//! `r = (−sin a, cos a)`. Column `c` is sampled at `c + ½`: slope
+//! `r = (−sin a, cos a)`, with the engine's sine and cosine of the angle ([`engine_direction`]:
+//! its 16.16 values, normalised), so that a column's ray is the engine's. Column `c` is sampled at
+//! `c + ½` (moved right by [`COLUMN_TIE_NUDGE`]): slope
 //! `m = (c + ½ − width/2) / focal_x`, 2D ray `P + t·D` with `D = f + m·r`, so `t` is the
 //! eye-space depth `z'`. Row `y` is sampled at `y + ½`: `k = (y + ½ − horizon_y) / focal_y`, and
 //! the 3D ray is at height `h(t) = eye_z − k·t`.
@@ -49,7 +51,10 @@ mod geometry;
 mod poses;
 mod render;
 
-pub use compare::{compare, mismatch_regions, surface_colour, write_diff_png, Comparison};
+pub use compare::{
+    compare, compare_with_row_tolerance, mismatch_regions, surface_colour, write_diff_png,
+    Comparison, ROW_TOLERANCE_PX,
+};
 pub use engine::{
     bench_run_accuracy, compare_with_engine, EngineComparison, RecordingCanvas, RunAccuracy,
 };
@@ -57,7 +62,26 @@ pub use geometry::find_sector;
 pub use portalcast::render::light::Lighting;
 pub use portalcast::render::surface::Surface;
 pub use poses::{sample_poses, Rng};
-pub use render::{mip_level, render, TIE_NUDGE};
+pub use render::{engine_direction, mip_level, render, COLUMN_TIE_NUDGE, TIE_NUDGE};
+
+/// The oracle's frame of `camera`, then the two frames with every row's ray moved up and down by
+/// [`ROW_TOLERANCE_PX`] (the horizon moved the other way), for [`compare_with_row_tolerance`].
+pub fn render_with_row_tolerance(
+    map: &portalcast_format::MapTables,
+    assets: &Assets,
+    camera: &Camera,
+    view: &View,
+) -> (Frame, [Frame; 2]) {
+    let moved = |offset: f64| {
+        let mut moved = *view;
+        moved.horizon_y += offset;
+        render(map, assets, camera, &moved)
+    };
+    (
+        render(map, assets, camera, view),
+        [moved(ROW_TOLERANCE_PX), moved(-ROW_TOLERANCE_PX)],
+    )
+}
 
 use portalcast::math::Viewport;
 use portalcast_format::{Colormap, Sky, Texture};

@@ -49,6 +49,26 @@ enum Hit {
 /// pixel whose centre is not on an edge is unaffected.
 pub const TIE_NUDGE: f64 = 1.0 / 1048576.0;
 
+/// [`TIE_NUDGE`] for columns: 2^-42 of a pixel. The engine decides which wall owns a column
+/// exactly on the column's ray ([`portalcast::math::ExactEyePoint`]), so a vertex that is not
+/// exactly on a ray is at least 2^-32 units off it (its eye coordinates are whole 2^-24 units,
+/// the ray's slope a ratio of columns to at most 240): the nudge must move the ray less than
+/// that at the farthest depth (2^14.5 units) and still more than f64's rounding, so that the
+/// oracle's columns break exact ties and only exact ties the engine's way.
+pub const COLUMN_TIE_NUDGE: f64 = 1.0 / 4_398_046_511_104.0;
+
+/// The view direction `(sin, cos)` the engine uses for `camera`: its 16.16 sine and cosine of
+/// the binary angle nearest the camera's angle, as a unit vector. The engine's columns are rays
+/// of that direction; the oracle casts the same ones (issue 16: the exact sine and cosine turned
+/// the view by up to 1e-5 radians against the engine's, and gave columns whose rays pass within
+/// a thousandth of a pixel of a vertex to other walls).
+pub fn engine_direction(camera: &Camera) -> (f64, f64) {
+    let (sin, cos) = portalcast::math::Angle::from_bits(camera.angle_bits()).sin_cos();
+    let (sin, cos) = (f64::from(sin.to_bits()), f64::from(cos.to_bits()));
+    let length = sin.hypot(cos);
+    (sin / length, cos / length)
+}
+
 /// Renders `map` from `camera` with one exact ray per pixel.
 ///
 /// The march and the surfaces are those of the crate documentation; the texels follow
@@ -92,11 +112,11 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
         return frame;
     };
     let eye = Vec2::new(camera.x, camera.y);
-    let (sin, cos) = camera.angle.sin_cos();
+    let (sin, cos) = engine_direction(camera);
     let max_steps = map.sectors.len() + 8;
     let mut path = Vec::with_capacity(max_steps);
     for column in 0..width {
-        let m = (column as f64 + 0.5 + TIE_NUDGE - width as f64 / 2.0) / view.focal_x;
+        let m = (column as f64 - width as f64 / 2.0 + 0.5 + COLUMN_TIE_NUDGE) / view.focal_x;
         let d = Vec2::new(cos - m * sin, sin + m * cos);
         trace_column(map, start, eye, d, max_steps, &mut path);
         let sky_column = sky_column(assets, d);

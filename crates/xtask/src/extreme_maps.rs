@@ -82,7 +82,7 @@ pub fn write_extreme_assets(dir: &Path, assets: &Path) -> TaskResult<Vec<PathBuf
     Ok(written)
 }
 
-fn io_error(path: &Path, error: &std::io::Error) -> TaskError {
+pub(crate) fn io_error(path: &Path, error: &std::io::Error) -> TaskError {
     TaskError(format!("{}: {error}", path.display()))
 }
 
@@ -94,7 +94,7 @@ pub fn write_if_changed(path: &Path, bytes: &[u8]) -> TaskResult<()> {
     std::fs::write(path, bytes).map_err(|error| io_error(path, &error))
 }
 
-fn copy_pngs(from: &Path, to: &Path) -> TaskResult<()> {
+pub(crate) fn copy_pngs(from: &Path, to: &Path) -> TaskResult<()> {
     std::fs::create_dir_all(to).map_err(|error| io_error(to, &error))?;
     let entries = std::fs::read_dir(from).map_err(|error| io_error(from, &error))?;
     for entry in entries {

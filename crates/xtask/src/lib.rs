@@ -10,6 +10,7 @@ pub mod bench_logging;
 pub mod bench_math;
 pub mod bench_tick;
 pub mod extreme_maps;
+pub mod generated_maps;
 mod map_builder;
 pub mod overlay;
 
@@ -334,7 +335,7 @@ pub fn elf_path_in(target_dir: &Path, isa: EngineIsa) -> PathBuf {
 /// Recognises the warnings that the ROM profile's `-Ctarget-feature=-thumb-mode` (Cargo.toml,
 /// `[profile.rom.package.portalcast]`: the engine compiled as ARM while the target stays Thumb)
 /// makes rustc and LLVM print on every build of the engine, and its build script: expected, the
-/// same each time, and saying nothing about the code. [`run_keeping_build_script_errors`] shows
+/// same each time, and saying nothing about the code. The ROM builds (`cargo rom`) show
 /// every other line.
 #[derive(Default)]
 pub struct ArmProfileNoise {

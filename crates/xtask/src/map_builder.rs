@@ -112,7 +112,11 @@ impl MapBuilder {
     }
 
     /// [`MapBuilder::new`] for a map that `generator` (a source file) writes.
-    pub(crate) fn by(generator: &'static str, comment: &str, player: (i32, i32, u32)) -> MapBuilder {
+    pub(crate) fn by(
+        generator: &'static str,
+        comment: &str,
+        player: (i32, i32, u32),
+    ) -> MapBuilder {
         MapBuilder {
             generator,
             comment: comment.to_string(),
@@ -200,4 +204,3 @@ impl MapBuilder {
         text
     }
 }
-
