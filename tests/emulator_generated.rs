@@ -1,11 +1,12 @@
 //! The generated maps of issue 16 (`portalcast_xtask::generated_maps`: cave cells, a 48×48
 //! maze, a castle of slanted corridors with long sightlines) built into a ROM from a directory
-//! outside the repository (what `PORTALCAST_ASSETS=/dir cargo rom` does) and flown through by
+//! of their own (what `PORTALCAST_ASSETS=/dir cargo rom` does) and flown through by
 //! the ROM's bench scene (R held at power-on): every map at every resolution. No frame may panic,
 //! and no frame may take longer than the soak's bound, [`FRAME_CYCLES_BOUND`] (16 display
 //! frames): the stall these maps once showed (4.5 million cycles).
 //!
-//! The ROM is built once per test process in its own target directory (`target/rom-generated`).
+//! The ROM is built once per test process in its own target directory (`target/rom-generated`,
+//! from `target/generated-maps`).
 
 mod common;
 
@@ -24,30 +25,12 @@ const MAX_FRAMES: u32 = 60_000;
 /// Frames run between looks at the log.
 const CHUNK: u32 = 300;
 
-/// The generated maps' asset directory, outside the repository, written once per process.
-fn generated_dir() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let dir = std::env::temp_dir().join("portalcast-generated-assets");
-        let repo = portalcast_xtask::workspace_root();
-        generated_maps::write_generated_assets(&dir, &repo.join("assets"))
-            .unwrap_or_else(|error| panic!("{error}"));
-        dir
-    })
-}
-
-/// The ROM built from [`generated_dir`], once per test process.
+/// The ROM of the generated maps, built once per test process (in `target/rom-generated`,
+/// which `cargo bench-report` builds too).
 fn generated_rom() -> &'static Path {
     static ROM: OnceLock<PathBuf> = OnceLock::new();
     ROM.get_or_init(|| {
-        let target = portalcast_xtask::workspace_root()
-            .join("target")
-            .join("rom-generated");
-        std::fs::create_dir_all(&target).expect("creating target/rom-generated");
-        let gba = target.join("generated.gba");
-        portalcast_xtask::build_rom_with_assets(generated_dir(), &target, &gba)
-            .unwrap_or_else(|error| panic!("{error}"));
-        gba
+        generated_maps::build_generated_rom().unwrap_or_else(|error| panic!("{error}"))
     })
 }
 

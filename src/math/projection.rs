@@ -245,18 +245,53 @@ impl Viewport {
     }
 
     /// [`first_column_at_or_after`](Self::first_column_at_or_after) of the exact point `q`
-    /// (in front of the eye): the rounded point's column, moved by the exact test. Rounding
-    /// moves a projection by far less than a column, so that is a step at most, usually none.
+    /// (in front of the eye): the rounded point's column, checked by the exact test only where
+    /// the rounding could matter, and moved by it (a step at most, in practice).
     #[inline]
     #[track_caller]
     pub const fn first_column_at_or_after_exact(&self, q: ExactEyePoint) -> i32 {
         debug_assert!(q.in_front(), "projection needs a point in front of the eye");
         let rounded = q.rounded();
-        let mut column = if rounded.z.to_bits() > 0 {
-            self.first_column_at_or_after(rounded)
+        if rounded.z.to_bits() <= 0 {
+            return self.first_column_from_exact(q, self.centre_x());
+        }
+        let column = self.first_column_at_or_after(rounded);
+        // Rounding moves each coordinate by at most half a 24.8 step, so the compared
+        // quantities of `side_of_column_ray` by at most `d + |2(c − cx) + 1| / 2`: with both
+        // neighbouring rays farther than that from the rounded point, the exact answer is the
+        // same and the 64-bit tests are skipped.
+        let clear_left = column == 0 || self.rounding_keeps_side(rounded, column - 1);
+        let clear_right = column == self.width || self.rounding_keeps_side(rounded, column);
+        if clear_left && clear_right {
+            column
         } else {
-            self.centre_x()
-        };
+            self.first_column_from_exact(q, column)
+        }
+    }
+
+    /// Whether the side of the rounded point `p` (an [`ExactEyePoint::rounded`]) relative to
+    /// column `column`'s ray is the exact point's too: true where the ray is farther from `p`
+    /// than the rounding can move it.
+    #[inline]
+    #[track_caller]
+    pub const fn rounding_keeps_side(&self, p: EyePoint, column: i32) -> bool {
+        let margin = self.ray_margin(p, column);
+        let tolerance = self.focal_x + self.width + 2;
+        margin > tolerance || margin < -tolerance
+    }
+
+    /// `2·d·x' − (2(c − cx) + 1)·z'`: positive where `p` is right of column `c`'s ray.
+    #[inline]
+    #[track_caller]
+    const fn ray_margin(&self, p: EyePoint, column: i32) -> i32 {
+        2 * self.focal_x * p.x.to_bits() - (2 * (column - self.centre_x()) + 1) * p.z.to_bits()
+    }
+
+    /// The first column at or after the exact point `q`, walking from `column` by the exact
+    /// test (the predicate is monotone in the column, so any start reaches it).
+    #[inline]
+    #[track_caller]
+    const fn first_column_from_exact(&self, q: ExactEyePoint, mut column: i32) -> i32 {
         while column > 0 && !matches!(self.side_of_exact_column_ray(q, column - 1), Side::Right) {
             column -= 1;
         }

@@ -1203,9 +1203,15 @@ impl Ownership {
     fn vertex(&self, scene: &Scene, vertices: &VertexCache, index: u16) -> (EyePoint, VertexSplit) {
         let (point, first_column) = vertices.get(scene, index);
         let split = if first_column == NO_COLUMN {
-            // At or behind the eye (rare): the exact point again, split by bisection.
-            let exact = scene.view.eye.to_eye_exact(vertex(scene.map, index));
-            VertexSplit::new_exact(&scene.view.viewport, exact, self.first, self.end)
+            // At or behind the eye: split by bisection, the exact point computed again only for
+            // a near-tie.
+            VertexSplit::new_exact(
+                &scene.view.viewport,
+                point,
+                || scene.view.eye.to_eye_exact(vertex(scene.map, index)),
+                self.first,
+                self.end,
+            )
         } else {
             VertexSplit::from_first_column(first_column, self.first, self.end)
         };

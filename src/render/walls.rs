@@ -68,9 +68,26 @@ impl VertexSplit {
         })
     }
 
-    /// [`VertexSplit::new`] of the exact point `q`: what the renderer's column ownership uses
-    /// ([`ExactEyePoint`]).
-    pub fn new_exact(viewport: &Viewport, q: ExactEyePoint, first: i32, end: i32) -> VertexSplit {
+    /// [`VertexSplit::new`] of an exact point: what the renderer's column ownership uses
+    /// ([`ExactEyePoint`]). `rounded` is the point rounded; `exact` computes the point itself,
+    /// which only a split whose ends lie within a rounding step of a column's ray needs: there the
+    /// exact test decides.
+    pub fn new_exact(
+        viewport: &Viewport,
+        rounded: EyePoint,
+        exact: impl FnOnce() -> ExactEyePoint,
+        first: i32,
+        end: i32,
+    ) -> VertexSplit {
+        let split = VertexSplit::new(viewport, rounded, first, end);
+        let keeps = |column: i32| viewport.rounding_keeps_side(rounded, column);
+        if keeps(first)
+            && (split.boundary == first + 1 || keeps(split.boundary - 1))
+            && (split.boundary == end || keeps(split.boundary))
+        {
+            return split;
+        }
+        let q = exact();
         VertexSplit::by_side(first, end, |c| {
             viewport.side_of_exact_column_ray(q, c) == Side::Right
         })
@@ -828,7 +845,63 @@ mod row_tests {
 #[cfg(test)]
 mod split_tests {
     use super::*;
+    use crate::math::{Angle, EyeFrame, WorldPoint};
     use proptest::prelude::*;
+
+    /// A point of the map near the ray of `column` (at `depth` units), rounded to 24.8: within a
+    /// rounding step of a column centre, where only the exact test can tell the sides apart.
+    fn near_ray(eye: &EyeFrame, viewport: &Viewport, column: i32, depth: f64) -> WorldPoint {
+        let slope =
+            f64::from(2 * (column - viewport.centre_x()) + 1) / f64::from(2 * viewport.focal_x);
+        let (sin, cos) = eye.angle.sin_cos();
+        let (sin, cos) = (
+            f64::from(sin.to_bits()) / 65536.0,
+            f64::from(cos.to_bits()) / 65536.0,
+        );
+        let (dx, dy) = (depth * (cos - slope * sin), depth * (sin + slope * cos));
+        let bits = |base: Fx24_8, offset: f64| {
+            Fx24_8::from_bits(base.to_bits() + (offset * 256.0).round() as i32)
+        };
+        WorldPoint::new(bits(eye.position.x, dx), bits(eye.position.y, dy))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4000))]
+        #[test]
+        fn exact_splits_are_the_exact_test_s(
+            ex in -2000i32..2000, ey in -2000i32..2000, fine in 0i32..256,
+            angle in any::<u16>(),
+            column in 0i32..240, depth in 1.0f64..3000.0,
+            px in -800i32..800, py in -800i32..800,
+            near in any::<bool>(),
+            wide in any::<bool>(),
+            first in 0i32..240, len in 1i32..240,
+        ) {
+            let viewport = if wide { Viewport::new(240, 160) } else { Viewport::new(120, 80) };
+            let eye = EyeFrame::new(
+                WorldPoint::new(Fx24_8::from_bits(ex * 256 + fine), Fx24_8::from_bits(ey * 256 - fine)),
+                Angle::from_bits(angle),
+            );
+            let point = if near {
+                near_ray(&eye, &viewport, column % viewport.width, depth)
+            } else {
+                WorldPoint::new(eye.position.x + Fx24_8::from_bits(px * 37), eye.position.y + Fx24_8::from_bits(py * 41))
+            };
+            let q = eye.to_eye_exact(point);
+            prop_assert_eq!(q.rounded(), eye.to_eye(point));
+            let right = |c: i32| viewport.side_of_exact_column_ray(q, c) == Side::Right;
+            let first = first % viewport.width;
+            let end = (first + len).min(viewport.width);
+            prop_assert_eq!(
+                VertexSplit::new_exact(&viewport, q.rounded(), || q, first, end),
+                VertexSplit::by_side(first, end, right)
+            );
+            if q.in_front() && q.rounded().z.to_bits() > 0 {
+                let brute = (0..viewport.width).find(|&c| !right(c)).unwrap_or(viewport.width);
+                prop_assert_eq!(viewport.first_column_at_or_after_exact(q), brute);
+            }
+        }
+    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(3000))]

@@ -50,6 +50,31 @@ pub fn write_generated_assets(dir: &Path, assets: &Path) -> TaskResult<Vec<PathB
     Ok(written)
 }
 
+/// Where `cargo bench-report` and `tests/emulator_generated.rs` write the generated maps' asset
+/// directory (inside `target/`, never committed), so that they share one ROM build.
+pub fn asset_dir() -> PathBuf {
+    crate::workspace_root()
+        .join("target")
+        .join("generated-maps")
+}
+
+/// The cargo target directory in which the ROM of [`asset_dir`] is built, and the ROM.
+pub fn rom_paths() -> (PathBuf, PathBuf) {
+    let target = crate::workspace_root().join("target").join("rom-generated");
+    let gba = target.join("generated.gba");
+    (target, gba)
+}
+
+/// Writes [`asset_dir`] and builds its ROM (see [`rom_paths`]); returns the ROM.
+pub fn build_generated_rom() -> TaskResult<PathBuf> {
+    let assets = asset_dir();
+    write_generated_assets(&assets, &crate::workspace_root().join("assets"))?;
+    let (target, gba) = rom_paths();
+    std::fs::create_dir_all(&target).map_err(|error| io_error(&target, &error))?;
+    crate::build_rom_with_assets(&assets, &target, &gba)?;
+    Ok(gba)
+}
+
 /// A small deterministic generator (xorshift64*), so every run writes the same maps.
 struct Rng(u64);
 

@@ -1,12 +1,12 @@
 //! `cargo rom`, `cargo play`, `cargo xtest`, `cargo bench-rom`, `cargo bench-report`,
-//! `cargo bench-math`, `cargo bench-tick` and `cargo bench-logging` (aliases in
+//! `cargo bench-math`, `cargo bench-tick`, `cargo bench-logging` and `cargo generated-maps` (aliases in
 //! .cargo/config.toml).
 use portalcast_xtask::{build_rom, ensure_setup, workspace_root, TaskError, TaskResult};
 use std::process::{Command, ExitCode};
 
 mod report;
 
-const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math | cargo bench-tick | cargo bench-logging";
+const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math | cargo bench-tick | cargo bench-logging | cargo generated-maps DIR";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -19,6 +19,7 @@ fn main() -> ExitCode {
         Some("bench-math") => portalcast_xtask::bench_math::run(),
         Some("bench-tick") => portalcast_xtask::bench_tick::run(),
         Some("bench-logging") => portalcast_xtask::bench_logging::run(),
+        Some("generated-maps") => generated_maps(&args[1..]),
         _ => Err(TaskError(USAGE.to_string())),
     };
     match result {
@@ -28,6 +29,29 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// `cargo generated-maps DIR`: writes the generated maps (caves, a maze, a castle) with the
+/// shipped textures, sky and sprites into DIR, an asset directory for `PORTALCAST_ASSETS`.
+fn generated_maps(args: &[String]) -> TaskResult<()> {
+    let [dir] = args else {
+        return Err(TaskError(
+            "usage: cargo generated-maps DIR (the asset directory to write)".to_string(),
+        ));
+    };
+    let dir = std::path::Path::new(dir);
+    let files = portalcast_xtask::generated_maps::write_generated_assets(
+        dir,
+        &workspace_root().join("assets"),
+    )?;
+    for file in files {
+        println!("{}", file.display());
+    }
+    println!(
+        "now, for example: PORTALCAST_ASSETS={} cargo bench-rom",
+        dir.display()
+    );
+    Ok(())
 }
 
 fn rom() -> TaskResult<()> {

@@ -78,6 +78,9 @@ pub struct Measurements {
     pub logging_section: String,
     /// Where the default 120×80 frames' cycles go (`pc-profile`).
     pub profile_section: String,
+    /// The bench scene's runs on the ROM of the generated maps
+    /// (`portalcast_xtask::generated_maps`).
+    pub generated_runs: Vec<Run>,
 }
 
 impl Measurements {
@@ -152,6 +155,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
     let thumb_engine_runs = bench_log::bench_runs(&thumb_log).map_err(TaskError)?;
 
     let accuracy = bench_log::accuracy_lines(&run_accuracy()?).map_err(TaskError)?;
+    let generated_runs = generated_runs()?;
 
     let measured_baseline = Baseline::from_runs(EngineIsa::Arm.label(), &runs[..guard_runs]);
     let baseline = if options.update_baseline {
@@ -176,6 +180,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         tick_section: portalcast_xtask::bench_tick::tick_section(&gba)?,
         logging_section: portalcast_xtask::bench_logging::logging_section(&gba)?,
         profile_section,
+        generated_runs,
     };
     let doc = markdown::write(&measurements);
     let chart = chart::draw(&chart_panels(&measurements))?;
@@ -210,6 +215,15 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         );
     }
     Ok(())
+}
+
+/// Builds the ROM of the generated maps (`portalcast_xtask::generated_maps`) and runs its bench
+/// scene: every generated map at every resolution at the default settings (and the knobs on the
+/// first).
+fn generated_runs() -> TaskResult<Vec<Run>> {
+    let gba = portalcast_xtask::generated_maps::build_generated_rom()?;
+    let log = run_rom(&gba, "R", BENCH_DONE)?;
+    bench_log::bench_runs(&log).map_err(TaskError)
 }
 
 /// `cargo bench-rom`: the bench scene's cycle tables only, printed (no accuracy pass, no file
