@@ -1,19 +1,16 @@
-//! The compiled maps and render assets as the ROM uses them, and the benchmark's camera path:
-//! a map seen from its player start, turning a full circle every 256 frames (the ROM's bench
-//! scene, R at power-on, renders it; the game itself starts on the same map, `DEMO_MAP`).
+//! The compiled maps and render assets as the ROM uses them: the map the game starts on
+//! (`DEMO_MAP`), the next map for the menu, and the textures placed as the settings ask. (The
+//! bench scene's camera path is `crate::flight`.)
 
 use portalcast_format::{Colormap, MapTables, Sky, Texture};
 
 use super::light::Lighting;
-use super::view::{Camera, TexturePlacement};
+use super::view::TexturePlacement;
 use super::RenderAssets;
 use crate::assets;
-use crate::math::{Angle, Fx24_8, WorldPoint};
 
 /// Name of the map the demo shows.
 pub const DEMO_MAP: &str = "bench";
-/// Binary-angle turn per frame: a full circle in 256 frames.
-pub const TURN_PER_FRAME: u16 = 256;
 
 static NO_SKY_TEXELS: [u8; 8] = [0; 8];
 
@@ -68,27 +65,6 @@ pub fn assets_for(
         textures,
         colormap,
         ..render_assets()
-    }
-}
-
-/// The demo camera on frame `frame`: at the player start, eye 32 above the floor, turned
-/// `frame · TURN_PER_FRAME` from the start angle.
-pub fn camera_at(map: &MapTables, frame: u32) -> Camera {
-    let start = map.player_start;
-    let sector = map.sectors[usize::from(start.sector)];
-    Camera {
-        position: WorldPoint::new(
-            Fx24_8::from_bits(start.x_fx8),
-            Fx24_8::from_bits(start.y_fx8),
-        ),
-        eye_z: Fx24_8::from_int(sector.floor_z + 32),
-        angle: Angle::from_bits(
-            start
-                .angle
-                .wrapping_add((frame as u16).wrapping_mul(TURN_PER_FRAME)),
-        ),
-        sector: start.sector,
-        look_lines: 0,
     }
 }
 

@@ -13,6 +13,7 @@ pub mod extreme_maps;
 pub mod generated_maps;
 mod map_builder;
 pub mod overlay;
+pub mod player;
 
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -107,28 +107,29 @@ fn has_display() -> bool {
         .any(|var| std::env::var_os(var).is_some_and(|value| !value.is_empty()))
 }
 
-fn find_player() -> Option<&'static str> {
-    ["mgba", "mgba-qt"].into_iter().find(|player| {
-        Command::new("sh")
-            .arg("-c")
-            .arg(format!("command -v {player} >/dev/null 2>&1"))
-            .status()
-            .is_ok_and(|status| status.success())
-    })
-}
-
 fn play() -> TaskResult<()> {
     ensure_setup()?;
     let gba = build_rom()?;
     println!("ROM: {}", gba.display());
-    if has_display() {
-        if let Some(player) = find_player() {
-            return run(
-                Command::new(player).arg(&gba),
-                &format!("{player} {}", gba.display()),
-            );
+    use portalcast_xtask::player;
+    let why_headless = if has_display() {
+        match player::find_installed_player() {
+            Some(found) => {
+                println!(
+                    "starting {} (the ROM's log lines follow here)",
+                    found.display()
+                );
+                return run(
+                    Command::new(&found).args(player::player_args(&gba)),
+                    &format!("{} {}", found.display(), gba.display()),
+                );
+            }
+            None => player::no_player_message(),
         }
-    }
+    } else {
+        "no display (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
+    };
+    println!("{why_headless}: running the demo headless in the real mGBA core");
     let out = workspace_root().join("target").join("play");
     let script = workspace_root()
         .join("assets")
@@ -151,10 +152,7 @@ fn play() -> TaskResult<()> {
         .arg(&out)
         .arg("--keys")
         .arg(&script);
-    run(
-        &mut headless,
-        "no display: running the demo headless in the real mGBA core",
-    )?;
+    run(&mut headless, "the headless demo")?;
     println!("PNG frames: {}", out.display());
     Ok(())
 }
