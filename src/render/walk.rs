@@ -1,9 +1,10 @@
 //! The sector walk (Doom's r_bsp): front to back from the eye's sector, through portals, with a
 //! clip window per column. Each visit of a sector draws the walls and strips of the columns it
-//! was given, records its ceiling and floor windows, draws those planes, and then recurses into
+//! was given, records its ceiling and floor windows, draws those planes, and then goes on into
 //! its portals with the narrowed windows. Columns handed to different portals never overlap, so
-//! one set of per-column arrays serves the whole recursion. The recursion is depth first, with
-//! its levels in the renderer's memory rather than on the call stack (`Renderer::walk`).
+//! one set of per-column arrays serves the whole walk. The walk is depth first, with its levels
+//! in the renderer's memory rather than on the call stack (`Renderer::walk`): no function calls
+//! itself.
 
 use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, SKY};
 
