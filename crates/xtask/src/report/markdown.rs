@@ -960,11 +960,19 @@ fn sizes(doc: &mut String, measurements: &Measurements) {
             .iter()
             .find(|earlier| earlier.address == section.address);
         if let Some(under) = shared {
+            // The kernel banks swap at run time; the math benchmark's overlay replaces the
+            // renderer for good (linker.ld says why each).
+            let how = if section.name.starts_with(".iwram_kernels") {
+                ", the other kernel bank: whichever of the two a call needs is copied in (a frame \
+                 draws with one lighting, so it loads at most one; `hw::kernels::KernelBank`, \
+                 linker.ld). IWRAM's use above counts the larger once"
+            } else {
+                ": an overlay that the one scene using it copies over that code, which the scene \
+                 never runs (linker.ld). IWRAM's use above counts those bytes once"
+            };
             let _ = write!(
                 doc,
-                "\n`{}` shares its run addresses with `{}`: an overlay that the one scene using it \
-                 copies over that code, which the scene never runs (linker.ld). IWRAM's use above \
-                 counts those bytes once.\n",
+                "\n`{}` shares its run addresses with `{}`{how}.\n",
                 section.name, under.name
             );
         }
