@@ -18,7 +18,6 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use common::*;
-use portalcast_harness::{Emulator, Keys};
 use portalcast_xtask::baseline::{self, Baseline};
 use portalcast_xtask::bench_log::{self, Run};
 use portalcast_xtask::extreme_maps;
@@ -32,10 +31,6 @@ use portalcast_xtask::extreme_maps;
 /// its depth limit or a per-column cost blown up by a far, long or thin wall goes far past it,
 /// while the extreme maps' honest worst cases stay under it.
 const BENCH_WORST_FRAME_MULTIPLE: u64 = 10;
-/// Emulated frames the bench scene may take at most (it takes far fewer).
-const MAX_FRAMES: u32 = 60_000;
-/// Frames run between looks at the log.
-const CHUNK: u32 = 300;
 
 /// The extreme maps' asset directory, outside the repository (the system's temporary
 /// directory), written once per test process. Files keep their bytes and times when unchanged,
@@ -69,36 +64,6 @@ fn extreme_rom() -> &'static Path {
             .unwrap_or_else(|error| panic!("{error}"));
         gba
     })
-}
-
-/// Runs the bench scene of `rom` to its end and returns the ROM's debug lines.
-fn bench_scene_log(rom: &Path) -> Vec<String> {
-    let mut emulator = Emulator::load(rom).unwrap_or_else(|error| panic!("{error}"));
-    emulator.set_keys(Keys::R);
-    emulator
-        .run_frames(4)
-        .unwrap_or_else(|error| panic!("{error}"));
-    emulator.set_keys(Keys::NONE);
-    let mut frames = 4;
-    while !emulator.debug_lines().contains(&bench_log::BENCH_DONE) {
-        assert!(
-            frames < MAX_FRAMES,
-            "no {:?} after {frames} frames",
-            bench_log::BENCH_DONE
-        );
-        // Fails on a `panic` line or any line mGBA grades fatal.
-        emulator
-            .run_frames(CHUNK)
-            .unwrap_or_else(|error| panic!("frame {frames}: {error}"));
-        frames += CHUNK;
-    }
-    assert_eq!(emulator.dropped_log_lines(), 0, "mGBA dropped log lines");
-    println!("bench scene: {frames} emulated frames");
-    emulator
-        .debug_lines()
-        .into_iter()
-        .map(str::to_owned)
-        .collect()
 }
 
 /// The bench map's slowest frame in the committed baseline, in cycles.

@@ -14,16 +14,11 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use portalcast_harness::{Emulator, Keys};
 use portalcast_xtask::bench_log::{self, Run};
 use portalcast_xtask::generated_maps;
 
 /// The soak's bound on one frame (`tests/emulator_soak.rs`): 16 display frames.
 const FRAME_CYCLES_BOUND: u64 = 16 * 280_896;
-/// Emulated frames the bench scene may take at most.
-const MAX_FRAMES: u32 = 60_000;
-/// Frames run between looks at the log.
-const CHUNK: u32 = 300;
 
 /// The ROM of the generated maps, built once per test process (in `target/rom-generated`,
 /// which `cargo bench-report` builds too).
@@ -36,29 +31,7 @@ fn generated_rom() -> &'static Path {
 
 #[test]
 fn generated_maps_fly_through_in_the_rom_within_the_soak_bound() {
-    let mut emulator = Emulator::load(generated_rom()).unwrap_or_else(|error| panic!("{error}"));
-    emulator.set_keys(Keys::R);
-    emulator
-        .run_frames(4)
-        .unwrap_or_else(|error| panic!("{error}"));
-    emulator.set_keys(Keys::NONE);
-    let mut frames = 4;
-    while !emulator.debug_lines().contains(&bench_log::BENCH_DONE) {
-        assert!(
-            frames < MAX_FRAMES,
-            "no {:?} after {frames} frames",
-            bench_log::BENCH_DONE
-        );
-        emulator
-            .run_frames(CHUNK)
-            .unwrap_or_else(|error| panic!("frame {frames}: {error}"));
-        frames += CHUNK;
-    }
-    let log: Vec<String> = emulator
-        .debug_lines()
-        .into_iter()
-        .map(str::to_owned)
-        .collect();
+    let log = common::bench_scene_log(generated_rom());
     let runs: Vec<Run> =
         bench_log::bench_runs(&log.join("\n")).unwrap_or_else(|problem| panic!("{problem}"));
     let mut worst: BTreeMap<(&str, String), (u64, u32)> = BTreeMap::new();

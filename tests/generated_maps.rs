@@ -1,6 +1,8 @@
 //! The generated maps of issue 16 (`portalcast_xtask::generated_maps`: cave cells, a 48×48
 //! maze, a castle of slanted corridors) compiled and rendered against the f64 oracle.
 
+mod common;
+
 use portalcast_xtask::generated_maps;
 
 /// The generated maps, written into a fresh directory and compiled once per test process.
@@ -82,9 +84,8 @@ fn check_pose(
     results: &mut PoseResults,
 ) {
     use portalcast::frame::Resolution;
-    use portalcast::math::{Angle, Fx24_8, WorldPoint};
     use portalcast::render::light::Lighting;
-    use portalcast::render::view::{Camera, Settings, View};
+    use portalcast::render::view::{Settings, View};
     use portalcast::render::walk::Renderer;
     use portalcast::render::RenderAssets;
     use portalcast_format::Texture;
@@ -102,17 +103,7 @@ fn check_pose(
         sky: &sky,
         colormap: compiled.colormap(),
     };
-    let sector = pose.sector.expect("sampled poses know their sector");
-    let camera = Camera {
-        position: WorldPoint::new(
-            Fx24_8::from_bits((pose.x * 256.0) as i32),
-            Fx24_8::from_bits((pose.y * 256.0) as i32),
-        ),
-        eye_z: Fx24_8::from_bits((pose.eye_z * 256.0) as i32),
-        angle: Angle::from_bits(pose.angle_bits()),
-        sector,
-        look_lines: 0,
-    };
+    let (camera, oracle_camera) = common::cameras_of_pose(pose);
     for resolution in Resolution::ALL {
         let view = View::new(
             &camera,
@@ -123,13 +114,6 @@ fn check_pose(
         );
         let oracle_view =
             portalcast_oracle::View::from_viewport(&view.viewport, Lighting::SectorDepth);
-        let oracle_camera = portalcast_oracle::Camera::from_fixed(
-            camera.position.x.to_bits(),
-            camera.position.y.to_bits(),
-            camera.eye_z.to_bits(),
-            camera.angle.to_bits(),
-            Some(sector),
-        );
         let (oracle, moved) = portalcast_oracle::render_with_row_tolerance(
             map,
             &oracle_assets,

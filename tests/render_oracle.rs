@@ -54,17 +54,7 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
             map.name
         );
         for (index, pose) in poses.iter().enumerate() {
-            let sector = pose.sector.expect("sampled poses know their sector");
-            let camera = Camera {
-                position: WorldPoint::new(
-                    Fx24_8::from_bits((pose.x * 256.0) as i32),
-                    Fx24_8::from_bits((pose.y * 256.0) as i32),
-                ),
-                eye_z: Fx24_8::from_bits((pose.eye_z * 256.0) as i32),
-                angle: Angle::from_bits(pose.angle_bits()),
-                sector,
-                look_lines: 0,
-            };
+            let (camera, oracle_camera) = cameras_of_pose(pose);
             for resolution in Resolution::ALL {
                 let exact_view = View::new(
                     &camera,
@@ -76,13 +66,6 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
                 let oracle_view = portalcast_oracle::View::from_viewport(
                     &exact_view.viewport,
                     Lighting::SectorDepth,
-                );
-                let oracle_camera = portalcast_oracle::Camera::from_fixed(
-                    camera.position.x.to_bits(),
-                    camera.position.y.to_bits(),
-                    camera.eye_z.to_bits(),
-                    camera.angle.to_bits(),
-                    Some(sector),
                 );
                 let oracle =
                     portalcast_oracle::render(&map, &oracle_assets, &oracle_camera, &oracle_view);

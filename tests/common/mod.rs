@@ -113,3 +113,65 @@ pub fn shipped_assets() -> &'static portalcast_assets::Compiled {
         portalcast_assets::compile_dir(&dir).unwrap_or_else(|errors| panic!("{errors}"))
     })
 }
+
+/// Emulated frames the bench scene may take at most (it takes far fewer).
+pub const BENCH_SCENE_MAX_FRAMES: u32 = 60_000;
+/// Frames run between looks at the log while the bench scene runs.
+const BENCH_SCENE_CHUNK: u32 = 300;
+
+/// Runs the bench scene of `rom` (R held at power-on) to its end and returns the ROM's debug
+/// lines. Fails on a `panic` line, a line mGBA grades fatal, or a dropped log line.
+pub fn bench_scene_log(rom: &std::path::Path) -> Vec<String> {
+    let done = portalcast_xtask::bench_log::BENCH_DONE;
+    let mut emulator = Emulator::load(rom).unwrap_or_else(|error| panic!("{error}"));
+    emulator.set_keys(Keys::R);
+    emulator
+        .run_frames(4)
+        .unwrap_or_else(|error| panic!("{error}"));
+    emulator.set_keys(Keys::NONE);
+    let mut frames = 4;
+    while !emulator.debug_lines().contains(&done) {
+        assert!(
+            frames < BENCH_SCENE_MAX_FRAMES,
+            "no {done:?} after {frames} frames"
+        );
+        emulator
+            .run_frames(BENCH_SCENE_CHUNK)
+            .unwrap_or_else(|error| panic!("frame {frames}: {error}"));
+        frames += BENCH_SCENE_CHUNK;
+    }
+    assert_eq!(emulator.dropped_log_lines(), 0, "mGBA dropped log lines");
+    println!("bench scene: {frames} emulated frames");
+    emulator
+        .debug_lines()
+        .into_iter()
+        .map(str::to_owned)
+        .collect()
+}
+
+/// The engine's camera at an oracle pose (sampled poses are whole 24.8 and binary angles), and
+/// the oracle's camera at that engine pose.
+pub fn cameras_of_pose(
+    pose: &portalcast_oracle::Camera,
+) -> (portalcast::render::view::Camera, portalcast_oracle::Camera) {
+    use portalcast::math::{Angle, Fx24_8, WorldPoint};
+    let sector = pose.sector.expect("sampled poses know their sector");
+    let camera = portalcast::render::view::Camera {
+        position: WorldPoint::new(
+            Fx24_8::from_bits((pose.x * 256.0) as i32),
+            Fx24_8::from_bits((pose.y * 256.0) as i32),
+        ),
+        eye_z: Fx24_8::from_bits((pose.eye_z * 256.0) as i32),
+        angle: Angle::from_bits(pose.angle_bits()),
+        sector,
+        look_lines: 0,
+    };
+    let oracle = portalcast_oracle::Camera::from_fixed(
+        camera.position.x.to_bits(),
+        camera.position.y.to_bits(),
+        camera.eye_z.to_bits(),
+        camera.angle.to_bits(),
+        Some(sector),
+    );
+    (camera, oracle)
+}
