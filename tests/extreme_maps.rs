@@ -35,7 +35,7 @@ use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::view::{Camera, Preprocessing, Settings, MAX_LOOK_LINES};
 use portalcast::render::walk::{Renderer, MAX_PORTAL_DEPTH};
 use portalcast::render::RenderAssets;
-use portalcast_format::{MapTables, Texture, NO_PORTAL};
+use portalcast_format::{MapTables, NO_PORTAL};
 use portalcast_oracle::{angle_to_bits, compare_with_engine, sample_poses};
 use portalcast_xtask::extreme_maps::{self, CHAIN_SECTORS, PORTAL_ALCOVES, STAR_SECTORS};
 
@@ -536,12 +536,8 @@ impl Tally {
 /// went wrong) and how many frames of `skip` it met.
 fn check(kinds: &[&str], budget: usize, skip: &[(&str, &str)]) -> (Vec<String>, usize) {
     let compiled = extreme_assets();
-    let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
-    let assets = RenderAssets {
-        textures: &textures,
-        sky: compiled.sky().expect("the extreme maps show the sky").sky(),
-        colormap: compiled.colormap(),
-    };
+    let host = common::HostAssets::of(compiled);
+    let assets = host.render();
     let mut renderer = Renderer::new();
     let mut failures = Vec::new();
     let mut by_kind = std::collections::BTreeMap::<&str, Tally>::new();
@@ -705,12 +701,8 @@ fn each_map_reaches_its_extreme() {
 
     // Seen from the start: the whole chain walked without a cut, every alcove, the far end of
     // the corridor.
-    let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
-    let assets = RenderAssets {
-        textures: &textures,
-        sky: compiled.sky().expect("a sky").sky(),
-        colormap: compiled.colormap(),
-    };
+    let host = common::HostAssets::of(compiled);
+    let assets = host.render();
     let mut renderer = Renderer::new();
     let mut seen_from_start = |m: &MapTables| {
         let start = m.player_start;
@@ -770,12 +762,8 @@ fn render_one_pose() {
             .unwrap_or_else(|_| panic!("{} is not a number", fields[i]))
     };
     let compiled = extreme_assets();
-    let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
-    let assets = RenderAssets {
-        textures: &textures,
-        sky: compiled.sky().expect("a sky").sky(),
-        colormap: compiled.colormap(),
-    };
+    let host = common::HostAssets::of(compiled);
+    let assets = host.render();
     let map = compiled.map(fields[0]).expect("an extreme map's name");
     let camera = Camera {
         position: point(number(1), number(2)),

@@ -87,22 +87,11 @@ fn check_pose(
     use portalcast::render::light::Lighting;
     use portalcast::render::view::{Settings, View};
     use portalcast::render::walk::Renderer;
-    use portalcast::render::RenderAssets;
-    use portalcast_format::Texture;
     use portalcast_oracle::RecordingCanvas;
 
-    let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
-    let sky = compiled.sky().expect("a sky").sky();
-    let assets = RenderAssets {
-        textures: &textures,
-        sky,
-        colormap: compiled.colormap(),
-    };
-    let oracle_assets = portalcast_oracle::Assets {
-        textures: &textures,
-        sky: &sky,
-        colormap: compiled.colormap(),
-    };
+    let host = common::HostAssets::of(compiled);
+    let assets = host.render();
+    let oracle_assets = host.oracle();
     let (camera, oracle_camera) = common::cameras_of_pose(pose);
     for resolution in Resolution::ALL {
         let view = View::new(

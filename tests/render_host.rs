@@ -10,8 +10,7 @@ use portalcast::render::light::Lighting;
 use portalcast::render::surface::Surface;
 use portalcast::render::view::{Camera, Floors, Settings, View};
 use portalcast::render::walk::Renderer;
-use portalcast::render::RenderAssets;
-use portalcast_format::{MapTables, Texture};
+use portalcast_format::MapTables;
 use portalcast_oracle::RecordingCanvas;
 
 fn start_camera(map: &MapTables) -> Camera {
@@ -32,13 +31,8 @@ fn start_camera(map: &MapTables) -> Camera {
 #[test]
 fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
     let compiled = shipped_assets();
-    let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
-    let sky = compiled.sky().expect("the shipped maps show a sky").sky();
-    let assets = RenderAssets {
-        textures: &textures,
-        sky,
-        colormap: compiled.colormap(),
-    };
+    let host = HostAssets::of(compiled);
+    let assets = host.render();
     let mut renderer = Renderer::new();
     for compiled_map in compiled.maps() {
         let map = compiled_map.tables();
@@ -83,13 +77,8 @@ fn every_pixel_is_drawn_exactly_once_on_every_shipped_map() {
 #[test]
 fn host_render_pngs_show_the_bench_map() {
     let compiled = shipped_assets();
-    let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
-    let sky = compiled.sky().expect("a sky").sky();
-    let assets = RenderAssets {
-        textures: &textures,
-        sky,
-        colormap: compiled.colormap(),
-    };
+    let host = HostAssets::of(compiled);
+    let assets = host.render();
     let map = compiled.map("bench").expect("the bench map");
     let mut renderer = Renderer::new();
     for (turn, resolution) in [

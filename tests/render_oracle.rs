@@ -10,8 +10,6 @@ use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::light::Lighting;
 use portalcast::render::view::{Camera, Floors, Settings, View};
 use portalcast::render::walk::Renderer;
-use portalcast::render::RenderAssets;
-use portalcast_format::Texture;
 use portalcast_oracle::RecordingCanvas;
 
 const POSES_PER_MAP: usize = 12;
@@ -28,18 +26,9 @@ const TOUCH_DISTANCE_FX8: f64 = 16.0;
 #[test]
 fn engine_matches_the_oracle_on_every_shipped_map() {
     let compiled = shipped_assets();
-    let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
-    let sky = compiled.sky().expect("a sky").sky();
-    let assets = RenderAssets {
-        textures: &textures,
-        sky,
-        colormap: compiled.colormap(),
-    };
-    let oracle_assets = portalcast_oracle::Assets {
-        textures: &textures,
-        sky: &sky,
-        colormap: compiled.colormap(),
-    };
+    let host = HostAssets::of(compiled);
+    let assets = host.render();
+    let oracle_assets = host.oracle();
     let mut renderer = Renderer::new();
     // Per knob value: worst surface mismatch, summed texel mismatch.
     let mut worst = [0.0f64; KNOBS.len()];
@@ -120,18 +109,9 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
 #[test]
 fn thesis_failure_poses_match_the_oracle() {
     let compiled = shipped_assets();
-    let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
-    let sky = compiled.sky().expect("a sky").sky();
-    let assets = RenderAssets {
-        textures: &textures,
-        sky,
-        colormap: compiled.colormap(),
-    };
-    let oracle_assets = portalcast_oracle::Assets {
-        textures: &textures,
-        sky: &sky,
-        colormap: compiled.colormap(),
-    };
+    let host = HostAssets::of(compiled);
+    let assets = host.render();
+    let oracle_assets = host.oracle();
     let mut renderer = Renderer::new();
     let mut checked = std::collections::BTreeMap::<&str, usize>::new();
     for compiled_map in compiled.maps() {

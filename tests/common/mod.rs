@@ -175,3 +175,41 @@ pub fn cameras_of_pose(
     );
     (camera, oracle)
 }
+
+/// A compiled asset set's textures as the engine's table, with its sky and colormap: what a host
+/// test renders with ([`HostAssets::render`]) and compares with the oracle's
+/// ([`HostAssets::oracle`]). The asset set must have a sky.
+pub struct HostAssets<'c> {
+    textures: Vec<portalcast_format::Texture<'c>>,
+    sky: portalcast_format::Sky<'c>,
+    colormap: &'c portalcast_format::Colormap,
+}
+
+impl<'c> HostAssets<'c> {
+    /// The tables of `compiled`.
+    pub fn of(compiled: &'c portalcast_assets::Compiled) -> HostAssets<'c> {
+        HostAssets {
+            textures: compiled.textures().iter().map(|t| t.texture()).collect(),
+            sky: compiled.sky().expect("an asset set with a sky").sky(),
+            colormap: compiled.colormap(),
+        }
+    }
+
+    /// What the engine renders with.
+    pub fn render(&self) -> portalcast::render::RenderAssets<'_> {
+        portalcast::render::RenderAssets {
+            textures: &self.textures,
+            sky: self.sky,
+            colormap: self.colormap,
+        }
+    }
+
+    /// What the oracle renders with.
+    pub fn oracle(&self) -> portalcast_oracle::Assets<'_> {
+        portalcast_oracle::Assets {
+            textures: &self.textures,
+            sky: &self.sky,
+            colormap: self.colormap,
+        }
+    }
+}
