@@ -804,7 +804,7 @@ fn textures_beyond_ewram_stay_in_the_cartridge_coldest_first() {
     let in_ewram = compiled.textures_in_ewram();
     let bytes: Vec<usize> = textures
         .iter()
-        .map(portalcast_assets::Compiled::texture_bytes)
+        .map(portalcast_assets::CompiledTexture::blob_bytes)
         .collect();
     let budget = portalcast_format::memory::ewram_texel_budget(textures.len());
     let total: usize = bytes.iter().sum();

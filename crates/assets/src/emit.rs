@@ -52,10 +52,10 @@ struct Blobs {
 
 fn blobs(compiled: &Compiled) -> Blobs {
     let textures = &compiled.textures;
-    let bytes: Vec<usize> = textures.iter().map(placement::blob_bytes).collect();
     let in_ewram = placement::textures_in_ewram(compiled);
     // The EWRAM part first (table order), then the rest: the ROM copies one prefix.
     let mut texels = Vec::new();
+    let mut ewram_len = 0;
     let mut texture_offsets = vec![(0, 0); textures.len()];
     for part in [true, false] {
         for (index, texture) in textures.iter().enumerate() {
@@ -67,23 +67,9 @@ fn blobs(compiled: &Compiled) -> Blobs {
             }
         }
         if part {
-            debug_assert_eq!(
-                texels.len(),
-                bytes
-                    .iter()
-                    .zip(&in_ewram)
-                    .filter(|(_, &chosen)| chosen)
-                    .map(|(bytes, _)| bytes)
-                    .sum::<usize>()
-            );
+            ewram_len = texels.len();
         }
     }
-    let ewram_len = bytes
-        .iter()
-        .zip(&in_ewram)
-        .filter(|(_, &chosen)| chosen)
-        .map(|(bytes, _)| bytes)
-        .sum();
     let mut sprites = Vec::new();
     let sprite_offsets = compiled
         .sprites
@@ -479,7 +465,7 @@ pub(crate) fn size_report(compiled: &Compiled) -> String {
         .iter()
         .zip(&blobs.in_ewram)
         .filter(|(_, &chosen)| !chosen)
-        .map(|(t, _)| (t.name.as_str(), placement::blob_bytes(t)))
+        .map(|(t, _)| (t.name.as_str(), t.blob_bytes()))
         .collect();
     let _ = writeln!(
         r,

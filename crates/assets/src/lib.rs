@@ -79,6 +79,11 @@ impl CompiledTexture {
             rows: &self.rows,
         }
     }
+
+    /// Bytes its texels take in the ROM's texel blob: both layouts, each padded to a word.
+    pub fn blob_bytes(&self) -> usize {
+        self.columns.len().next_multiple_of(4) + self.rows.len().next_multiple_of(4)
+    }
 }
 
 /// The sky panorama compiled for the ROM.
@@ -164,11 +169,6 @@ impl Compiled {
     /// cartridge.
     pub fn textures_in_ewram(&self) -> Vec<bool> {
         placement::textures_in_ewram(self)
-    }
-
-    /// Bytes of a texture's texels in the ROM's blob (both layouts, each padded to a word).
-    pub fn texture_bytes(texture: &CompiledTexture) -> usize {
-        placement::blob_bytes(texture)
     }
 
     /// The sky, if some sector shows it.

@@ -6,15 +6,10 @@ use portalcast_format::{Wall, SKY};
 
 use crate::{Compiled, CompiledMap, CompiledTexture};
 
-/// Bytes a texture's texels take in the blob: both layouts, each padded to a word.
-pub(crate) fn blob_bytes(texture: &CompiledTexture) -> usize {
-    texture.columns.len().next_multiple_of(4) + texture.rows.len().next_multiple_of(4)
-}
-
 /// Per texture of `compiled` (in table order): whether the ROM copies it to EWRAM.
 pub(crate) fn textures_in_ewram(compiled: &Compiled) -> Vec<bool> {
     let textures = &compiled.textures;
-    let bytes: Vec<usize> = textures.iter().map(blob_bytes).collect();
+    let bytes: Vec<usize> = textures.iter().map(CompiledTexture::blob_bytes).collect();
     let heat = texture_heat(textures.len(), &compiled.maps);
     in_ewram(
         &bytes,
