@@ -238,25 +238,34 @@ extern "C" {
     static __kernels_unlit_position_in_rom: u8;
 }
 
-/// The bank of kernels in IWRAM: 0 none yet (at boot), 1 the lit kernels, 2 the unlit ones
-/// (linker.ld: the two share their run addresses).
+/// The bank of kernels in IWRAM ([`KernelBank::id`]; 0 at boot, none yet). linker.ld gives the
+/// two the same run addresses.
 static LOADED_BANK: gba::prelude::GbaCell<u8> = gba::prelude::GbaCell::new(0);
 
 /// The kernel banks: [`KernelBank::ensure`] is the only way to a bank's kernels.
 struct KernelBank;
 
 impl KernelBank {
+    /// How [`LOADED_BANK`] names the lit (or the unlit) bank.
+    #[inline(always)]
+    const fn id(lit: bool) -> u8 {
+        if lit {
+            1
+        } else {
+            2
+        }
+    }
+
     /// Whether the lit bank is the one in IWRAM.
     #[inline(always)]
     fn lit_loaded() -> bool {
-        LOADED_BANK.read() == 1
+        LOADED_BANK.read() == KernelBank::id(true)
     }
 
     /// Brings the lit (or the unlit) bank into IWRAM unless it is there.
     #[inline(always)]
     fn ensure(lit: bool) {
-        let wanted = if lit { 1 } else { 2 };
-        if LOADED_BANK.read() != wanted {
+        if LOADED_BANK.read() != KernelBank::id(lit) {
             KernelBank::load(lit);
         }
     }
@@ -297,7 +306,7 @@ impl KernelBank {
                 ((start + offset) as *mut u32).write_volatile(word);
             }
         }
-        LOADED_BANK.write(if lit { 1 } else { 2 });
+        LOADED_BANK.write(KernelBank::id(lit));
     }
 
     /// The bank index (0 unlit, 1 lit) of the kernels that draw with `colormap`, brought in if
