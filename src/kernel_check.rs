@@ -30,6 +30,76 @@ const fn check_colormap() -> [u8; 256] {
 }
 
 static TEXEL_POOL: [u8; TEXEL_POOL_SIZE] = texel_pool();
+
+/// The runs `(top, length)` of the check's sprite columns: a single run, runs with gaps of one
+/// and many rows, a one-row run, a run of the whole height and an empty column.
+const SPRITE_RUNS: [&[(u8, u8)]; 5] = [
+    &[(0, 40)],
+    &[(2, 9), (12, 1), (20, 30), (51, 13)],
+    &[(63, 1)],
+    &[(0, 64)],
+    &[],
+];
+
+/// Bytes of the check's sprite columns in the post layout (`raster::sprite`).
+const SPRITE_POSTS_LEN: usize = {
+    let mut len = 0;
+    let mut column = 0;
+    while column < SPRITE_RUNS.len() {
+        len += 1;
+        let mut post = 0;
+        while post < SPRITE_RUNS[column].len() {
+            len += 3 + SPRITE_RUNS[column][post].1 as usize;
+            post += 1;
+        }
+        column += 1;
+    }
+    len
+};
+
+/// The check's sprite columns, one after the other, and where each starts.
+const fn sprite_posts() -> ([u8; SPRITE_POSTS_LEN], [usize; SPRITE_RUNS.len()]) {
+    let mut posts = [0u8; SPRITE_POSTS_LEN];
+    let mut starts = [0usize; SPRITE_RUNS.len()];
+    let mut at = 0;
+    let mut column = 0;
+    while column < SPRITE_RUNS.len() {
+        starts[column] = at;
+        posts[at] = SPRITE_RUNS[column].len() as u8;
+        at += 1;
+        let mut post = 0;
+        while post < SPRITE_RUNS[column].len() {
+            let (top, len) = SPRITE_RUNS[column][post];
+            posts[at] = top;
+            posts[at + 1] = len;
+            at += 2;
+            let mut row = 0;
+            while row <= len as usize {
+                // The pad repeats the last texel.
+                let texel_row = if row == len as usize { row - 1 } else { row };
+                posts[at] = ((texel_row * 29 + top as usize * 7 + column * 53) & 0xff) as u8;
+                at += 1;
+                row += 1;
+            }
+            post += 1;
+        }
+        column += 1;
+    }
+    (posts, starts)
+}
+
+static SPRITE_POSTS: ([u8; SPRITE_POSTS_LEN], [usize; SPRITE_RUNS.len()]) = sprite_posts();
+
+/// The identity light row: sprites drawn unlit go through it.
+static IDENTITY: [u8; 256] = {
+    let mut row = [0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        row[i] = i as u8;
+        i += 1;
+    }
+    row
+};
 static COLORMAP: [u8; 256] = check_colormap();
 
 /// A small deterministic generator (Numerical Recipes' LCG), so both sides draw the same jobs.
@@ -127,4 +197,23 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
         );
     }
     canvas.set_halved_flats(false);
+    for job in 0..JOBS_PER_KIND {
+        let column = job as usize % SPRITE_RUNS.len();
+        let (posts, starts) = &SPRITE_POSTS;
+        // From a quarter of a row to eight rows a texel; the texel step the inverse, rounded
+        // down, as the things stage's never exceeds it by more than its rounding.
+        let scale = (1 << 14) + rng.below(8 << 16) as i32;
+        let top = rng.below(height) as i16;
+        let bottom = top + 1 + rng.below(height - top as u32) as i16;
+        let sprite = crate::raster::sprite::SpriteColumn {
+            posts: &posts[starts[column]..],
+            y_top: ((rng.next() % (2 * height)) as i32 - height as i32) << 16
+                | rng.below(1 << 16) as i32,
+            scale,
+            iscale: ((1u64 << 32) / scale as u64) as u32,
+            clip: crate::raster::Window { top, bottom },
+            colormap: if job % 3 == 0 { &IDENTITY } else { &COLORMAP },
+        };
+        canvas.sprite_column(rng.below(width) as usize, &sprite);
+    }
 }

@@ -259,7 +259,9 @@ fn check_preconditions(compiled: &Compiled) -> Result<(), String> {
 fn render_first_frames(compiled: &Compiled) -> Result<(), String> {
     static PLACEHOLDER: [u8; 64 * 16] = [1; 64 * 16];
     let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
+    let sprites: Vec<_> = compiled.sprites().iter().map(|s| s.sprite()).collect();
     let assets = RenderAssets {
+        sprites: &sprites,
         textures: &textures,
         sky: compiled.sky().map_or(
             Sky {

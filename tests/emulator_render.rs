@@ -8,14 +8,13 @@
 
 mod common;
 
-use common::demos::PlayerLine;
+use common::demos::{render_line_settings, PlayerLine};
 use common::*;
 use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
-use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
-use portalcast::render::view::{Camera, Floors, Preprocessing, Settings, TexturePlacement, View};
+use portalcast::render::view::{Floors, Preprocessing, Settings, TexturePlacement, View};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_harness::{Emulator, Keys};
@@ -32,6 +31,7 @@ struct Compared {
     hud: bool,
     menu: bool,
     cycles: u64,
+    things_drawn: u32,
 }
 
 /// Runs the ROM frame by frame and compares each frame it draws with the host's render.
@@ -80,33 +80,22 @@ impl Checker {
             .expect("a player line precedes every frame");
         assert_eq!(player.frame, number(text, "frame") as u32, "{text}");
         let map_name = field(text, "map").unwrap().to_owned();
-        let map = demo::map_named(&map_name).expect("the ROM names a compiled map");
-        let resolution = Resolution::from_label(field(text, "res").unwrap()).unwrap();
-        let lighting = demo::lighting_from_label(field(text, "lighting").unwrap()).unwrap();
-        let camera = Camera {
-            position: WorldPoint::new(Fx24_8::from_bits(player.x), Fx24_8::from_bits(player.y)),
-            eye_z: Fx24_8::from_bits(player.z),
-            angle: Angle::from_bits(player.angle),
-            sector: player.sector,
-            look_lines: player.look,
-        };
-        let textures = TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap();
-        let preprocessing = Preprocessing::from_label(field(text, "prep").unwrap()).unwrap();
-        let floors = Floors::from_label(field(text, "floors").unwrap()).unwrap();
-        let settings = Settings {
+        let (map, settings) = render_line_settings(text);
+        let Settings {
             resolution,
             lighting,
             textures,
             preprocessing,
             floors,
-        };
+        } = settings;
+        let camera = player.camera();
         let mut page = HostPage::new();
         let mut canvas = HostCanvas {
             page: &mut page,
             resolution,
             halved_flats: false,
         };
-        self.renderer.render(
+        let stats = self.renderer.render(
             &map,
             &self.assets,
             &View::new(&camera, &settings),
@@ -182,6 +171,7 @@ impl Checker {
             hud: player.hud,
             menu: menu_open,
             cycles: number(text, "cycles"),
+            things_drawn: stats.things_drawn,
         });
     }
 
@@ -284,6 +274,10 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         );
     }
     assert!(compared.iter().any(|c| c.menu), "no menu frame compared");
+    assert!(
+        compared.iter().any(|c| c.things_drawn > 0 && !c.menu),
+        "no frame with a thing in view compared"
+    );
     for preprocessing in Preprocessing::ALL {
         assert!(
             compared.iter().any(|c| c.preprocessing == preprocessing),

@@ -537,6 +537,61 @@ fn validate(map: &MapTables, compiled: &Compiled) -> Result<(), String> {
             thing.y_fx8,
             thing.sector,
         )?;
+        check_thing_fits(map, compiled, index, thing)?;
+    }
+    Ok(())
+}
+
+/// The renderer's promise about a thing (`src/render/surface.rs`, "Things"): its footprint, a
+/// disc at least half its sprite wide, lies inside its sector, and its sprite between the
+/// sector's floor and ceiling; and it is listed with its sector.
+fn check_thing_fits(
+    map: &MapTables,
+    compiled: &Compiled,
+    index: usize,
+    thing: &portalcast_format::Thing,
+) -> Result<(), String> {
+    let sprite = &compiled.sprites()[usize::from(thing.sprite)];
+    let sector = &map.sectors[usize::from(thing.sector)];
+    if 2 * u32::from(thing.radius) < u32::from(sprite.width) {
+        return Err(format!(
+            "thing {index}: radius {} under half the width {}",
+            thing.radius, sprite.width
+        ));
+    }
+    let p = (i128::from(thing.x_fx8), i128::from(thing.y_fx8));
+    for wall in map.sector_walls(sector) {
+        let (a, b) = (
+            map.vertices[usize::from(wall.start)],
+            map.vertices[usize::from(wall.end)],
+        );
+        let scaled = |v: portalcast_format::Vertex| (i128::from(v.x) * 256, i128::from(v.y) * 256);
+        let depth = cross(scaled(a), scaled(b), p);
+        let length_squared = i128::from(b.x - a.x).pow(2) + i128::from(b.y - a.y).pow(2);
+        let reach = 65536 * i128::from(thing.radius);
+        if depth < 0 || depth * depth < reach * reach * length_squared {
+            return Err(format!(
+                "thing {index}: footprint of radius {} crosses a wall line",
+                thing.radius
+            ));
+        }
+    }
+    let (z, height) = (i32::from(thing.z), i32::from(sprite.height));
+    let (bottom, top) = if thing.flags & portalcast_format::THING_HANGING != 0 {
+        (sector.ceil_z - z - height, sector.ceil_z - z)
+    } else {
+        (sector.floor_z + z, sector.floor_z + z + height)
+    };
+    if z < 0 || bottom < sector.floor_z || top > sector.ceil_z {
+        return Err(format!(
+            "thing {index}: sprite from {bottom} to {top} does not fit its sector"
+        ));
+    }
+    if !map.things_in(thing.sector).contains(thing) {
+        return Err(format!(
+            "thing {index}: not listed with sector {}",
+            thing.sector
+        ));
     }
     Ok(())
 }
@@ -672,7 +727,9 @@ struct RenderFault {
 
 fn render(map: &MapTables, compiled: &Compiled) -> Result<(), RenderFault> {
     let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
+    let sprites: Vec<_> = compiled.sprites().iter().map(|s| s.sprite()).collect();
     let assets = RenderAssets {
+        sprites: &sprites,
         textures: &textures,
         sky: match compiled.sky() {
             Some(sky) => sky.sky(),
@@ -1365,11 +1422,66 @@ impl Drawing {
             placement.angle.1
         );
         for (i, thing) in placement.things.iter().enumerate() {
-            let (x, y) = self.inside_fx8(thing.index(count), weights, i + 1);
-            let _ = writeln!(text, "thing {SPRITE} {} {}", fx8_text(x), fx8_text(y));
+            let sector = thing.index(count);
+            let (x, y) = self.inside_fx8(sector, weights, i + 1);
+            let gap = style(sector).ceil - style(sector).floor;
+            // A thing that would not fit is left out: the generators aim at valid maps.
+            if let Some(words) = thing_words(self.room(sector, (x, y)), gap, thing.index(1 << 20)) {
+                let _ = writeln!(
+                    text,
+                    "thing {SPRITE} {} {}{words}",
+                    fx8_text(x),
+                    fx8_text(y)
+                );
+            }
         }
         text
     }
+
+    /// How far a 24.8 point inside sector `sector` is from the nearest line of its walls, in
+    /// world units (a little less, so a radius up to it surely fits).
+    fn room(&self, sector: usize, (x, y): (i64, i64)) -> f64 {
+        let outline = &self.outlines[sector];
+        (0..outline.len())
+            .map(|i| {
+                let (a, b) = (outline[i], outline[(i + 1) % outline.len()]);
+                let (dx, dy) = ((b.0 - a.0) as f64, (b.1 - a.1) as f64);
+                let (px, py) = (x as f64 / 256.0 - a.0 as f64, y as f64 / 256.0 - a.1 as f64);
+                (dx * py - dy * px).abs() / dx.hypot(dy)
+            })
+            .fold(f64::INFINITY, f64::min)
+            - 1e-6
+    }
+}
+
+/// The shipped sprite's width and height (`assets/sprites/torch.png`).
+const SPRITE_SIZE: (i64, i64) = (16, 48);
+
+/// The words after a thing's position that fit it: `room` units from the nearest wall line, in a
+/// sector `gap` tall; `pick` chooses among `hang`, `solid`, `z=` and `radius=`. `None` if the
+/// sprite fits nowhere there.
+fn thing_words(room: f64, gap: i64, pick: usize) -> Option<String> {
+    let least = (SPRITE_SIZE.0 + 1) / 2;
+    let room = room.floor() as i64;
+    if room < least || gap < SPRITE_SIZE.1 {
+        return None;
+    }
+    let mut words = String::new();
+    if pick % 3 == 1 {
+        words.push_str(" hang");
+    }
+    if pick % 4 == 1 {
+        words.push_str(" solid");
+    }
+    if pick % 5 == 2 {
+        let z = (pick / 60) as i64 % (gap - SPRITE_SIZE.1 + 1);
+        let _ = write!(words, " z={z}");
+    }
+    if pick % 7 == 3 {
+        let radius = least + (pick / 420) as i64 % (room - least + 1);
+        let _ = write!(words, " radius={radius}");
+    }
+    Some(words)
 }
 
 /// The world's side, in world units.
@@ -1601,7 +1713,15 @@ impl Grid {
             text.push('\n');
         }
         let _ = writeln!(text, "player @ on=. angle={}", self.angle);
-        let _ = writeln!(text, "thing t {SPRITE} on=.");
+        // Things stand on '.' cells, their centres half a cell from any wall.
+        let kind = &self.opens[0];
+        let pick = self.things.first().map_or(0, |t| t.index(1 << 20));
+        let words = thing_words(self.cell as f64 / 2.0, kind.ceil - kind.floor, pick);
+        let _ = writeln!(
+            text,
+            "thing t {SPRITE} on=.{}",
+            words.as_deref().unwrap_or("")
+        );
         // Solid cells are rarer than open ones, so rooms connect.
         let kinds = self.solids.len() + 3 * self.opens.len();
         let mut rows: Vec<Vec<char>> = self
@@ -1621,7 +1741,7 @@ impl Grid {
             })
             .collect();
         let (height, width) = (rows.len(), rows[0].len());
-        for thing in &self.things {
+        for thing in self.things.iter().filter(|_| words.is_some()) {
             let at = thing.index(width * height);
             rows[at / width][at % width] = 't';
         }

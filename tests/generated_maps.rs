@@ -124,10 +124,11 @@ fn check_pose(
         if percent > SURFACE_MISMATCH_MAX_PERCENT
             || comparison.holes > 0
             || !comparison.missed_sectors.is_empty()
+            || !comparison.missed_things.is_empty()
         {
             results.failures.push(format!(
-                "{} pose {index} ({camera:?}) {resolution:?}: {percent:.3} % surfaces differ, {} holes, missed {:?}",
-                map.name, comparison.holes, comparison.missed_sectors
+                "{} pose {index} ({camera:?}) {resolution:?}: {percent:.3} % surfaces differ, {} holes, missed sectors {:?}, missed things {:?}",
+                map.name, comparison.holes, comparison.missed_sectors, comparison.missed_things
             ));
         }
     }

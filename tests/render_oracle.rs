@@ -77,7 +77,8 @@ fn engine_matches_the_oracle_on_every_shipped_map() {
                     texel_total[knob] += comparison.texel_mismatch_percent();
                     let ok = percent <= SURFACE_MISMATCH_MAX_PERCENT
                         && comparison.holes == 0
-                        && comparison.missed_sectors.is_empty();
+                        && comparison.missed_sectors.is_empty()
+                        && comparison.missed_things.is_empty();
                     if !ok {
                         let png = screenshot_dir().join(format!(
                             "oracle-diff-{}-{index}-{}-{}.png",
@@ -173,7 +174,8 @@ fn thesis_failure_poses_match_the_oracle() {
                 assert!(
                     percent <= SURFACE_MISMATCH_MAX_PERCENT
                         && comparison.holes == 0
-                        && comparison.missed_sectors.is_empty(),
+                        && comparison.missed_sectors.is_empty()
+                        && comparison.missed_things.is_empty(),
                     "{} {kind} at ({x_bits}, {y_bits}) angle {angle_bits} {resolution:?}: {comparison:?} ({percent:.3} % surfaces differ)",
                     map.name
                 );

@@ -114,6 +114,8 @@ core::arch::global_asm!(include_str!("../../asm/column.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
 restore_code_mode!();
+core::arch::global_asm!(include_str!("../../asm/sprite.s"), options(raw));
+restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/wall.s"), options(raw));
 restore_code_mode!();
 // The math benchmark's ARM routines: assembled here with the kernels, placed in the benchmark's
@@ -129,6 +131,7 @@ restore_code_mode!();
 use crate::frame::Resolution;
 use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
 use crate::raster::flat::{FlatTexture, FLAT_LOG2_SIDES};
+use crate::raster::sprite::SpriteColumn;
 use crate::raster::wall_run::{StripRun, WallRun, WallRunEnd};
 use crate::raster::Canvas;
 
@@ -162,6 +165,8 @@ const _: () = {
     assert!(offset_of!(StripRun, kernel_odd) == 28);
     assert!(offset_of!(StripRun, kernel_both) == 32);
     assert!(size_of::<WallRun>() == 204);
+    assert!(offset_of!(SpriteJob, y_top) == 8);
+    assert!(offset_of!(SpriteJob, colormap) == 24);
 };
 
 /// The argument block of the column kernels (`asm/column.s`).
@@ -172,6 +177,18 @@ struct ColumnJob {
     v: u32,
     dv: u32,
     count: u32,
+    colormap: *const u8,
+}
+
+/// The argument block of the sprite kernels (`asm/sprite.s`).
+#[repr(C)]
+struct SpriteJob {
+    dst: *mut u8,
+    posts: *const u8,
+    y_top: i32,
+    scale: i32,
+    iscale: u32,
+    clip: u32,
     colormap: *const u8,
 }
 
@@ -223,6 +240,10 @@ static FLAT_KERNELS: [[[FlatKernel; 4]; 2]; 2] = [
         kernel_table!(FlatJob; pc_flat_pair_lit_k3, pc_flat_pair_lit_k4, pc_flat_pair_lit_k5, pc_flat_pair_lit_k6),
     ],
 ];
+
+/// Sprite kernels by packing (doubled, even, odd).
+static SPRITE_KERNELS: [unsafe extern "C" fn(*const SpriteJob); 3] =
+    kernel_table!(SpriteJob; pc_sprite_dbl, pc_sprite_even, pc_sprite_odd);
 
 /// The sky's unlit column kernels by packing (doubled, even, odd), at the sky's height: outside
 /// the kernel banks.
@@ -446,6 +467,44 @@ impl Canvas for VramCanvas {
             // colormap, if used, has 256 entries; the kernel is the sky's (for its height) or
             // its bank's, which `KernelBank::for_colormap` brought in.
             unsafe { kernel(&job) };
+        }
+    }
+
+    #[inline(never)]
+    fn sprite_column(&mut self, x: usize, column: &SpriteColumn) {
+        // Every bound the kernel trusts, in one test: the window inside the page, and every
+        // byte it may read inside the column's (`SpriteColumn::reads_inside`, which walks the
+        // posts with the kernel's integers: a sprite's columns are few, its pixels many).
+        let clip = column.clip;
+        assert!(
+            x < self.resolution.width()
+                && clip.top >= 0
+                && clip.bottom as usize <= self.resolution.height()
+                && column.reads_inside()
+        );
+        let byte_column = match self.resolution.pixels_per_halfword() {
+            1 => 2 * x,
+            _ => x & !1,
+        };
+        let packing = match self.resolution.pixels_per_halfword() {
+            1 => 0,
+            _ => 1 + x % 2,
+        };
+        let job = SpriteJob {
+            dst: self.row_address(0).wrapping_add(byte_column),
+            posts: column.posts.as_ptr(),
+            y_top: column.y_top,
+            scale: column.scale,
+            iscale: column.iscale,
+            clip: clip.word(),
+            colormap: column.colormap.as_ptr(),
+        };
+        if self.kernels && !clip.is_empty() {
+            // SAFETY: the window's rows lie inside the page (checked above), so every store
+            // does; every post header, texel and pad the kernel reads lies inside
+            // `column.posts` (`reads_inside` walked the kernel's runs); the colormap has 256
+            // entries. The kernel is in IWRAM outside the banks.
+            unsafe { SPRITE_KERNELS[packing](&job) };
         }
     }
 

@@ -1056,6 +1056,7 @@ mod tests {
                 sector: 0,
             },
             things: &[],
+            sector_things: &[],
         }
     }
 

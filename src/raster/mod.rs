@@ -8,6 +8,7 @@
 pub mod column;
 pub mod flat;
 pub mod span;
+pub mod sprite;
 pub mod wall_run;
 
 /// A column window: rows `top..bottom` (half-open). `top >= bottom` means empty. `repr(C)`,
@@ -97,6 +98,9 @@ pub trait Canvas {
     fn resolution(&self) -> Resolution;
     /// Draws `count` rows of logical column `x`, from row `row` down.
     fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture);
+    /// Draws the runs of sprite column `column` at logical column `x` (rows inside its clip
+    /// window, which lies inside the screen).
+    fn sprite_column(&mut self, x: usize, column: &sprite::SpriteColumn);
     /// Draws `count` logical pixels of row `row`, from logical column `x` rightwards.
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture);
     /// Whether the next flats are drawn at half horizontal resolution where a VRAM halfword
@@ -162,6 +166,19 @@ impl Canvas for HostCanvas<'_> {
         assert!(x < self.resolution.width() && row + count <= self.resolution.height());
         for (offset, index) in texture.indices(count).enumerate() {
             self.put(x, row + offset, index);
+        }
+    }
+
+    fn sprite_column(&mut self, x: usize, column: &sprite::SpriteColumn) {
+        assert!(
+            x < self.resolution.width()
+                && column.clip.top >= 0
+                && column.clip.bottom as usize <= self.resolution.height()
+        );
+        for run in column.runs() {
+            for (offset, index) in column.indices(run).enumerate() {
+                self.put(x, run.row + offset, index);
+            }
         }
     }
 

@@ -46,6 +46,7 @@ pub fn render_assets() -> RenderAssets<'static> {
             texels: &NO_SKY_TEXELS,
         }),
         colormap: &assets::COLORMAP.0,
+        sprites: assets::SPRITES,
     }
 }
 

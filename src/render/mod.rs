@@ -1,6 +1,6 @@
 //! The renderer, in Doom's split: the sector walk (`walk`, Doom's r_bsp), wall projection
 //! (`walls`, r_segs), floors and ceilings (`planes`, r_plane) and the texture and light rules
-//! they share (`surface`, `light`), and the thesis' scene preprocessing (`visits`). Rasterizing
+//! they share (`surface`, `light`), things (`things`, r_things), and the thesis' scene preprocessing (`visits`). Rasterizing
 //! goes through [`crate::raster::Canvas`].
 
 pub mod demo;
@@ -9,12 +9,13 @@ pub mod planes;
 pub mod ratio;
 pub mod spans;
 pub mod surface;
+pub mod things;
 pub mod view;
 pub mod visits;
 pub mod walk;
 pub mod walls;
 
-use portalcast_format::{Colormap, Sky, Texture};
+use portalcast_format::{Colormap, Sky, Sprite, Texture};
 
 /// What the renderer draws with: the compiled textures, the sky and the light colormap.
 #[derive(Clone, Copy, Debug)]
@@ -25,4 +26,6 @@ pub struct RenderAssets<'a> {
     pub sky: Sky<'a>,
     /// Light rows.
     pub colormap: &'a Colormap,
+    /// Sprites by index (things refer to them by index).
+    pub sprites: &'a [Sprite<'a>],
 }

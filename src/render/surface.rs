@@ -12,6 +12,21 @@
 //! - Sky: column `floor(angle / 2π · width) mod width` of the ray's map angle; row
 //!   `floor((y − horizon) · 160 / height) + sky_height / 2`, clamped to the image, for the pixel
 //!   centre `y = row + ½`: the panorama is two screens tall so looking up or down stays covered.
+//! - Things: a thing is a flat rectangle facing the camera (a plane of constant eye depth `z'`,
+//!   its centre's, with `x'` and `z'` its eye coordinates): `width` units wide, centred on `x'`,
+//!   `height` units tall from its bottom `b` (the sector's floor plus the thing's `z`, or, hanging,
+//!   the ceiling minus `z` minus the height), one unit per texel, never mipmapped. The pixel whose
+//!   ray is `m = (column + ½ − width/2) / focal_x` across and `k = (row + ½ − horizon) / focal_y`
+//!   down per unit of depth meets the rectangle at `u = floor(m·z' − (x' − width/2))`,
+//!   `v = floor(b + height − (eye_z − k·z'))`, and shows the thing if `0 ≤ u < width`,
+//!   `0 ≤ v < height`, texel `(u, v)` is opaque, and the ray reaches the thing's sector: the sector
+//!   is on the pixel's path through the portals and no surface of a sector before it on that path
+//!   stopped the ray (the window the portal walk sees it through). Of several things there, the
+//!   nearest (`z'`) shows; at equal depth the later in the map's table. A thing nearer than
+//!   [`THING_DEPTH_MIN`] is not drawn. Lit by its sector's light at depth `z'`, like a wall.
+//!   The compiler keeps each thing's footprint (a disc of at least half its width) and height
+//!   inside its sector, so the rectangle lies inside the sector's volume, and "reaches the sector"
+//!   is exactly "nothing nearer hides it".
 
 /// The surface a pixel belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -31,4 +46,11 @@ pub enum Surface {
     Ceiling(u16),
     /// The sky panorama.
     Sky,
+    /// A thing's sprite, by index in the map's things table.
+    Thing(u16),
 }
+
+/// Nearest eye depth, in world units, at which a thing is drawn (its centre's `z'`): nearer, its
+/// sprite would fill the screen with a few texels, so it is left out, as the eye walks through a
+/// thing that does not block.
+pub const THING_DEPTH_MIN: i32 = 4;

@@ -11,6 +11,7 @@ use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, SKY};
 use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
+use super::things::{ThingView, Things};
 use super::view::{Preprocessing, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
@@ -78,6 +79,13 @@ pub struct FrameStats {
     pub wall_ticks: u32,
     /// Clock ticks in the plane stage (spans, floors, ceilings, sky).
     pub plane_ticks: u32,
+    /// Things drawn (once per visit they were seen in).
+    pub things_drawn: u32,
+    /// Things seen but left out for want of room ([`super::things::VISIBLE_THINGS_MAX`],
+    /// [`super::things::THING_CLIP_COLUMNS`]).
+    pub things_dropped: u32,
+    /// Clock ticks in the things stage's drawing (its collection counts in the wall stage).
+    pub thing_ticks: u32,
 }
 
 /// The renderer's per-column and per-row working memory: the clip and plane windows every wall
@@ -153,6 +161,8 @@ pub struct Renderer<W: WindowStore = ColumnWindows> {
     vertices: VertexCache,
     /// The frame's number in [`Renderer::vertices`]: an entry with another is stale.
     frame_stamp: u32,
+    /// The things the visits saw, for drawing after the scene.
+    things: Things,
 }
 
 /// Vertices (by index) whose eye-space position a frame keeps once computed; higher ones are
@@ -279,6 +289,8 @@ struct Scene<'s, 'a> {
     inverse_focal_y: i64,
     /// [`Renderer::frame_stamp`].
     frame_stamp: u32,
+    /// What the things stage needs of the frame.
+    things: ThingView<'s, 'a>,
 }
 
 impl VertexCache {
@@ -358,6 +370,7 @@ impl<W: WindowStore> Renderer<W> {
                 }; VERTICES_CACHED],
             ),
             frame_stamp: 0,
+            things: Things::new(),
         }
     }
 
@@ -396,7 +409,9 @@ impl<W: WindowStore> Renderer<W> {
             view,
             inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
             frame_stamp: self.frame_stamp,
+            things: ThingView::new(map, assets, view),
         };
+        self.things.clear();
         let planned = view.preprocessing == Preprocessing::On
             && self.plan_visits(&scene, &mut stats, view.sector, 0, width as i32);
         if planned {
@@ -404,6 +419,13 @@ impl<W: WindowStore> Renderer<W> {
         } else {
             stats.plan_overflows = u32::from(view.preprocessing == Preprocessing::On);
             self.walk(&scene, canvas, &mut stats, view.sector, 0, width as i32);
+        }
+        if !map.things.is_empty() {
+            let things_started = (self.clock)();
+            let things = self.things.draw(assets, canvas);
+            stats.things_drawn = things.drawn;
+            stats.things_dropped = things.dropped;
+            stats.thing_ticks = (self.clock)().wrapping_sub(things_started);
         }
         stats
     }
@@ -638,6 +660,15 @@ impl<W: WindowStore> Renderer<W> {
             windows.floor[range.clone()].fill(UNSET);
         }
         let walls_started = (self.clock)();
+        if !scene.map.things_in(sector_index).is_empty() {
+            // Before the walls: the clip windows are still the ones the sector is seen through.
+            self.things.collect(
+                &scene.things,
+                sector_index,
+                first..end,
+                &self.windows.windows().clip,
+            );
+        }
         self.draw_walls(scene, canvas, stats, sector, first, end);
         debug_assert!(
             !self.windows.windows().ceiling[range.clone()].contains(&UNSET)

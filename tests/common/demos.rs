@@ -96,6 +96,18 @@ impl PlayerLine {
         }
     }
 
+    /// The renderer's camera at this pose.
+    pub fn camera(&self) -> portalcast::render::view::Camera {
+        use portalcast::math::{Angle, Fx24_8, WorldPoint};
+        portalcast::render::view::Camera {
+            position: WorldPoint::new(Fx24_8::from_bits(self.x), Fx24_8::from_bits(self.y)),
+            eye_z: Fx24_8::from_bits(self.z),
+            angle: Angle::from_bits(self.angle),
+            sector: self.sector,
+            look_lines: self.look,
+        }
+    }
+
     /// The same fields from a host game.
     pub fn of(game: &Game) -> PlayerLine {
         let camera = game.camera();
@@ -137,4 +149,25 @@ impl PlayerLine {
             ..other.clone()
         }
     }
+}
+
+/// The map and settings a ROM's `render` line names.
+pub fn render_line_settings(
+    text: &str,
+) -> (
+    portalcast_format::MapTables<'static>,
+    portalcast::render::view::Settings,
+) {
+    use portalcast::frame::Resolution;
+    use portalcast::render::demo;
+    use portalcast::render::view::{Floors, Preprocessing, Settings, TexturePlacement};
+    let map = demo::map_named(field(text, "map").unwrap()).expect("the ROM names a compiled map");
+    let settings = Settings {
+        resolution: Resolution::from_label(field(text, "res").unwrap()).unwrap(),
+        lighting: demo::lighting_from_label(field(text, "lighting").unwrap()).unwrap(),
+        textures: TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap(),
+        preprocessing: Preprocessing::from_label(field(text, "prep").unwrap()).unwrap(),
+        floors: Floors::from_label(field(text, "floors").unwrap()).unwrap(),
+    };
+    (map, settings)
 }

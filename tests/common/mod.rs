@@ -183,6 +183,7 @@ pub struct HostAssets<'c> {
     textures: Vec<portalcast_format::Texture<'c>>,
     sky: portalcast_format::Sky<'c>,
     colormap: &'c portalcast_format::Colormap,
+    sprites: Vec<portalcast_format::Sprite<'c>>,
 }
 
 impl<'c> HostAssets<'c> {
@@ -192,6 +193,7 @@ impl<'c> HostAssets<'c> {
             textures: compiled.textures().iter().map(|t| t.texture()).collect(),
             sky: compiled.sky().expect("an asset set with a sky").sky(),
             colormap: compiled.colormap(),
+            sprites: compiled.sprites().iter().map(|s| s.sprite()).collect(),
         }
     }
 
@@ -201,6 +203,7 @@ impl<'c> HostAssets<'c> {
             textures: &self.textures,
             sky: self.sky,
             colormap: self.colormap,
+            sprites: &self.sprites,
         }
     }
 
@@ -210,6 +213,7 @@ impl<'c> HostAssets<'c> {
             textures: &self.textures,
             sky: &self.sky,
             colormap: self.colormap,
+            sprites: &self.sprites,
         }
     }
 }

@@ -74,7 +74,7 @@ fn blobs(compiled: &Compiled) -> Blobs {
     let sprite_offsets = compiled
         .sprites
         .iter()
-        .map(|s| append(&mut sprites, &s.texels))
+        .map(|s| append(&mut sprites, &s.posts))
         .collect();
     Blobs {
         texels,
@@ -214,11 +214,11 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
     for (sprite, offset) in compiled.sprites.iter().zip(&blobs.sprite_offsets) {
         let _ = writeln!(
             s,
-            "    {FORMAT}::Sprite {{ name: {:?}, width: {}, height: {}, texels: {FORMAT}::sub_slice(&SPRITE_BLOB.0, {offset}, {}) }},",
+            "    {FORMAT}::Sprite {{ name: {:?}, width: {}, height: {}, posts: {FORMAT}::sub_slice(&SPRITE_BLOB.0, {offset}, {}) }},",
             sprite.name,
             sprite.width,
             sprite.height,
-            sprite.texels.len()
+            sprite.posts.len()
         );
     }
     let _ = writeln!(s, "];\n");
@@ -234,7 +234,7 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
             s,
             "    {FORMAT}::MapTables {{ name: {:?}, vertices: &MAP_{index}_VERTICES, walls: &MAP_{index}_WALLS, \
              sectors: &MAP_{index}_SECTORS, player_start: {FORMAT}::PlayerStart {{ x_fx8: {}, y_fx8: {}, angle: {}, sector: {} }}, \
-             things: &MAP_{index}_THINGS }},",
+             things: &MAP_{index}_THINGS, sector_things: &MAP_{index}_SECTOR_THINGS }},",
             map.name, p.x_fx8, p.y_fx8, p.angle, p.sector
         );
     }
@@ -287,11 +287,17 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
     for t in &map.things {
         let _ = writeln!(
             s,
-            "    {FORMAT}::Thing {{ x_fx8: {}, y_fx8: {}, angle: {}, sprite: {}, sector: {} }},",
-            t.x_fx8, t.y_fx8, t.angle, t.sprite, t.sector
+            "    {FORMAT}::Thing {{ x_fx8: {}, y_fx8: {}, angle: {}, sprite: {}, sector: {}, z: {}, radius: {}, flags: {} }},",
+            t.x_fx8, t.y_fx8, t.angle, t.sprite, t.sector, t.z, t.radius, t.flags
         );
     }
-    let _ = writeln!(s, "];\n");
+    let _ = writeln!(s, "];");
+    let _ = writeln!(
+        s,
+        "static MAP_{index}_SECTOR_THINGS: [u16; {}] = {:?};\n",
+        map.sector_things.len(),
+        map.sector_things
+    );
 }
 
 /// Writes every file under a temporary name, then renames them all into place, so a failure

@@ -85,7 +85,7 @@ pub(crate) fn check_sky(image: &RgbaImage) -> Vec<Located> {
     errors
 }
 
-/// A sprite: sides 1..=256; alpha below 128 means transparent.
+/// A sprite: sides 1..=256; alpha below 128 means transparent, and some pixel must be opaque.
 pub(crate) fn check_sprite(image: &RgbaImage) -> Vec<Located> {
     let mut errors = Vec::new();
     for (what, value) in [("width", image.width()), ("height", image.height())] {
@@ -95,6 +95,14 @@ pub(crate) fn check_sprite(image: &RgbaImage) -> Vec<Located> {
                 format!("{what} {value} is outside 1..={SPRITE_SIDE_MAX}; resize the sprite"),
             ));
         }
+    }
+    if !image.pixels().any(|p| p.0[3] >= SPRITE_ALPHA_OPAQUE) {
+        errors.push((
+            Loc::START,
+            format!(
+                "every pixel is transparent (alpha below {SPRITE_ALPHA_OPAQUE}), so the thing would not show; paint the sprite with opaque pixels (alpha {SPRITE_ALPHA_OPAQUE} or more)"
+            ),
+        ));
     }
     errors
 }

@@ -1,6 +1,9 @@
 //! Line tokens and number syntax shared by the `.map` and `.grid` parsers.
 
+use portalcast_format::limits::{HEIGHT_DIFF_MAX, WORLD_COORD_MAX};
+
 use crate::diag::{Loc, Located};
+use crate::source::{Spanned, ThingOptions};
 
 /// A whitespace-separated word of a line and where it starts.
 #[derive(Clone, Copy, Debug)]
@@ -122,6 +125,76 @@ impl<'t> KeyValues<'t> {
             }
         }
     }
+}
+
+/// The bare words a `thing` line may carry after its position, in any order among its settings.
+pub(crate) const THING_FLAGS: &[&str] = &["hang", "solid"];
+
+/// Takes the bare option words (`flags`) out of `words`, the words after a directive's name:
+/// only at index `skip` (the first word after its plain values) or later, each at most once.
+/// Any other bare word there is unknown. Returns the other words and the flags found.
+pub(crate) fn split_flags<'t>(
+    words: &[Token<'t>],
+    skip: usize,
+    flags: &[&str],
+    directive: &str,
+    keys: &[&str],
+    errors: &mut Vec<Located>,
+) -> (Vec<Token<'t>>, Vec<Token<'t>>) {
+    let mut rest = Vec::new();
+    let mut found: Vec<Token<'t>> = Vec::new();
+    for (index, word) in words.iter().enumerate() {
+        if index < skip || word.text.contains('=') {
+            rest.push(*word);
+        } else if !flags.contains(&word.text) {
+            errors.push((
+                word.loc,
+                format!(
+                    "unknown word '{}' for {directive}; after its values it takes the words {} and the settings {}",
+                    word.text,
+                    flags.join(", "),
+                    keys.iter().map(|k| format!("{k}=")).collect::<Vec<_>>().join(", ")
+                ),
+            ));
+        } else if found.iter().any(|f| f.text == word.text) {
+            errors.push((
+                word.loc,
+                format!("'{}' is given twice; keep one", word.text),
+            ));
+        } else {
+            found.push(*word);
+        }
+    }
+    (rest, found)
+}
+
+/// The options of a `thing` line: its `flags` (from [`split_flags`]) and its `z=` and
+/// `radius=` settings (taken from `keys`), if every value is valid (each bad one is reported).
+pub(crate) fn thing_options(
+    flags: &[Token<'_>],
+    keys: &mut KeyValues<'_>,
+    errors: &mut Vec<Located>,
+) -> Option<ThingOptions> {
+    let z = match keys.take("z") {
+        Some(t) => integer_in(t, "z", 0, i64::from(HEIGHT_DIFF_MAX))
+            .map_err(|e| errors.push(e))
+            .ok(),
+        None => Some(0),
+    };
+    let radius = match keys.take("radius") {
+        Some(t) => integer_in(t, "radius", 0, i64::from(WORLD_COORD_MAX))
+            .map(|value| Some(Spanned::new(value, t.loc)))
+            .map_err(|e| errors.push(e))
+            .ok(),
+        None => Some(None),
+    };
+    let has = |flag: &str| flags.iter().any(|f| f.text == flag);
+    Some(ThingOptions {
+        z: z?,
+        hanging: has("hang"),
+        solid: has("solid"),
+        radius: radius?,
+    })
 }
 
 /// Largest magnitude the parsers accept for any integer, far beyond every declared limit, so

@@ -117,8 +117,8 @@ pub struct CompiledSprite {
     pub width: u16,
     /// Height in texels.
     pub height: u16,
-    /// Column-major palette indices, 0 = transparent.
-    pub texels: Vec<u8>,
+    /// The columns' posts ([`Sprite::posts`]).
+    pub posts: Vec<u8>,
 }
 
 impl CompiledSprite {
@@ -128,7 +128,7 @@ impl CompiledSprite {
             name: &self.name,
             width: self.width,
             height: self.height,
-            texels: &self.texels,
+            posts: &self.posts,
         }
     }
 }
@@ -221,20 +221,38 @@ impl Compiled {
 /// Parses and checks one map from text, against a catalog of texture and sprite names (no
 /// images are read). `file_name` picks the format by extension (`.map` or `.grid`) and names
 /// the file in errors. Texture and sprite indices in the result refer to the catalog's lists.
+/// Things are checked against the sprite sizes the catalog knows ([`Catalog::with_sprite_size`];
+/// a sprite without one counts as 0×0, so its things get radius 0 unless `radius=` says more).
 pub fn compile_map_str(
     file_name: &str,
     text: &str,
     catalog: &Catalog,
 ) -> Result<CompiledMap, CompileErrors> {
-    compile_map_with_flats(file_name, text, catalog).map(|(map, _)| map)
+    let (mut map, _, fits) = compile_map_parts(file_name, text, catalog)?;
+    let errors = map_build::finish_things(&mut map, &fits, |sprite| {
+        Some(catalog.sprite_size(sprite).unwrap_or((0, 0)))
+    });
+    if errors.is_empty() {
+        Ok(map)
+    } else {
+        Err(CompileErrors::in_file(Path::new(file_name), errors))
+    }
 }
 
-/// [`compile_map_str`], also returning where the map uses each texture as a floor or ceiling.
-fn compile_map_with_flats(
+/// [`compile_map_str`] before the checks of things against their sprites' sizes: also returns
+/// where the map uses each texture as a floor or ceiling, and what those checks need.
+fn compile_map_parts(
     file_name: &str,
     text: &str,
     catalog: &Catalog,
-) -> Result<(CompiledMap, Vec<map_build::FlatUse>), CompileErrors> {
+) -> Result<
+    (
+        CompiledMap,
+        Vec<map_build::FlatUse>,
+        Vec<map_build::ThingFit>,
+    ),
+    CompileErrors,
+> {
     let path = Path::new(file_name);
     let stem = path
         .file_stem()
@@ -444,6 +462,9 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
     let mut maps: Vec<CompiledMap> = Vec::new();
     // Each map's floor and ceiling textures with their places, checked once the images load.
     let mut flat_uses: Vec<(&Path, map_build::FlatUse)> = Vec::new();
+    // Per map (in `maps`' order), its things' checks against their sprites' sizes, done once the
+    // sprites load.
+    let mut thing_fits: Vec<(&Path, Vec<map_build::ThingFit>)> = Vec::new();
     for path in &map_files {
         files_read.push(path.clone());
         let text = match std::fs::read(path).map(String::from_utf8) {
@@ -467,8 +488,8 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
                 continue;
             }
         };
-        match compile_map_with_flats(&path.to_string_lossy(), &text, &catalog) {
-            Ok((map, uses)) => {
+        match compile_map_parts(&path.to_string_lossy(), &text, &catalog) {
+            Ok((map, uses, fits)) => {
                 flat_uses.extend(uses.into_iter().map(|used| (path.as_path(), used)));
                 if let Some(first) = maps.iter().find(|m| m.name == map.name) {
                     errors.push(Diagnostic::new(
@@ -483,6 +504,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
                     ));
                 } else {
                     maps.push(map);
+                    thing_fits.push((path.as_path(), fits));
                 }
             }
             Err(CompileErrors(found)) => errors.extend(found),
@@ -516,12 +538,24 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
         }
     }
     let mut sprite_images = Vec::new();
+    // Width and height of each sprite (by catalog index) that loaded and passed its checks.
+    let mut sprite_sizes = vec![None; catalog.sprites().len()];
     for (index, (name, path)) in sprite_files.iter().enumerate() {
         if usage.sprites[index] {
-            sprite_images.push((name, load(path, images::check_sprite, &mut errors)));
+            let image = load(path, images::check_sprite, &mut errors);
+            sprite_sizes[index] = image
+                .as_ref()
+                .map(|image| (image.width() as u16, image.height() as u16));
+            sprite_images.push((name, image));
         } else {
             left_out.push(format!("{SPRITES_DIR}/{name}.png"));
         }
+    }
+    for (map, (path, fits)) in maps.iter_mut().zip(&thing_fits) {
+        let found = map_build::finish_things(map, fits, |sprite| {
+            sprite_sizes.get(usize::from(sprite)).copied().flatten()
+        });
+        errors.extend(found.into_iter().map(|e| Diagnostic::new(path, e)));
     }
     check_flat_shapes(&texture_images, &flat_uses, &mut errors);
     let sky_image = if usage.sky {
@@ -587,7 +621,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             name: (*name).clone(),
             width: image.width() as u16,
             height: image.height() as u16,
-            texels: texels::sprite_columns(image, &mut quantiser),
+            posts: texels::sprite_columns(image, &mut quantiser),
         });
     }
     let sky = sky_image.map(|image| CompiledSky {

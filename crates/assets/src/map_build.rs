@@ -8,22 +8,31 @@
 use std::collections::HashMap;
 
 use portalcast_format::limits::{
-    HEIGHT_MAX, HEIGHT_MIN, PORTAL_DEPTH_MAX, TEXTURE_COORD_MAX, WORLD_COORD_MAX,
+    HEIGHT_MAX, HEIGHT_MIN, PORTAL_DEPTH_MAX, TEXTURE_COORD_MAX, THINGS_MAX, WORLD_COORD_MAX,
 };
 use portalcast_format::{
-    MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY,
+    MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING,
+    THING_SOLID,
 };
 
 use crate::diag::{Loc, Located};
 use crate::geometry::{cross, dot, double_area, segments_touch, Point};
-use crate::source::{CeilingSource, SourceMap, SourcePlace, SourceSector, SourceWall, Spanned};
+use crate::source::{
+    CeilingSource, SourceMap, SourcePlace, SourceSector, SourceThing, SourceWall, Spanned,
+};
 
 /// What an asset directory offers, by name; maps are checked against it. Texture and sprite
 /// indices in a [`CompiledMap`] built against a catalog are positions in its sorted name lists.
+///
+/// The checks that need a sprite's size (a thing's footprint and height) use the sizes given with
+/// [`Catalog::with_sprite_size`]; a sprite without one counts as 0×0 there.
+/// [`crate::compile_dir`] checks things against the sprite images themselves.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Catalog {
     textures: Vec<String>,
     sprites: Vec<String>,
+    /// Width and height per sprite, where known.
+    sprite_sizes: Vec<Option<(u16, u16)>>,
     has_sky: bool,
 }
 
@@ -43,9 +52,24 @@ impl Catalog {
         sprites.dedup();
         Catalog {
             textures,
+            sprite_sizes: vec![None; sprites.len()],
             sprites,
             has_sky,
         }
+    }
+
+    /// The catalog with the size of sprite `name` known (`width` × `height` texels), for the
+    /// checks of things that use it. A name not in the catalog is ignored.
+    pub fn with_sprite_size(mut self, name: &str, width: u16, height: u16) -> Catalog {
+        if let Ok(index) = self.sprites.binary_search_by(|s| s.as_str().cmp(name)) {
+            self.sprite_sizes[index] = Some((width, height));
+        }
+        self
+    }
+
+    /// The size given for the sprite at `index`, if any.
+    pub(crate) fn sprite_size(&self, index: u16) -> Option<(u16, u16)> {
+        self.sprite_sizes.get(usize::from(index)).copied().flatten()
     }
 
     /// Texture names, sorted.
@@ -120,8 +144,10 @@ pub struct CompiledMap {
     pub walls: Vec<Wall>,
     /// Sectors, in file order (grid maps: in order of their top-left cells).
     pub sectors: Vec<Sector>,
-    /// Things.
+    /// Things, grouped by sector in sector order.
     pub things: Vec<Thing>,
+    /// [`MapTables::sector_things`].
+    pub sector_things: Vec<u16>,
     /// Player start.
     pub player_start: PlayerStart,
 }
@@ -136,6 +162,7 @@ impl CompiledMap {
             sectors: &self.sectors,
             player_start: self.player_start,
             things: &self.things,
+            sector_things: &self.sector_things,
         }
     }
 }
@@ -164,13 +191,62 @@ pub(crate) struct FlatUse {
     pub what: &'static str,
 }
 
+/// What the checks of a thing against its sprite's size need to know ([`finish_things`]): a
+/// thing's footprint and height are checked once the sprite's width and height are known, which
+/// in an asset directory is after the maps, when the images used are loaded.
+#[derive(Clone, Debug)]
+pub(crate) struct ThingFit {
+    /// The thing's place in the file.
+    loc: Loc,
+    /// How messages name it: "thing 'torch' at (400, 128)".
+    label: String,
+    /// The `radius=` written, if any.
+    radius: Option<Spanned<i64>>,
+    z: i64,
+    hanging: bool,
+    /// Its sector's floor and ceiling heights.
+    floor: i64,
+    ceil: i64,
+    /// The lines of its sector's walls, as seen from the thing.
+    walls: Vec<WallLine>,
+}
+
+/// A wall's line as seen from a point strictly inside its (convex) sector.
+#[derive(Clone, Debug)]
+struct WallLine {
+    /// `65536 · length · distance`: the cross product of the wall, scaled to 24.8, with the point
+    /// in 24.8 (positive: the point is on the inner side).
+    depth: i128,
+    /// The wall's squared length, in square world units.
+    length_squared: i128,
+    /// How far the sector reaches from the line (to its farthest corner), in world units.
+    across: f64,
+    /// How messages name it.
+    name: String,
+}
+
+impl WallLine {
+    /// Whether the point is at least `radius` units from the line (exact).
+    fn clears(&self, radius: i64) -> bool {
+        let reach = 65536 * i128::from(radius);
+        self.depth >= 0 && self.depth * self.depth >= reach * reach * self.length_squared
+    }
+
+    /// The point's distance from the line, in world units.
+    fn distance(&self) -> f64 {
+        self.depth as f64 / (65536.0 * (self.length_squared as f64).sqrt())
+    }
+}
+
 /// Checks `source` and builds its tables. Texture and sprite indices refer to `catalog`. Also
-/// returns every use of a texture as a floor or ceiling, with its place in the file.
+/// returns every use of a texture as a floor or ceiling, with its place in the file, and what
+/// [`finish_things`] needs to check each thing of the tables against its sprite's size (the
+/// tables' radii are the ones written, or 0, until then).
 pub(crate) fn build(
     name: &str,
     source: &SourceMap,
     catalog: &Catalog,
-) -> Result<(CompiledMap, Vec<FlatUse>), Vec<Located>> {
+) -> Result<(CompiledMap, Vec<FlatUse>, Vec<ThingFit>), Vec<Located>> {
     let mut errors = Vec::new();
     check_values(source, catalog, &mut errors);
     if source.sectors.is_empty() {
@@ -221,17 +297,206 @@ pub(crate) fn build(
     if !errors.is_empty() {
         return Err(errors);
     }
-    Ok((
-        tables(
-            name,
-            source,
-            catalog,
-            &outlines,
-            player_sector,
-            &thing_sectors,
+    let fits = source
+        .things
+        .iter()
+        .zip(&thing_sectors)
+        .map(|(thing, &sector)| thing_fit(source, &outlines, thing, usize::from(sector)))
+        .collect();
+    let (map, fits) = tables(
+        name,
+        source,
+        catalog,
+        &outlines,
+        player_sector,
+        &thing_sectors,
+        fits,
+    );
+    Ok((map, flat_uses(source, catalog), fits))
+}
+
+/// What [`finish_things`] needs of `thing`, which stands strictly inside sector `sector`.
+fn thing_fit(
+    source: &SourceMap,
+    outlines: &[Outline<'_>],
+    thing: &SourceThing,
+    sector: usize,
+) -> ThingFit {
+    let p = (thing.place.x_fx8.value, thing.place.y_fx8.value);
+    let label = |vertex: usize| source.vertices[vertex].label.as_str();
+    let corners: Vec<Point> = outlines[sector]
+        .walls
+        .iter()
+        .map(|wall| point(source, wall.start))
+        .collect();
+    let walls = outlines[sector]
+        .walls
+        .iter()
+        .map(|wall| {
+            let (a, b) = (point(source, wall.start), point(source, wall.end));
+            let (dx, dy) = (i128::from(b.0 - a.0), i128::from(b.1 - a.1));
+            let length = ((dx * dx + dy * dy) as f64).sqrt();
+            let across = corners
+                .iter()
+                .map(|&c| cross(a, b, c) as f64 / length)
+                .fold(0.0, f64::max);
+            let kind = if wall.source.portal.is_some() {
+                "portal"
+            } else {
+                "wall"
+            };
+            WallLine {
+                depth: cross((a.0 * 256, a.1 * 256), (b.0 * 256, b.1 * 256), p),
+                length_squared: dx * dx + dy * dy,
+                across,
+                name: format!(
+                    "the {kind} from {} to {} (line {})",
+                    label(wall.start),
+                    label(wall.end),
+                    wall.source.loc.line
+                ),
+            }
+        })
+        .collect();
+    let sector = &source.sectors[sector];
+    ThingFit {
+        loc: thing.place.loc,
+        label: format!(
+            "thing '{}' at ({}, {})",
+            thing.sprite.value,
+            fx8(p.0),
+            fx8(p.1)
         ),
-        flat_uses(source, catalog),
-    ))
+        radius: thing.options.radius.clone(),
+        z: thing.options.z,
+        hanging: thing.options.hanging,
+        floor: sector.floor.value,
+        ceil: sector.ceil.value,
+        walls,
+    }
+}
+
+/// Checks each thing of `map` against its sprite's size and sets its footprint radius: the
+/// `radius=` written, at least half the sprite's width rounded up (the default), and the disc
+/// of that radius must lie inside the thing's sector; the sprite must fit between the sector's
+/// floor and ceiling. `fits` are [`build`]'s, in the order of `map.things`; `size` gives a
+/// sprite's width and height by its index in `map`, or `None` to skip the checks (an image that
+/// did not load, already reported). Returns the errors, each at the thing's place.
+pub(crate) fn finish_things(
+    map: &mut CompiledMap,
+    fits: &[ThingFit],
+    size: impl Fn(u16) -> Option<(u16, u16)>,
+) -> Vec<Located> {
+    let mut errors = Vec::new();
+    for (thing, fit) in map.things.iter_mut().zip(fits) {
+        let written = fit.radius.as_ref().map(|r| r.value);
+        thing.radius = written.unwrap_or(0) as u16;
+        let Some((width, height)) = size(thing.sprite) else {
+            continue;
+        };
+        let least = i64::from(width.div_ceil(2));
+        let radius = match &fit.radius {
+            Some(r) if r.value < least => {
+                errors.push((
+                    r.loc,
+                    format!(
+                        "radius={} is less than half the width of the sprite ({width}); use radius={least} or more, or leave radius= out (the default is {least})",
+                        r.value
+                    ),
+                ));
+                least
+            }
+            Some(r) => r.value,
+            None => least,
+        };
+        thing.radius = radius as u16;
+        check_footprint(fit, radius, least, &mut errors);
+        check_thing_height(fit, i64::from(height), &mut errors);
+    }
+    errors
+}
+
+/// Refuses a thing whose footprint disc crosses the line of a wall of its sector, naming the
+/// wall it crosses most.
+fn check_footprint(fit: &ThingFit, radius: i64, least: i64, errors: &mut Vec<Located>) {
+    let Some(wall) = fit
+        .walls
+        .iter()
+        .filter(|wall| !wall.clears(radius))
+        .min_by(|a, b| a.distance().total_cmp(&b.distance()))
+    else {
+        return;
+    };
+    let smaller = fit.radius.is_some() && radius > least;
+    let advice = if wall.across >= 2.0 * radius as f64 {
+        // Rounded up to a 256th, the positions' resolution, so moving that far is enough.
+        let short = ((radius as f64 - wall.distance()) * 256.0).ceil().max(1.0) as i64;
+        let smaller = if smaller {
+            format!(", or give a smaller radius= (down to {least})")
+        } else {
+            String::new()
+        };
+        format!(
+            "move the thing at least {} further from that wall{smaller}",
+            fx8(short)
+        )
+    } else {
+        let fix = if smaller {
+            format!("give a smaller radius= (down to {least}) or widen the sector")
+        } else {
+            "widen the sector or use a narrower sprite".to_string()
+        };
+        format!(
+            "the sector is only {} across from that wall, less than the footprint's {}: {fix}",
+            fx8((wall.across * 256.0).floor() as i64),
+            2 * radius
+        )
+    };
+    errors.push((
+        fit.loc,
+        format!(
+            "{}: its footprint (radius {radius}) crosses the line of {} of its sector, {} from its centre; {advice} (a thing's footprint must lie inside its sector)",
+            fit.label,
+            wall.name,
+            fx8((wall.distance() * 256.0).floor() as i64),
+        ),
+    ));
+}
+
+/// Refuses a thing whose sprite (`height` tall) pokes through its sector's ceiling or floor.
+fn check_thing_height(fit: &ThingFit, height: i64, errors: &mut Vec<Located>) {
+    let room = fit.ceil - fit.floor;
+    let (z, label) = (fit.z, &fit.label);
+    let message = if fit.hanging {
+        let bottom = fit.ceil - z - height;
+        let over = fit.floor - bottom;
+        (over > 0).then(|| {
+            let fix = if z >= over {
+                format!("lower z= by {over} (to {})", z - over)
+            } else {
+                format!("its sector is only {room} tall: raise the ceiling or use a shorter sprite")
+            };
+            format!(
+                "{label}: the sprite is {height} tall and hangs {z} below the ceiling ({}), so its bottom ({bottom}) is {over} below the floor ({}); {fix}",
+                fit.ceil, fit.floor
+            )
+        })
+    } else {
+        let top = fit.floor + z + height;
+        let over = top - fit.ceil;
+        (over > 0).then(|| {
+            let fix = if z >= over {
+                format!("lower z= by {over} (to {})", z - over)
+            } else {
+                format!("its sector is only {room} tall: raise the ceiling or use a shorter sprite")
+            };
+            format!(
+                "{label}: the sprite is {height} tall and stands {z} above the floor ({}), so its top ({top}) is {over} above the ceiling ({}); {fix}",
+                fit.floor, fit.ceil
+            )
+        })
+    };
+    errors.extend(message.map(|m| (fit.loc, m)));
 }
 
 /// Every floor and ceiling texture of the map with the place that names it (a grid's sectors of
@@ -331,6 +596,15 @@ fn check_values(source: &SourceMap, catalog: &Catalog, errors: &mut Vec<Located>
     }
     for thing in &source.things {
         catalog.sprite(&thing.sprite, errors);
+    }
+    if let Some(extra) = source.things.get(THINGS_MAX as usize) {
+        errors.push((
+            extra.place.loc,
+            format!(
+                "the map has {} things, more than the {THINGS_MAX} a map may hold (this is the first beyond); remove some or split the map",
+                source.things.len()
+            ),
+        ));
     }
 }
 
@@ -1074,7 +1348,8 @@ fn tables(
     outlines: &[Outline<'_>],
     player_sector: u16,
     thing_sectors: &[u16],
-) -> CompiledMap {
+    fits: Vec<ThingFit>,
+) -> (CompiledMap, Vec<ThingFit>) {
     // Every reference was checked above, so these lookups cannot fail.
     let mut ignore = Vec::new();
     let mut texture = |name: &Option<Spanned<String>>| {
@@ -1148,22 +1423,33 @@ fn tables(
                 angle,
                 sprite: catalog.sprite(&thing.sprite, &mut ignore),
                 sector,
+                z: thing.options.z as i16,
+                radius: thing.options.radius.as_ref().map_or(0, |r| r.value as u16),
+                flags: if thing.options.hanging {
+                    THING_HANGING
+                } else {
+                    0
+                } | if thing.options.solid { THING_SOLID } else { 0 },
             }
         })
+        .zip(fits)
         .collect();
-    CompiledMap {
+    let (things, fits, sector_things) = group_things_by_sector(things, sectors.len());
+    let map = CompiledMap {
         name: name.to_string(),
         vertices,
         walls,
         sectors,
         things,
+        sector_things,
         player_start: PlayerStart {
             x_fx8,
             y_fx8,
             angle,
             sector: player_sector,
         },
-    }
+    };
+    (map, fits)
 }
 
 /// `floor(256·√(Δx² + Δy²))`: a wall's length in 24.8, as [`Wall::length_fx8`] stores it. Within
@@ -1172,4 +1458,24 @@ pub fn wall_length_fx8(a: Vertex, b: Vertex) -> i32 {
     let (dx, dy) = (i64::from(b.x - a.x), i64::from(b.y - a.y));
     // (length · 256)² = (dx² + dy²) · 65536.
     (((dx * dx + dy * dy) as u64) << 16).isqrt() as i32
+}
+
+/// `things` (each with what goes along with it) in sector order (stable: a sector's things keep
+/// their order in the source), and where each sector's start, with one entry past the last
+/// ([`MapTables::sector_things`]); no entries when there are no things.
+fn group_things_by_sector<T>(
+    mut things: Vec<(Thing, T)>,
+    sector_count: usize,
+) -> (Vec<Thing>, Vec<T>, Vec<u16>) {
+    if things.is_empty() {
+        return (Vec::new(), Vec::new(), Vec::new());
+    }
+    things.sort_by_key(|(thing, _)| thing.sector);
+    let starts = (0..=sector_count)
+        .map(|sector| {
+            things.partition_point(|(thing, _)| usize::from(thing.sector) < sector) as u16
+        })
+        .collect();
+    let (things, along) = things.into_iter().unzip();
+    (things, along, starts)
 }

@@ -17,7 +17,7 @@ use crate::geometry::Point;
 use crate::lex::{self, KeyValues, Token};
 use crate::source::{
     CeilingSource, SourceMap, SourcePlace, SourceSector, SourceThing, SourceVertex, SourceWall,
-    Spanned,
+    Spanned, ThingOptions,
 };
 
 /// Cell side in world units when the file has no `cell` line.
@@ -28,6 +28,7 @@ const GRID_SIDE_MAX: usize = 256;
 const OPEN_KEYS: &[&str] = &["floor", "ceil", "floor_tex", "ceil_tex", "light", "side"];
 const SOLID_KEYS: &[&str] = &["tex"];
 const PLAYER_KEYS: &[&str] = &["on", "angle"];
+const THING_KEYS: &[&str] = &["on", "angle", "z", "radius"];
 
 struct OpenKind {
     symbol: char,
@@ -47,6 +48,7 @@ struct Marker<'t> {
     sprite: Option<Spanned<String>>,
     on: Token<'t>,
     angle: u16,
+    options: ThingOptions,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -168,7 +170,12 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
         } else {
             &words[1..]
         };
-        let (positional, mut keys) = KeyValues::split(rest, &mut errors);
+        let (rest, flags) = if directive.text == "thing" {
+            lex::split_flags(rest, 1, lex::THING_FLAGS, "thing", THING_KEYS, &mut errors)
+        } else {
+            (rest.to_vec(), Vec::new())
+        };
+        let (positional, mut keys) = KeyValues::split(&rest, &mut errors);
         match directive.text {
             "cell" => {
                 keys.report_unknown("cell", &[], &mut errors);
@@ -222,13 +229,18 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                     Some(t) => record(lex::angle_degrees(t), &mut errors),
                     None => Some(0),
                 };
-                keys.report_unknown(directive.text, PLAYER_KEYS, &mut errors);
+                let (options, accepted) = if directive.text == "thing" {
+                    (lex::thing_options(&flags, &mut keys, &mut errors), THING_KEYS)
+                } else {
+                    (Some(ThingOptions::default()), PLAYER_KEYS)
+                };
+                keys.report_unknown(directive.text, accepted, &mut errors);
                 player_seen |= directive.text == "player";
                 if on.is_none() {
                     errors.push((directive.loc, format!("{} needs on=C, the open cell character it stands on", directive.text)));
                 }
-                if let (Some(symbol), Some(sprite), Some(on), Some(angle)) = (symbol, sprite, on, angle) {
-                    markers.push(Marker { symbol, loc: directive.loc, sprite, on, angle });
+                if let (Some(symbol), Some(sprite), Some(on), Some(angle), Some(options)) = (symbol, sprite, on, angle, options) {
+                    markers.push(Marker { symbol, loc: directive.loc, sprite, on, angle, options });
                 }
             }
             other => errors.push((
@@ -412,6 +424,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             Some(sprite) => things.push(SourceThing {
                 sprite: sprite.clone(),
                 place: here,
+                options: marker.options.clone(),
             }),
             None if player.is_some() => errors.push((
                 here.loc,

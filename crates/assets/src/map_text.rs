@@ -17,6 +17,7 @@ const DEFAULT_LIGHT: u8 = portalcast_format::LIGHT_NEUTRAL;
 const SECTOR_KEYS: &[&str] = &["floor", "ceil", "floor_tex", "ceil_tex", "light"];
 const WALL_KEYS: &[&str] = &["tex", "portal", "upper", "lower", "xoff", "yoff"];
 const PLACE_KEYS: &[&str] = &["angle"];
+const THING_KEYS: &[&str] = &["angle", "z", "radius"];
 
 /// A wall as written: vertex and sector names not yet resolved.
 struct WrittenWall<'t> {
@@ -54,7 +55,12 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
         let Some((&directive, rest)) = words.split_first() else {
             continue;
         };
-        let (positional, mut keys) = KeyValues::split(rest, &mut errors);
+        let (rest, flags) = if directive.text == "thing" {
+            lex::split_flags(rest, 3, lex::THING_FLAGS, "thing", THING_KEYS, &mut errors)
+        } else {
+            (rest.to_vec(), Vec::new())
+        };
+        let (positional, mut keys) = KeyValues::split(&rest, &mut errors);
         match directive.text {
             "vertex" => {
                 keys.report_unknown("vertex", &[], &mut errors);
@@ -135,15 +141,17 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             }
             "thing" => {
                 let words = expect_words(directive, &positional, ["SPRITE", "X", "Y"], &mut errors);
+                let options = lex::thing_options(&flags, &mut keys, &mut errors);
                 let thing = words.and_then(|[sprite, x, y]| {
                     let name = record(lex::name(sprite, "sprite name"), &mut errors);
                     let place = parse_place(directive, x, y, &mut keys, &mut errors)?;
                     Some(SourceThing {
                         sprite: Spanned::new(name?, sprite.loc),
                         place,
+                        options: options?,
                     })
                 });
-                keys.report_unknown("thing", PLACE_KEYS, &mut errors);
+                keys.report_unknown("thing", THING_KEYS, &mut errors);
                 things.extend(thing);
             }
             other => errors.push((

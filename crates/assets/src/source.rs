@@ -76,4 +76,16 @@ pub(crate) struct SourcePlace {
 pub(crate) struct SourceThing {
     pub sprite: Spanned<String>,
     pub place: SourcePlace,
+    pub options: ThingOptions,
+}
+
+/// The optional words of a `thing` line: `z=H`, `hang`, `solid`, `radius=R`.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ThingOptions {
+    /// Units above the floor of the sprite's bottom (hanging: below the ceiling of its top).
+    pub z: i64,
+    pub hanging: bool,
+    pub solid: bool,
+    /// The footprint radius written, if any (else half the sprite's width, rounded up).
+    pub radius: Option<Spanned<i64>>,
 }

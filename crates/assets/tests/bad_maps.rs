@@ -12,6 +12,8 @@ const TEXTURES: &[&str] = &[
     "brick", "ceiling", "grass", "metal", "step", "stone", "tiles", "trim", "water", "wood",
 ];
 const SPRITES: &[&str] = &["torch"];
+/// The torch's size, as the shipped `sprites/torch.png` has it (the things' checks use it).
+const TORCH_SIZE: (u16, u16) = (16, 48);
 
 fn bad_files() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad");
@@ -63,7 +65,8 @@ fn every_bad_map_reports_its_error_at_its_place() {
             .lines()
             .nth(1)
             .is_some_and(|l| l.trim() == "# catalog: no-sky");
-        let catalog = Catalog::new(TEXTURES.iter().copied(), SPRITES.iter().copied(), has_sky);
+        let catalog = Catalog::new(TEXTURES.iter().copied(), SPRITES.iter().copied(), has_sky)
+            .with_sprite_size("torch", TORCH_SIZE.0, TORCH_SIZE.1);
         let file_name = path
             .file_name()
             .and_then(|n| n.to_str())

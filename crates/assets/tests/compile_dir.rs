@@ -335,11 +335,12 @@ fn palette_and_colormap_rules() {
         assert!(!texture.columns.contains(&TRANSPARENT) && !texture.rows.contains(&TRANSPARENT));
     }
     assert!(!compiled.sky().expect("sky").texels.contains(&TRANSPARENT));
-    let torch = &compiled.sprites()[0];
+    let torch = compiled.sprites()[0].sprite();
     // Column 0 is fully transparent, column 1 has opaque rows 1..11.
-    assert!(torch.texels[..12].iter().all(|&t| t == TRANSPARENT));
-    assert_eq!(torch.texels[12], TRANSPARENT);
-    assert!(torch.texels[13..23].iter().all(|&t| t != TRANSPARENT));
+    assert!((0..12).all(|v| torch.texel(0, v) == TRANSPARENT));
+    assert_eq!(torch.texel(1, 0), TRANSPARENT);
+    assert!((1..11).all(|v| torch.texel(1, v) != TRANSPARENT));
+    assert_eq!(torch.texel(1, 11), TRANSPARENT);
 
     let colormap = compiled.colormap();
     let neutral = colormap_row(LIGHT_NEUTRAL);

@@ -7,8 +7,8 @@ mod common;
 use std::collections::{BTreeMap, HashMap, VecDeque};
 
 use common::{shipped_assets, Scratch};
-use portalcast_assets::{compile_dir, Compiled};
-use portalcast_format::{MapTables, Sector, NO_TEXTURE, SKY};
+use portalcast_assets::{compile_dir, Compiled, CompiledSprite};
+use portalcast_format::{MapTables, Sector, NO_TEXTURE, SKY, THING_HANGING};
 
 fn compiled() -> Compiled {
     compile_dir(&shipped_assets()).unwrap_or_else(|e| panic!("shipped assets must compile:\n{e}"))
@@ -32,7 +32,7 @@ fn strictly_inside(map: &MapTables<'_>, sector: &Sector, x_fx8: i32, y_fx8: i32)
     })
 }
 
-fn check_invariants(map: &MapTables<'_>, texture_count: usize, sprite_count: usize) {
+fn check_invariants(map: &MapTables<'_>, texture_count: usize, sprites: &[CompiledSprite]) {
     let name = map.name;
     let mut next_wall = 0;
     for (index, sector) in map.sectors.iter().enumerate() {
@@ -102,12 +102,44 @@ fn check_invariants(map: &MapTables<'_>, texture_count: usize, sprite_count: usi
         strictly_inside(map, start, map.player_start.x_fx8, map.player_start.y_fx8),
         "{name}: player inside"
     );
-    for thing in map.things {
-        assert!(usize::from(thing.sprite) < sprite_count);
+    for (index, thing) in map.things.iter().enumerate() {
+        let sprite = &sprites[usize::from(thing.sprite)];
         let sector = &map.sectors[usize::from(thing.sector)];
         assert!(
             strictly_inside(map, sector, thing.x_fx8, thing.y_fx8),
             "{name}: thing inside"
+        );
+        assert!(
+            map.things_in(thing.sector).contains(thing),
+            "{name}: thing {index} listed with its sector"
+        );
+        // The renderer's promise (src/render/surface.rs): the footprint, a disc at least half
+        // the sprite wide, lies inside the sector, and the sprite between floor and ceiling.
+        let radius = i64::from(thing.radius);
+        assert!(
+            2 * radius >= i64::from(sprite.width),
+            "{name}: thing {index} radius"
+        );
+        let p = (i64::from(thing.x_fx8), i64::from(thing.y_fx8));
+        for wall in map.sector_walls(sector) {
+            let (a, b) = (point(map, wall.start), point(map, wall.end));
+            let depth = i128::from(cross((a.0 * 256, a.1 * 256), (b.0 * 256, b.1 * 256), p));
+            let length_squared = i128::from((b.0 - a.0).pow(2) + (b.1 - a.1).pow(2));
+            let reach = 65536 * i128::from(radius);
+            assert!(
+                depth * depth >= reach * reach * length_squared,
+                "{name}: thing {index} footprint crosses a wall line"
+            );
+        }
+        let (z, height) = (thing.z as i32, i32::from(sprite.height));
+        let (bottom, top) = if thing.flags & THING_HANGING != 0 {
+            (sector.ceil_z - z - height, sector.ceil_z - z)
+        } else {
+            (sector.floor_z + z, sector.floor_z + z + height)
+        };
+        assert!(
+            bottom >= sector.floor_z && top <= sector.ceil_z,
+            "{name}: thing {index} fits in height"
         );
     }
 }
@@ -118,17 +150,25 @@ fn shipped_maps_satisfy_the_table_invariants() {
     let names: Vec<&str> = compiled.maps().iter().map(|m| m.name.as_str()).collect();
     assert_eq!(names, ["bench", "grid", "tiny"]);
     for map in compiled.maps() {
-        check_invariants(
-            &map.tables(),
-            compiled.textures().len(),
-            compiled.sprites().len(),
+        check_invariants(&map.tables(), compiled.textures().len(), compiled.sprites());
+    }
+    // The pillar and the lamp are shipped for maps to place; no shipped map does yet.
+    assert_eq!(
+        compiled.left_out(),
+        ["sprites/lamp.png", "sprites/pillar.png"],
+        "every other shipped asset is used"
+    );
+    let torch = &compiled.sprites()[0];
+    assert_eq!((torch.name.as_str(), torch.width), ("torch", 16));
+    for map in compiled.maps() {
+        assert!(
+            map.things
+                .iter()
+                .all(|t| t.radius == 8 && t.z == 0 && t.flags == 0),
+            "{}: shipped torches stand on the floor, radius 8",
+            map.name
         );
     }
-    assert!(
-        compiled.left_out().is_empty(),
-        "every shipped asset is used: {:?}",
-        compiled.left_out()
-    );
 }
 
 /// A wall as the naive reader sees it: its start point and the sector its portal names.
@@ -307,8 +347,8 @@ fn written_blobs_read_back() {
     assert_eq!(offset, texels.len());
     let sprites = std::fs::read(out.path("assets_sprites.bin")).expect("sprite blob");
     assert_eq!(
-        &sprites[..compiled.sprites()[0].texels.len()],
-        &compiled.sprites()[0].texels[..]
+        &sprites[..compiled.sprites()[0].posts.len()],
+        &compiled.sprites()[0].posts[..]
     );
     let report = compiled.size_report();
     for kind in [
@@ -362,7 +402,8 @@ fn examples_in_the_format_doc_compile() {
         ],
         ["torch"],
         true,
-    );
+    )
+    .with_sprite_size("torch", 16, 48);
     let mut examples = 0;
     for section in doc.split("### Example").skip(1) {
         let block = section

@@ -18,10 +18,13 @@ mod map;
 pub mod memory;
 mod texture;
 
-pub use map::{MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY};
+pub use map::{
+    MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING,
+    THING_SOLID,
+};
 pub use texture::{
-    bgr555, colormap_row, Colormap, Palette, Sky, Sprite, Texture, LIGHT_LEVELS, LIGHT_NEUTRAL,
-    TRANSPARENT,
+    bgr555, colormap_row, Colormap, Palette, Post, Sky, Sprite, Texture, LIGHT_LEVELS,
+    LIGHT_NEUTRAL, POST_HEADER_BYTES, TRANSPARENT,
 };
 
 /// Forces 4-byte alignment on its contents, so the ROM can read blobs pulled in with

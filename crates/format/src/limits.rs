@@ -81,6 +81,12 @@ pub const TEXTURE_COORD_MAX: i32 = 32_767;
 /// undrawn, so the map compiler refuses a map where a view could cross more portals in a row.
 pub const PORTAL_DEPTH_MAX: u32 = 64;
 
+/// Most things one map may place. [`crate::MapTables::sector_things`] indexes the things table
+/// with `u16` entries, which this keeps far inside; the bound also caps the table at 20 KiB of ROM
+/// (20 bytes a thing) and the things the renderer may have to consider in one frame. The map
+/// compiler refuses a map with more.
+pub const THINGS_MAX: u32 = 1024;
+
 /// Widest logical screen, in columns (Mode 4 at full width).
 pub const SCREEN_WIDTH_MAX: i32 = 240;
 
@@ -141,3 +147,4 @@ const _: () = assert!(
         && SCREEN_WIDTH_MIN / 2 >= FOCAL_LENGTH_MIN
         && 3 * SCREEN_HEIGHT_MIN / 4 >= FOCAL_LENGTH_MIN
 );
+const _: () = assert!(THINGS_MAX < u16::MAX as u32);

@@ -107,7 +107,7 @@ pub struct PlayerStart {
     pub sector: u16,
 }
 
-/// A named object placed on the map (rendered as a sprite by a later issue).
+/// A named object placed on the map, drawn as a sprite that faces the camera.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C)]
 pub struct Thing {
@@ -119,9 +119,23 @@ pub struct Thing {
     pub angle: u16,
     /// Index into the sprites table.
     pub sprite: u16,
-    /// The sector that strictly contains the thing; it stands on that sector's floor.
+    /// The sector that strictly contains the thing.
     pub sector: u16,
+    /// Height of the sprite's bottom above its sector's floor, in world units; with
+    /// [`THING_HANGING`], of the sprite's top below the ceiling.
+    pub z: i16,
+    /// Radius of the thing's footprint, in world units: at least half the sprite's width (the
+    /// compiler keeps the footprint inside the sector, so the sprite never pokes through a wall).
+    pub radius: u16,
+    /// [`THING_HANGING`], [`THING_SOLID`].
+    pub flags: u16,
 }
+
+/// [`Thing::flags`]: the sprite hangs from the ceiling ([`Thing::z`] below it) instead of
+/// standing on the floor.
+pub const THING_HANGING: u16 = 1;
+/// [`Thing::flags`]: the player cannot walk into the thing's footprint.
+pub const THING_SOLID: u16 = 2;
 
 /// Everything the engine needs to run one map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -137,8 +151,11 @@ pub struct MapTables<'a> {
     pub sectors: &'a [Sector],
     /// The player's start.
     pub player_start: PlayerStart,
-    /// Placed objects.
+    /// Placed objects, grouped by sector in sector order.
     pub things: &'a [Thing],
+    /// Where each sector's things start in [`MapTables::things`], and one past the last: one
+    /// entry more than there are sectors, or none when the map has no things.
+    pub sector_things: &'a [u16],
 }
 
 impl<'a> MapTables<'a> {
@@ -147,5 +164,24 @@ impl<'a> MapTables<'a> {
     pub fn sector_walls(&self, sector: &Sector) -> &'a [Wall] {
         let first = sector.first_wall as usize;
         &self.walls[first..first + sector.wall_count as usize]
+    }
+
+    /// The indices in [`MapTables::things`] of the things standing in sector `sector_index`.
+    #[inline]
+    pub fn things_range(&self, sector_index: u16) -> core::ops::Range<usize> {
+        let index = usize::from(sector_index);
+        match (
+            self.sector_things.get(index),
+            self.sector_things.get(index + 1),
+        ) {
+            (Some(&first), Some(&end)) => usize::from(first)..usize::from(end),
+            _ => 0..0,
+        }
+    }
+
+    /// The things standing in sector `sector_index`.
+    #[inline]
+    pub fn things_in(&self, sector_index: u16) -> &'a [Thing] {
+        &self.things[self.things_range(sector_index)]
     }
 }

@@ -140,9 +140,16 @@ pub struct Sky<'a> {
     pub texels: &'a [u8],
 }
 
-/// A sprite image: palette indices, column-major (texel `(u, v)` at `u * height + v`), with
-/// [`TRANSPARENT`] (0) where nothing is drawn. Its origin is the bottom
-/// centre, placed on the floor at the thing's position.
+/// A sprite image, stored as Doom's patches are: each column a list of opaque runs ("posts"),
+/// so that drawing skips the transparent texels instead of testing each one. Its origin is the
+/// bottom centre, placed at the thing's position.
+///
+/// `posts` holds, first, `width` little-endian `u32` offsets (from the start of `posts`), one per
+/// column, left to right; at each offset the column: a post count (`u8`), then each post, top to
+/// bottom: its first row (`u8`), its length `n` (`u8`, 1..=255), its `n` texels (palette indices,
+/// never [`TRANSPARENT`]) and one pad texel, a copy of the last, which a column kernel stepping
+/// the post's texels may read at its last row when its row steps round up. A run longer than
+/// 255 texels is two posts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C)]
 pub struct Sprite<'a> {
@@ -152,8 +159,75 @@ pub struct Sprite<'a> {
     pub width: u16,
     /// Height in texels (1..=256).
     pub height: u16,
-    /// `width * height` palette indices, column-major.
-    pub texels: &'a [u8],
+    /// The columns' offsets and posts (layout above).
+    pub posts: &'a [u8],
+}
+
+/// Bytes a post takes before its texels: first row and length.
+pub const POST_HEADER_BYTES: usize = 2;
+
+/// One opaque run of a sprite column.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Post<'a> {
+    /// First row of the run, 0 at the image's top.
+    pub top: u8,
+    /// The run's texels, top to bottom, followed by the pad texel (a copy of the last).
+    pub texels_and_pad: &'a [u8],
+}
+
+impl Post<'_> {
+    /// Rows in the run.
+    pub fn len(&self) -> usize {
+        self.texels_and_pad.len() - 1
+    }
+
+    /// Never true: a post holds at least one texel.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl<'a> Sprite<'a> {
+    /// The byte offset of column `u`'s post count in [`Sprite::posts`].
+    #[inline]
+    pub fn column_offset(&self, u: usize) -> usize {
+        let at = 4 * u;
+        let bytes = [
+            self.posts[at],
+            self.posts[at + 1],
+            self.posts[at + 2],
+            self.posts[at + 3],
+        ];
+        u32::from_le_bytes(bytes) as usize
+    }
+
+    /// The posts of column `u`, top to bottom.
+    pub fn column_posts(&self, u: usize) -> impl Iterator<Item = Post<'a>> + 'a {
+        let posts = self.posts;
+        let mut at = self.column_offset(u);
+        let count = posts[at];
+        at += 1;
+        (0..count).map(move |_| {
+            let top = posts[at];
+            let len = usize::from(posts[at + 1]);
+            let start = at + POST_HEADER_BYTES;
+            at = start + len + 1;
+            Post {
+                top,
+                texels_and_pad: &posts[start..start + len + 1],
+            }
+        })
+    }
+
+    /// The texel at column `u`, row `v` (0 at the top): [`TRANSPARENT`] where no post covers it.
+    pub fn texel(&self, u: usize, v: usize) -> u8 {
+        self.column_posts(u)
+            .find_map(|post| {
+                let row = v.checked_sub(usize::from(post.top))?;
+                (row < post.len()).then(|| post.texels_and_pad[row])
+            })
+            .unwrap_or(TRANSPARENT)
+    }
 }
 
 #[cfg(test)]

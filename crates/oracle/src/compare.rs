@@ -1,4 +1,4 @@
-//! Engine frame against oracle frame: counts, edge error, sectors, and a diff picture.
+//! Engine frame against oracle frame: counts, edge error, sectors, things, and a diff picture.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::io;
@@ -29,11 +29,16 @@ pub struct Comparison {
     /// difference between the engine's and the oracle's topmost rows of it, and between their
     /// bottommost rows; the maximum over all of them. 0 when no wall is shown by both.
     pub max_wall_edge_error_px: u32,
-    /// Sectors the oracle frame shows (a pixel of their floor, ceiling, or one of their walls
-    /// or strips) and the engine's does not, ascending.
+    /// Sectors the oracle frame shows (a pixel of their floor, ceiling, one of their walls or
+    /// strips, or one of their things) and the engine's does not, ascending.
     pub missed_sectors: Vec<u16>,
     /// Sectors the engine frame shows and the oracle's does not, ascending.
     pub extra_sectors: Vec<u16>,
+    /// Things (by index in the map's table) the oracle frame shows in a pixel at least and the
+    /// engine's in none, ascending: as [`Comparison::missed_sectors`], for sprites.
+    pub missed_things: Vec<u16>,
+    /// Things the engine frame shows and the oracle's does not, ascending.
+    pub extra_things: Vec<u16>,
 }
 
 impl Comparison {
@@ -85,8 +90,9 @@ pub fn mismatch_regions(
 }
 
 /// Compares an engine frame (surfaces and final palette indices, row-major, the oracle's size)
-/// with the oracle's. Sectors of walls are taken from `oracle.wall_sectors`; an engine wall index
-/// outside it belongs to no sector.
+/// with the oracle's. Sectors of walls and things are taken from `oracle.wall_sectors` and
+/// `oracle.thing_sectors`; an engine wall or thing index outside them belongs to no sector (but
+/// still counts as a thing the engine shows).
 ///
 /// Panics if the engine slices are not `oracle.width · oracle.height` long.
 pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Frame) -> Comparison {
@@ -109,9 +115,13 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
     let mut misplaced: HashMap<Surface, Vec<usize>> = HashMap::new();
     let mut engine_sectors = BTreeSet::new();
     let mut oracle_sectors = BTreeSet::new();
+    let mut engine_things = BTreeSet::new();
+    let mut oracle_things = BTreeSet::new();
     for (pixel, (&engine, &expected)) in engine_surfaces.iter().zip(&oracle.surfaces).enumerate() {
         engine_sectors.extend(oracle.sector_of(engine));
         oracle_sectors.extend(oracle.sector_of(expected));
+        engine_things.extend(thing_of(engine));
+        oracle_things.extend(thing_of(expected));
         if engine == Surface::None {
             result.holes += 1;
         }
@@ -145,7 +155,16 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
         .difference(&oracle_sectors)
         .copied()
         .collect();
+    result.missed_things = oracle_things.difference(&engine_things).copied().collect();
+    result.extra_things = engine_things.difference(&oracle_things).copied().collect();
     result
+}
+
+fn thing_of(surface: Surface) -> Option<u16> {
+    match surface {
+        Surface::Thing(thing) => Some(thing),
+        _ => None,
+    }
 }
 
 /// How far, in pixels, the two extra oracle renders of [`compare_with_row_tolerance`] move every
@@ -154,11 +173,11 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
 /// the two surfaces the row shows there is a rounding, not an error.
 pub const ROW_TOLERANCE_PX: f64 = 1.0 / 128.0;
 
-/// [`compare`] with the oracle's `frame`, except that a sector counts as missed only if the
-/// oracle shows it in `frame` and in both frames rendered with the rows moved by
+/// [`compare`] with the oracle's `frame`, except that a sector or a thing counts as missed only
+/// if the oracle shows it in `frame` and in both frames rendered with the rows moved by
 /// ±[`ROW_TOLERANCE_PX`] (`moved`): a sliver of a sector a pixel high whose only row centre lies
-/// within that distance of its edge (a far floor between two steps) is not a missed sector.
-/// The other measures are `frame`'s, unchanged.
+/// within that distance of its edge (a far floor between two steps) is not a missed sector, nor
+/// such a sliver of a sprite a missed thing. The other measures are `frame`'s, unchanged.
 pub fn compare_with_row_tolerance(
     engine_surfaces: &[Surface],
     engine_indices: &[u8],
@@ -177,6 +196,13 @@ pub fn compare_with_row_tolerance(
     result
         .missed_sectors
         .retain(|sector| up.contains(sector) && down.contains(sector));
+    let things = |frame: &Frame| -> BTreeSet<u16> {
+        frame.surfaces.iter().filter_map(|&s| thing_of(s)).collect()
+    };
+    let (up, down) = (things(moved[0]), things(moved[1]));
+    result
+        .missed_things
+        .retain(|thing| up.contains(thing) && down.contains(thing));
     result
 }
 
@@ -280,8 +306,8 @@ fn chebyshev_distances(
 
 /// A stable false colour for a surface: black for [`Surface::None`], sky blue for the sky,
 /// and for the others a colour hashed from the kind and index, tinted by kind (walls reddish,
-/// upper strips yellowish, lower strips purplish, floors greenish, ceilings bluish) so
-/// neighbouring walls still differ.
+/// upper strips yellowish, lower strips purplish, floors greenish, ceilings bluish, things
+/// bright: every channel at least 160) so neighbouring walls still differ.
 pub fn surface_colour(surface: Surface) -> [u8; 3] {
     let (kind, index, tint): (u64, u16, [u8; 3]) = match surface {
         Surface::None => return [0, 0, 0],
@@ -291,9 +317,12 @@ pub fn surface_colour(surface: Surface) -> [u8; 3] {
         Surface::Lower(w) => (3, w, [96, 0, 96]),
         Surface::Floor(s) => (4, s, [0, 96, 0]),
         Surface::Ceiling(s) => (5, s, [0, 0, 96]),
+        Surface::Thing(t) => (6, t, [160, 160, 160]),
     };
     let hash = splitmix64((kind << 16) | u64::from(index));
-    let channel = |i: usize| tint[i] + (hash >> (8 * i)) as u8 % 160;
+    // Things span 96 shades above their tint, the others 160.
+    let spread = if kind == 6 { 96 } else { 160 };
+    let channel = |i: usize| tint[i] + (hash >> (8 * i)) as u8 % spread;
     [channel(0), channel(1), channel(2)]
 }
 
@@ -393,6 +422,7 @@ mod tests {
             indices: vec![0; width * height],
             depths: vec![1.0; width * height],
             wall_sectors: vec![0; 8],
+            thing_sectors: Vec::new(),
         };
         let result = compare(&engine, &vec![0; width * height], &frame);
         assert_eq!(result.max_wall_edge_error_px, 2);

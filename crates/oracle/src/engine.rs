@@ -7,6 +7,7 @@ use portalcast::flight::Flight;
 use portalcast::frame::Resolution;
 use portalcast::raster::column::ColumnTexture;
 use portalcast::raster::flat::FlatTexture;
+use portalcast::raster::sprite::SpriteColumn;
 use portalcast::raster::{Canvas, HostCanvas, HostPage};
 use portalcast::render::surface::Surface;
 use portalcast::render::view::{self, Settings, View};
@@ -85,6 +86,24 @@ impl Canvas for RecordingCanvas {
         .column(x, row, count, texture);
     }
 
+    /// Sprites draw over the scene: their pixels take the thing's surface and index without
+    /// counting as writes, which [`RecordingCanvas::coverage_faults`] checks for the scene.
+    fn sprite_column(&mut self, x: usize, column: &SpriteColumn) {
+        for run in column.runs() {
+            for (offset, index) in column.indices(run).enumerate() {
+                let at = (run.row + offset) * self.resolution.width() + x;
+                self.surfaces[at] = self.current;
+                self.indices[at] = index;
+            }
+        }
+        HostCanvas {
+            page: &mut self.page,
+            resolution: self.resolution,
+            halved_flats: false,
+        }
+        .sprite_column(x, column);
+    }
+
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
         let halved = self.halved_flats && self.resolution.pixels_per_halfword() == 2;
         let indices: Vec<u8> = texture.indices_from(x, count, halved).collect();
@@ -151,6 +170,7 @@ pub fn compare_with_engine(
         textures: assets.textures,
         sky: &assets.sky,
         colormap: assets.colormap,
+        sprites: assets.sprites,
     };
     let oracle_view = crate::View::from_viewport(&view.viewport, view.lighting);
     let oracle = render(
@@ -184,6 +204,8 @@ pub struct RunAccuracy {
     pub wall_edge_px: u32,
     /// Sectors the oracle shows and the engine misses, summed over the frames.
     pub missed_sectors: u64,
+    /// Things the oracle shows and the engine misses, summed over the frames.
+    pub missed_things: u64,
     /// Pixels left unwritten.
     pub holes: u64,
 }
@@ -197,6 +219,7 @@ impl RunAccuracy {
         self.texel_mismatches += comparison.texel_mismatches as u64;
         self.wall_edge_px = self.wall_edge_px.max(comparison.max_wall_edge_error_px);
         self.missed_sectors += comparison.missed_sectors.len() as u64;
+        self.missed_things += comparison.missed_things.len() as u64;
         self.holes += comparison.holes as u64;
     }
 

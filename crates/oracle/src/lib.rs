@@ -4,8 +4,8 @@
 //! by casting one exact ray per pixel in `f64`, applying the texture rules of
 //! [`portalcast::render::surface`] and the light rule of [`portalcast::render::light`]. The
 //! accuracy tests render both and [`compare()`] them: which surface each pixel shows, which palette
-//! index it ends with, how far the engine's edges are from the oracle's, and which sectors one of
-//! them shows and the other does not.
+//! index it ends with, how far the engine's edges are from the oracle's, and which sectors and
+//! things one of them shows and the other does not.
 //!
 //! # The ray of a pixel
 //!
@@ -32,6 +32,16 @@
 //!   [`Surface::Lower`] if `N.floor_z > S.floor_z` and `h ≤ N.floor_z`; otherwise the march
 //!   goes on in `N` from `t_in = t_out`;
 //! - after `sectors + 8` sectors without a hit (a broken map), [`Surface::None`].
+//!
+//! # Things
+//!
+//! A pixel's ray *reaches* the sectors of its path up to and including the one whose surface
+//! stopped it (all of them if none did). Every thing of a reached sector is a camera-facing
+//! rectangle at its centre's eye depth `z'` (left out nearer than
+//! [`THING_DEPTH_MIN`](portalcast::render::surface::THING_DEPTH_MIN)); the pixel's ray meets it
+//! at the texel `(u, v)` of the "Things" rule of [`portalcast::render::surface`], and where that
+//! texel is opaque the nearest such thing (ties to the later in the map's table) replaces the
+//! pixel's surface with [`Surface::Thing`], lit by its sector's light at depth `z'`.
 //!
 //! The strict and non-strict comparisons settle exact ties (a pixel centre exactly on the
 //! projection of an edge) the way the engine's row rule does: a vertical span `[y0, y1)` owns
@@ -84,7 +94,7 @@ pub fn render_with_row_tolerance(
 }
 
 use portalcast::math::Viewport;
-use portalcast_format::{Colormap, Sky, Texture};
+use portalcast_format::{Colormap, Sky, Sprite, Texture};
 
 /// Where the eye is and where it looks, in `f64` world units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -180,6 +190,8 @@ pub struct Assets<'a> {
     pub sky: &'a Sky<'a>,
     /// The light colormap.
     pub colormap: &'a Colormap,
+    /// Sprites, indexed by [`Thing::sprite`](portalcast_format::Thing::sprite).
+    pub sprites: &'a [Sprite<'a>],
 }
 
 /// A rendered frame, row-major (`y * width + x`).
@@ -199,6 +211,10 @@ pub struct Frame {
     /// The sector owning each wall of the map (wall index → sector; `u16::MAX` for a wall no
     /// sector lists), so [`compare()`] can tell which sectors a frame shows without the map.
     pub wall_sectors: Vec<u16>,
+    /// The sector of each thing of the map (thing index → the sector whose group of
+    /// [`MapTables::sector_things`](portalcast_format::MapTables::sector_things) holds it;
+    /// `u16::MAX` for a thing in none), as [`Frame::wall_sectors`] for walls.
+    pub thing_sectors: Vec<u16>,
 }
 
 impl Frame {
@@ -218,12 +234,17 @@ impl Frame {
     }
 
     /// The sector a surface belongs to: its own for floors and ceilings, the owner of the wall
-    /// for walls and strips; `None` for the sky, [`Surface::None`] and unknown walls.
+    /// for walls and strips, the thing's for things; `None` for the sky, [`Surface::None`] and
+    /// unknown walls and things.
     pub fn sector_of(&self, surface: Surface) -> Option<u16> {
         match surface {
             Surface::Floor(s) | Surface::Ceiling(s) => Some(s),
             Surface::Wall(w) | Surface::Upper(w) | Surface::Lower(w) => {
                 let owner = self.wall_sectors.get(usize::from(w)).copied();
+                owner.filter(|&s| s != u16::MAX)
+            }
+            Surface::Thing(t) => {
+                let owner = self.thing_sectors.get(usize::from(t)).copied();
                 owner.filter(|&s| s != u16::MAX)
             }
             Surface::Sky | Surface::None => None,

@@ -1,8 +1,10 @@
 //! Per-pixel ray casting and the texture rules of `portalcast::render::surface`, in f64.
 
 use portalcast::render::light::light_row;
-use portalcast::render::surface::Surface;
-use portalcast_format::{MapTables, Sector, Texture, Wall, NO_TEXTURE, SKY};
+use portalcast::render::surface::{Surface, THING_DEPTH_MIN};
+use portalcast_format::{
+    MapTables, Sector, Sprite, Texture, Wall, NO_TEXTURE, SKY, THING_HANGING, TRANSPARENT,
+};
 
 use crate::geometry::{exit_wall, find_sector, vertex, Vec2};
 use crate::{Assets, Camera, Frame, View};
@@ -39,6 +41,34 @@ enum Hit {
         v: f64,
     },
     None,
+}
+
+/// A thing of the map as one frame sees it, worked out once per frame.
+#[derive(Clone, Copy, Debug)]
+struct ThingView<'a> {
+    /// Index in the map's things table.
+    index: u16,
+    /// The sector whose group of things holds it.
+    sector: u16,
+    /// Eye-space depth `z'` of its centre: the depth of the whole rectangle.
+    depth: f64,
+    /// Eye-space `x' − width/2`: the rectangle's left edge.
+    left: f64,
+    /// Height of the rectangle's top edge, `b + height`.
+    top: f64,
+    sprite: &'a Sprite<'a>,
+    /// The columns whose ray may meet the rectangle (a superset: `u` decides).
+    first_column: usize,
+    end_column: usize,
+}
+
+/// A thing that a column's ray meets at sprite column `u`, and the first position of its sector
+/// on the column's path.
+#[derive(Clone, Copy, Debug)]
+struct Candidate<'a> {
+    thing: ThingView<'a>,
+    position: usize,
+    u: usize,
 }
 
 /// Where a pixel centre lies exactly on an edge (an axis-aligned view of integer geometry puts
@@ -80,19 +110,22 @@ pub fn engine_direction(camera: &Camera) -> (f64, f64) {
 /// - the sky: column `floor(angle(D) / 2π · sky_width) mod sky_width`, row
 ///   `floor((y + ½ − horizon_y) · 160 / height) + sky_height / 2` clamped to the image;
 /// - a texture slot of [`NO_TEXTURE`] (or [`SKY`] anywhere but a ceiling) where a surface is
-///   drawn gives texel 0, as the engine's blank column does.
+///   drawn gives texel 0, as the engine's blank column does;
+/// - things: the crate documentation's "Things" (the pixel's ray meets each thing of a sector it
+///   reaches at `u`, `v` of the rule; the nearest at an opaque texel shows).
 ///
 /// Light: the final index is `colormap[row][texel]` with
 /// `row = light_row(light, floor(depth), lighting)` when that is `Some`, else the texel; the
-/// light is the near sector's for walls and strips, the plane's sector for flats, with `depth`
-/// the hit's `t`. The sky is never lit.
+/// light is the near sector's for walls and strips, the plane's sector for flats, the thing's
+/// sector for things, with `depth` the hit's `t` (a thing's `z'`). The sky is never lit.
 ///
 /// If `camera.sector` is `None` and no sector strictly contains the eye, every pixel is
 /// [`Surface::None`] (index 0, depth infinite): a camera on a wall line is an input error the
 /// comparison should see, not a panic.
 ///
 /// Panics if a texture slot other than [`NO_TEXTURE`] is out of range of `assets.textures`
-/// or lacks the chain (columns or rows) it is drawn with.
+/// or lacks the chain (columns or rows) it is drawn with, or if a thing's sprite is out of range
+/// of `assets.sprites`.
 ///
 /// Rays go through the pixel centres moved by [`TIE_NUDGE`].
 pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) -> Frame {
@@ -104,6 +137,7 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
         indices: vec![0; width * height],
         depths: vec![f64::INFINITY; width * height],
         wall_sectors: wall_sectors(map),
+        thing_sectors: thing_sectors(map),
     };
     let Some(start) = camera
         .sector
@@ -115,15 +149,24 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
     let (sin, cos) = engine_direction(camera);
     let max_steps = map.sectors.len() + 8;
     let mut path = Vec::with_capacity(max_steps);
+    let things = thing_views(map, assets, camera, view, &frame.thing_sectors);
+    let mut candidates = Vec::new();
     for column in 0..width {
         let m = (column as f64 - width as f64 / 2.0 + 0.5 + COLUMN_TIE_NUDGE) / view.focal_x;
         let d = Vec2::new(cos - m * sin, sin + m * cos);
         trace_column(map, start, eye, d, max_steps, &mut path);
+        column_candidates(&things, &path, column, m, &mut candidates);
         let sky_column = sky_column(assets, d);
         for row in 0..height {
             let k = (row as f64 + 0.5 + TIE_NUDGE - view.horizon_y) / view.focal_y;
-            let hit = shade_ray(map, &path, camera.eye_z, k);
+            let (hit, reached) = shade_ray(map, &path, camera.eye_z, k);
             let pixel = row * width + column;
+            if let Some((thing, texel)) = thing_hit(&candidates, reached, camera.eye_z, k) {
+                frame.surfaces[pixel] = Surface::Thing(thing.index);
+                frame.indices[pixel] = lit(map, assets, view, thing.sector, thing.depth, texel);
+                frame.depths[pixel] = thing.depth;
+                continue;
+            }
             let (surface, index, depth) = match hit {
                 Hit::None => (Surface::None, 0, f64::INFINITY),
                 Hit::Sky => (
@@ -174,6 +217,142 @@ fn wall_sectors(map: &MapTables) -> Vec<u16> {
     owners
 }
 
+/// The sector of every thing of the map: the one whose group of
+/// [`MapTables::sector_things`] holds it (`u16::MAX` for a thing in none).
+fn thing_sectors(map: &MapTables) -> Vec<u16> {
+    let mut sectors = vec![u16::MAX; map.things.len()];
+    for (sector, range) in map
+        .sector_things
+        .windows(2)
+        .take(map.sectors.len())
+        .enumerate()
+    {
+        let (first, end) = (usize::from(range[0]), usize::from(range[1]));
+        for owner in &mut sectors[first..end] {
+            *owner = sector as u16;
+        }
+    }
+    sectors
+}
+
+/// The things of the map in eye space, those at least [`THING_DEPTH_MIN`] deep, nearest first
+/// (ties: the later in the map's table first), so the first one a pixel's ray meets is the one
+/// it shows.
+fn thing_views<'a>(
+    map: &MapTables,
+    assets: &Assets<'a>,
+    camera: &Camera,
+    view: &View,
+    thing_sectors: &[u16],
+) -> Vec<ThingView<'a>> {
+    let (sin, cos) = engine_direction(camera);
+    let mut views: Vec<ThingView<'a>> = map
+        .things
+        .iter()
+        .zip(thing_sectors)
+        .enumerate()
+        .filter(|(_, (_, &sector))| sector != u16::MAX)
+        .filter_map(|(index, (thing, &sector))| {
+            let dx = f64::from(thing.x_fx8) / 256.0 - camera.x;
+            let dy = f64::from(thing.y_fx8) / 256.0 - camera.y;
+            let x = dx * -sin + dy * cos;
+            let depth = dx * cos + dy * sin;
+            if depth < f64::from(THING_DEPTH_MIN) {
+                return None;
+            }
+            let sprite = assets
+                .sprites
+                .get(usize::from(thing.sprite))
+                .unwrap_or_else(|| {
+                    panic!(
+                        "thing {index}: sprite {} out of range ({} sprites)",
+                        thing.sprite,
+                        assets.sprites.len()
+                    )
+                });
+            let (width, height) = (f64::from(sprite.width), f64::from(sprite.height));
+            let sector_heights = &map.sectors[usize::from(sector)];
+            let top = if thing.flags & THING_HANGING != 0 {
+                f64::from(sector_heights.ceil_z) - f64::from(thing.z)
+            } else {
+                f64::from(sector_heights.floor_z) + f64::from(thing.z) + height
+            };
+            let left = x - width / 2.0;
+            // Column c's ray is at `m·z'` across with `m = (c + ½ + nudge − W/2) / focal_x`: the
+            // rectangle's `[left, left + width)` is the columns around these, one more each side
+            // for the rounding.
+            let column_at =
+                |across: f64| across / depth * view.focal_x + view.width as f64 / 2.0 - 0.5;
+            let first = (column_at(left).floor() - 1.0).max(0.0);
+            let end = (column_at(left + width).ceil() + 2.0).clamp(0.0, view.width as f64);
+            Some(ThingView {
+                index: index as u16,
+                sector,
+                depth,
+                left,
+                top,
+                sprite,
+                first_column: first as usize,
+                end_column: end as usize,
+            })
+        })
+        .collect();
+    views.sort_by(|a, b| a.depth.total_cmp(&b.depth).then(b.index.cmp(&a.index)));
+    views
+}
+
+/// The things column `column` (slope `m`) may show: those whose rectangle its ray crosses
+/// (`0 ≤ u < width`) in a sector of its `path`, in the order of `things`.
+fn column_candidates<'a>(
+    things: &[ThingView<'a>],
+    path: &[Segment],
+    column: usize,
+    m: f64,
+    candidates: &mut Vec<Candidate<'a>>,
+) {
+    candidates.clear();
+    for thing in things {
+        if column < thing.first_column || column >= thing.end_column {
+            continue;
+        }
+        let u = (m * thing.depth - thing.left).floor();
+        if u < 0.0 || u >= f64::from(thing.sprite.width) {
+            continue;
+        }
+        let Some(position) = path.iter().position(|s| s.sector == thing.sector) else {
+            continue;
+        };
+        candidates.push(Candidate {
+            thing: *thing,
+            position,
+            u: u as usize,
+        });
+    }
+}
+
+/// The thing the ray of slope `k` shows, and its texel: the first of `candidates` (nearest
+/// first) in a sector among the first `reached` of the path whose rectangle the ray meets at an
+/// opaque texel.
+fn thing_hit<'a>(
+    candidates: &[Candidate<'a>],
+    reached: usize,
+    eye_z: f64,
+    k: f64,
+) -> Option<(ThingView<'a>, u8)> {
+    candidates.iter().find_map(|candidate| {
+        if candidate.position >= reached {
+            return None;
+        }
+        let thing = &candidate.thing;
+        let v = (thing.top - (eye_z - k * thing.depth)).floor();
+        if v < 0.0 || v >= f64::from(thing.sprite.height) {
+            return None;
+        }
+        let texel = thing.sprite.texel(candidate.u, v as usize);
+        (texel != TRANSPARENT).then_some((*thing, texel))
+    })
+}
+
 /// The sectors the 2D ray `eye + t·d` crosses from `start`, up to its solid wall or
 /// `max_steps` sectors.
 fn trace_column(
@@ -209,74 +388,84 @@ fn trace_column(
     }
 }
 
-/// What the ray of slope `k` (down per unit of depth) hits along the column's `path`.
-fn shade_ray(map: &MapTables, path: &[Segment], eye_z: f64, k: f64) -> Hit {
-    for segment in path {
-        let sector = &map.sectors[usize::from(segment.sector)];
-        let (ceil_z, floor_z) = (f64::from(sector.ceil_z), f64::from(sector.floor_z));
-        let h_out = eye_z - k * segment.t_out;
-        // h is monotonic in t and was within the sector's heights at t_in, so passing a plane's
-        // height by t_out means hitting the plane in [t_in, t_out]. Exact ties go to the surface
-        // below on screen, as the engine's row rule `y0 ≤ y + ½ < y1` does: the wall under a
-        // ceiling, the floor under a wall.
-        if k < 0.0 && h_out > ceil_z {
-            if sector.ceil_texture == SKY {
-                return Hit::Sky;
-            }
-            let t = (eye_z - ceil_z) / k;
-            let surface = Surface::Ceiling(segment.sector);
-            return Hit::Flat {
-                surface,
-                sector: segment.sector,
-                texture: sector.ceil_texture,
-                t,
-            };
+/// What the ray of slope `k` (down per unit of depth) hits along the column's `path`, and how
+/// many of the path's segments it reaches: up to and including the one whose surface stopped it,
+/// all of them if none did.
+fn shade_ray(map: &MapTables, path: &[Segment], eye_z: f64, k: f64) -> (Hit, usize) {
+    path.iter()
+        .enumerate()
+        .find_map(|(position, segment)| {
+            segment_hit(map, segment, eye_z, k).map(|hit| (hit, position + 1))
+        })
+        .unwrap_or((Hit::None, path.len()))
+}
+
+/// What the ray of slope `k` hits in `segment`'s sector, if it does not go on to the next.
+fn segment_hit(map: &MapTables, segment: &Segment, eye_z: f64, k: f64) -> Option<Hit> {
+    let sector = &map.sectors[usize::from(segment.sector)];
+    let (ceil_z, floor_z) = (f64::from(sector.ceil_z), f64::from(sector.floor_z));
+    let h_out = eye_z - k * segment.t_out;
+    // h is monotonic in t and was within the sector's heights at t_in, so passing a plane's
+    // height by t_out means hitting the plane in [t_in, t_out]. Exact ties go to the surface
+    // below on screen, as the engine's row rule `y0 ≤ y + ½ < y1` does: the wall under a
+    // ceiling, the floor under a wall.
+    if k < 0.0 && h_out > ceil_z {
+        if sector.ceil_texture == SKY {
+            return Some(Hit::Sky);
         }
-        if k > 0.0 && h_out <= floor_z {
-            let t = (eye_z - floor_z) / k;
-            let surface = Surface::Floor(segment.sector);
-            return Hit::Flat {
-                surface,
-                sector: segment.sector,
-                texture: sector.floor_texture,
-                t,
-            };
-        }
-        let wall = &map.walls[usize::from(segment.wall)];
-        let u = segment.s * wall_length(map, wall) + f64::from(wall.x_offset);
-        let at = |surface, texture, anchor: i32| Hit::Wall {
+        let t = (eye_z - ceil_z) / k;
+        let surface = Surface::Ceiling(segment.sector);
+        return Some(Hit::Flat {
             surface,
             sector: segment.sector,
-            texture,
-            t: segment.t_out,
-            u,
-            v: f64::from(anchor) - h_out + f64::from(wall.y_offset),
-        };
-        let Some(next) = wall.neighbour() else {
-            return at(Surface::Wall(segment.wall), wall.texture, sector.ceil_z);
-        };
-        let neighbour = &map.sectors[usize::from(next)];
-        // Ties again go down the screen: past the upper strip's bottom edge into the opening,
-        // onto the lower strip at its top edge.
-        if neighbour.ceil_z < sector.ceil_z && h_out > f64::from(neighbour.ceil_z) {
-            if sector.ceil_texture == SKY && neighbour.ceil_texture == SKY {
-                return Hit::Sky;
-            }
-            return at(
-                Surface::Upper(segment.wall),
-                wall.upper_texture,
-                sector.ceil_z,
-            );
-        }
-        if neighbour.floor_z > sector.floor_z && h_out <= f64::from(neighbour.floor_z) {
-            return at(
-                Surface::Lower(segment.wall),
-                wall.lower_texture,
-                neighbour.floor_z,
-            );
-        }
+            texture: sector.ceil_texture,
+            t,
+        });
     }
-    Hit::None
+    if k > 0.0 && h_out <= floor_z {
+        let t = (eye_z - floor_z) / k;
+        let surface = Surface::Floor(segment.sector);
+        return Some(Hit::Flat {
+            surface,
+            sector: segment.sector,
+            texture: sector.floor_texture,
+            t,
+        });
+    }
+    let wall = &map.walls[usize::from(segment.wall)];
+    let u = segment.s * wall_length(map, wall) + f64::from(wall.x_offset);
+    let at = |surface, texture, anchor: i32| Hit::Wall {
+        surface,
+        sector: segment.sector,
+        texture,
+        t: segment.t_out,
+        u,
+        v: f64::from(anchor) - h_out + f64::from(wall.y_offset),
+    };
+    let Some(next) = wall.neighbour() else {
+        return Some(at(Surface::Wall(segment.wall), wall.texture, sector.ceil_z));
+    };
+    let neighbour = &map.sectors[usize::from(next)];
+    // Ties again go down the screen: past the upper strip's bottom edge into the opening,
+    // onto the lower strip at its top edge.
+    if neighbour.ceil_z < sector.ceil_z && h_out > f64::from(neighbour.ceil_z) {
+        if sector.ceil_texture == SKY && neighbour.ceil_texture == SKY {
+            return Some(Hit::Sky);
+        }
+        return Some(at(
+            Surface::Upper(segment.wall),
+            wall.upper_texture,
+            sector.ceil_z,
+        ));
+    }
+    if neighbour.floor_z > sector.floor_z && h_out <= f64::from(neighbour.floor_z) {
+        return Some(at(
+            Surface::Lower(segment.wall),
+            wall.lower_texture,
+            neighbour.floor_z,
+        ));
+    }
+    None
 }
 
 fn wall_length(map: &MapTables, wall: &Wall) -> f64 {

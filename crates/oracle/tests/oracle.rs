@@ -9,13 +9,15 @@
 
 use std::collections::BTreeSet;
 
+use portalcast::render::light::light_row;
+use portalcast::render::surface::THING_DEPTH_MIN;
 use portalcast_format::{
-    Colormap, MapTables, PlayerStart, Sector, Sky, Texture, Vertex, Wall, NO_PORTAL, NO_TEXTURE,
-    SKY,
+    Colormap, MapTables, PlayerStart, Sector, Sky, Sprite, Texture, Thing, Vertex, Wall, NO_PORTAL,
+    NO_TEXTURE, SKY, THING_HANGING, TRANSPARENT,
 };
 use portalcast_oracle::{
-    angle_from_bits, angle_to_bits, compare, find_sector, render, sample_poses, write_diff_png,
-    Assets, Camera, Frame, Lighting, Surface, View,
+    angle_from_bits, angle_to_bits, compare, compare_with_row_tolerance, find_sector, render,
+    sample_poses, surface_colour, write_diff_png, Assets, Camera, Frame, Lighting, Surface, View,
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -86,11 +88,82 @@ fn colormap() -> Box<Colormap> {
     map
 }
 
+/// A sprite image in the format's posts layout (`portalcast_format::Sprite`).
+struct OwnedSprite {
+    width: u16,
+    height: u16,
+    posts: Vec<u8>,
+}
+
+impl OwnedSprite {
+    /// The `width × height` image whose texel `(u, v)` (`v` 0 at the top) is `texel(u, v)`,
+    /// `None` where it is transparent: each column's opaque runs become posts.
+    fn new(width: u16, height: u16, texel: impl Fn(usize, usize) -> Option<u8>) -> OwnedSprite {
+        let (w, h) = (usize::from(width), usize::from(height));
+        let mut posts = vec![0u8; 4 * w];
+        for u in 0..w {
+            let offset = posts.len() as u32;
+            posts[4 * u..4 * u + 4].copy_from_slice(&offset.to_le_bytes());
+            let count_at = posts.len();
+            posts.push(0);
+            let mut v = 0;
+            while v < h {
+                if texel(u, v).is_none() {
+                    v += 1;
+                    continue;
+                }
+                let top = v;
+                let mut run = Vec::new();
+                while v < h && run.len() < 255 {
+                    let Some(index) = texel(u, v) else { break };
+                    assert_ne!(index, TRANSPARENT, "an opaque texel is never 0");
+                    run.push(index);
+                    v += 1;
+                }
+                posts.extend([top as u8, run.len() as u8]);
+                posts.extend(&run);
+                posts.push(*run.last().unwrap());
+                posts[count_at] += 1;
+            }
+        }
+        OwnedSprite {
+            width,
+            height,
+            posts,
+        }
+    }
+
+    fn sprite(&self) -> Sprite<'_> {
+        Sprite {
+            name: "s",
+            width: self.width,
+            height: self.height,
+            posts: &self.posts,
+        }
+    }
+}
+
+/// Sprite slots of the fixtures: an 8×16 image with holes (column 0 empty, and every texel with
+/// `(u + v) mod 4 = 3`), and an 8×16 opaque one.
+const HOLED_SPRITE: u16 = 0;
+const SOLID_SPRITE: u16 = 1;
+
+/// Texel `(u, v)` of the holed sprite.
+fn holed(u: usize, v: usize) -> Option<u8> {
+    (u != 0 && (u + v) % 4 != 3).then_some((1 + 16 * u + v) as u8)
+}
+
+/// Texel `(u, v)` of the solid sprite.
+fn solid(u: usize, v: usize) -> u8 {
+    (128 + 16 * u + v) as u8
+}
+
 struct Fixture {
     textures: Vec<OwnedTexture>,
     sky_texels: Vec<u8>,
     sky_height: u16,
     colormap: Box<Colormap>,
+    sprites: Vec<OwnedSprite>,
 }
 
 impl Fixture {
@@ -106,6 +179,10 @@ impl Fixture {
             sky_texels,
             sky_height,
             colormap: colormap(),
+            sprites: vec![
+                OwnedSprite::new(8, 16, holed),
+                OwnedSprite::new(8, 16, |u, v| Some(solid(u, v))),
+            ],
         }
     }
 
@@ -116,10 +193,12 @@ impl Fixture {
             height: self.sky_height,
             texels: &self.sky_texels,
         };
+        let sprites: Vec<Sprite> = self.sprites.iter().map(OwnedSprite::sprite).collect();
         let assets = Assets {
             textures: &textures,
             sky: &sky,
             colormap: &self.colormap,
+            sprites: &sprites,
         };
         render(map, &assets, camera, view)
     }
@@ -129,9 +208,28 @@ struct OwnedMap {
     vertices: Vec<Vertex>,
     walls: Vec<Wall>,
     sectors: Vec<Sector>,
+    things: Vec<Thing>,
+    sector_things: Vec<u16>,
 }
 
 impl OwnedMap {
+    /// Places `things`, which must be in sector order (the map's table is grouped by sector).
+    fn with_things(mut self, things: Vec<Thing>) -> OwnedMap {
+        assert!(things
+            .windows(2)
+            .all(|pair| pair[0].sector <= pair[1].sector));
+        self.sector_things = (0..=self.sectors.len())
+            .map(|sector| {
+                things
+                    .iter()
+                    .filter(|t| usize::from(t.sector) < sector)
+                    .count() as u16
+            })
+            .collect();
+        self.things = things;
+        self
+    }
+
     fn tables(&self) -> MapTables<'_> {
         MapTables {
             name: "test",
@@ -144,7 +242,8 @@ impl OwnedMap {
                 angle: 0,
                 sector: 0,
             },
-            things: &[],
+            things: &self.things,
+            sector_things: &self.sector_things,
         }
     }
 }
@@ -194,6 +293,8 @@ fn room(east: i32, east_portal: u16) -> OwnedMap {
             wall(3, 0, NO_PORTAL),
         ],
         sectors: vec![sector(0, 0, 64, CEIL_TEX, 128)],
+        things: Vec::new(),
+        sector_things: Vec::new(),
     }
 }
 
@@ -521,6 +622,8 @@ fn a_ray_through_a_vertex_takes_the_wall_starting_there() {
             wall(3, 0, NO_PORTAL),
         ],
         sectors: vec![sector(0, 0, 64, CEIL_TEX, 128)],
+        things: Vec::new(),
+        sector_things: Vec::new(),
     };
     let fixture = Fixture::new(200);
     let view = View {
@@ -565,6 +668,304 @@ fn missing_texture_draws_texel_zero() {
     );
     let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Sector));
     assert_eq!(frame.index(120, 80), 16);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Things
+//
+// Things below are 8×16 sprites. Standing on the floor with `z = 8` at depth `z' = 48` on the
+// centre line (`x' = 0`), the rectangle is `[−4, 4)` across and heights `[8, 24]`: column `c`
+// meets it at `u = floor((c + ½ − 120)·48/120 + 4) = floor((2c − 219)/5)` (columns 110..=129),
+// row `y` at `v = floor(24 − (32 − (y + ½ − 80)·48/120)) = floor((2y − 199)/5)` (rows
+// 100..=139, over wall 1, whose foot is at row 140 in every column that sees it).
+
+/// A thing at `(x, y)` (whole 1/256 units), radius 4.
+fn thing(x: f64, y: f64, sector: u16, sprite: u16, z: i16, flags: u16) -> Thing {
+    Thing {
+        x_fx8: (x * 256.0) as i32,
+        y_fx8: (y * 256.0) as i32,
+        angle: 0,
+        sprite,
+        sector,
+        z,
+        radius: 4,
+        flags,
+    }
+}
+
+/// The test's own encoder agrees with the format's reader.
+#[test]
+fn sprite_posts_round_trip() {
+    let fixture = Fixture::new(200);
+    let sprite = fixture.sprites[usize::from(HOLED_SPRITE)].sprite();
+    for u in 0..8 {
+        for v in 0..16 {
+            assert_eq!(
+                sprite.texel(u, v),
+                holed(u, v).unwrap_or(TRANSPARENT),
+                "({u}, {v})"
+            );
+        }
+    }
+    assert_eq!(sprite.column_posts(0).count(), 0);
+}
+
+/// A holed sprite standing at depth 48 (see the section's head), lit by depth: each pixel whose
+/// `(u, v)` is in the image shows `Thing(0)` at an opaque texel, lit by room A's light at depth
+/// 48, and the wall behind (unchanged) at a transparent one; every other pixel is as without the
+/// thing. (120, 120): `u = floor(21/5) = 4`, `v = floor(41/5) = 8`, opaque; (120, 118): `v = 7`,
+/// `(4 + 7) mod 4 = 3`, a hole.
+#[test]
+fn a_thing_shows_its_opaque_texels_and_the_wall_through_its_holes() {
+    let bare = room(64, NO_PORTAL);
+    let map = room(64, NO_PORTAL).with_things(vec![thing(48.0, 0.0, 0, HOLED_SPRITE, 8, 0)]);
+    let fixture = Fixture::new(200);
+    let lighting = Lighting::SectorDepth;
+    let behind = fixture.render(&bare.tables(), &centre_camera(), &view(lighting));
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(lighting));
+    let row = light_row(128, 48, lighting).unwrap();
+
+    let (mut shown, mut holes) = (0, 0);
+    for y in 0..160i32 {
+        for x in 0..240i32 {
+            let (u, v) = ((2 * x - 219).div_euclid(5), (2 * y - 199).div_euclid(5));
+            let (xs, ys) = (x as usize, y as usize);
+            let texel = ((0..8).contains(&u) && (0..16).contains(&v))
+                .then(|| holed(u as usize, v as usize))
+                .flatten();
+            let got = (
+                frame.surface(xs, ys),
+                frame.index(xs, ys),
+                frame.depth(xs, ys),
+            );
+            if let Some(texel) = texel {
+                shown += 1;
+                let index = fixture.colormap[row][usize::from(texel)];
+                assert_eq!(got, (Surface::Thing(0), index, 48.0), "({x}, {y})");
+            } else {
+                holes += usize::from((0..8).contains(&u) && (0..16).contains(&v));
+                let expected = (behind.surface(xs, ys), behind.index(xs, ys));
+                assert_eq!((got.0, got.1), expected, "({x}, {y})");
+                assert_eq!(got.2, behind.depth(xs, ys), "({x}, {y})");
+            }
+        }
+    }
+    assert!(shown > 300 && holes > 100, "{shown} shown, {holes} holes");
+    assert_eq!(frame.surface(120, 120), Surface::Thing(0));
+    assert_eq!(
+        frame.index(120, 120),
+        fixture.colormap[row][usize::from(holed(4, 8).unwrap())]
+    );
+    assert_eq!(frame.surface(120, 118), Surface::Wall(1));
+    // Sprite column 0 is empty: columns 110 and 111 (`u = 0`) show the wall.
+    assert_eq!(frame.surface(110, 120), Surface::Wall(1));
+    assert_eq!(frame.surface(112, 120), Surface::Thing(0));
+    assert_eq!(frame.thing_sectors, vec![0]);
+    assert_eq!(frame.sector_of(Surface::Thing(0)), Some(0));
+}
+
+/// A solid sprite standing with `z = 24` (heights `[24, 40]`) at depth `THING_DEPTH_MIN = 4`
+/// fills the screen: `u = floor(m·4 + 4)` with `|m| < 1`, `v = floor(8 + k·4)` with `|k| < 2/3`.
+/// A 1/256 unit nearer, behind the eye, or beside it (`z' = 0`) it is not drawn at all.
+#[test]
+fn things_behind_the_eye_or_nearer_than_the_minimum_depth_are_not_drawn() {
+    let fixture = Fixture::new(200);
+    let bare = room(64, NO_PORTAL);
+    let behind = fixture.render(&bare.tables(), &centre_camera(), &view(Lighting::Off));
+    let at = |x: f64, y: f64| {
+        let map = room(64, NO_PORTAL).with_things(vec![thing(x, y, 0, SOLID_SPRITE, 24, 0)]);
+        fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off))
+    };
+    let nearest = f64::from(THING_DEPTH_MIN);
+    let frame = at(nearest, 0.0);
+    assert!(frame.surfaces.iter().all(|&s| s == Surface::Thing(0)));
+    assert!(frame.depths.iter().all(|&d| d == nearest));
+    // Column 0: `u = floor(−119.5/120·4 + 4) = 0`; row 0: `v = floor(8 − 79.5/120·4) = 5`.
+    assert_eq!(frame.index(0, 0), solid(0, 5));
+    for (x, y) in [(nearest - 1.0 / 256.0, 0.0), (-32.0, 0.0), (0.0, 20.0)] {
+        let frame = at(x, y);
+        assert_eq!(frame.surfaces, behind.surfaces, "thing at ({x}, {y})");
+        assert_eq!(frame.indices, behind.indices, "thing at ({x}, {y})");
+    }
+}
+
+/// A solid sprite standing on room B's floor (20; B's ceiling 44) at (128, 0), depth 128,
+/// heights `[20, 36]`: column 120 meets it at `u = floor(128/240 + 4) = 4`, row `y` at
+/// `v = floor(36 − eye_z + (y + ½ − 80)·128/120)`. A pixel shows it exactly where it is in the
+/// image and the frame without it shows a surface of B there (the ray reached B).
+/// - Eye at 10: the thing is rows 56..=70 (`v = floor((16y − 882)/15)`), but the lower strip
+///   (`h(64) ≤ 20`: `y + ½ ≥ 61.25`) covers rows 61..: rows 56..=60 show it.
+/// - Eye at 54: rows 97..=111 (`v = floor((16y − 1542)/15)`), the upper strip (`h(64) > 44`:
+///   `y + ½ < 98.75`) covers rows ..=98: rows 99..=111 show it.
+#[test]
+fn a_thing_beyond_a_portal_is_cut_by_the_strips() {
+    let fixture = Fixture::new(200);
+    let bare = two_rooms(20, 44, CEIL_TEX, CEIL_TEX, 200);
+    let map = two_rooms(20, 44, CEIL_TEX, CEIL_TEX, 200).with_things(vec![thing(
+        128.0,
+        0.0,
+        1,
+        SOLID_SPRITE,
+        0,
+        0,
+    )]);
+    for (eye_z, rows, strip, cut_row) in [
+        (10.0, 56..=60, Surface::Lower(1), 61),
+        (54.0, 99..=111, Surface::Upper(1), 98),
+    ] {
+        let camera = Camera {
+            eye_z,
+            ..centre_camera()
+        };
+        let lighting = Lighting::Sector;
+        let behind = fixture.render(&bare.tables(), &camera, &view(lighting));
+        let frame = fixture.render(&map.tables(), &camera, &view(lighting));
+        let (mut shown, mut cut) = (0, 0);
+        for y in 0..160i32 {
+            for x in 0..240i32 {
+                let u = (16 * x - 1852).div_euclid(15);
+                let v = (15 * (36 - eye_z as i32) + 16 * y - 1272).div_euclid(15);
+                let (xs, ys) = (x as usize, y as usize);
+                let covered = (0..8).contains(&u) && (0..16).contains(&v);
+                let reached = behind.sector_of(behind.surface(xs, ys)) == Some(1);
+                let expected = if covered && reached {
+                    shown += 1;
+                    let texel = solid(u as usize, v as usize);
+                    let row = light_row(200, 128, lighting).unwrap();
+                    (Surface::Thing(0), fixture.colormap[row][usize::from(texel)])
+                } else {
+                    cut += usize::from(covered);
+                    (behind.surface(xs, ys), behind.index(xs, ys))
+                };
+                let got = (frame.surface(xs, ys), frame.index(xs, ys));
+                assert_eq!(got, expected, "eye {eye_z}: ({x}, {y})");
+            }
+        }
+        assert!(
+            shown > 20 && cut > 10,
+            "eye {eye_z}: {shown} shown, {cut} cut"
+        );
+        for y in 0..160 {
+            let expected = if rows.contains(&y) {
+                Surface::Thing(0)
+            } else {
+                behind.surface(120, y)
+            };
+            assert_eq!(frame.surface(120, y), expected, "eye {eye_z}: row {y}");
+        }
+        assert_eq!(frame.surface(120, cut_row), strip, "eye {eye_z}");
+    }
+}
+
+/// Room B extended north, `x ∈ [64, 192]`, `y ∈ [−96, 32]` (walls 4..=8; 7 the portal back, 8
+/// the solid stretch `(64,−32)→(64,−96)`), and a thing in its north part at (80, −63). The eye at
+/// (60, −28), looking 100° from +x toward −y (binary angle 65536 − 18204): the thing is 40° right of the view
+/// direction, on screen, but every ray of the view (45° either side) meets A's north wall within
+/// 4 units of going north, before `x = 64`: the portal is out of view, so the thing is not drawn.
+#[test]
+fn a_thing_whose_portal_is_out_of_view_is_not_drawn() {
+    let build = |things: Vec<Thing>| {
+        let mut map = room(64, 1);
+        map.vertices.extend([
+            Vertex { x: 64, y: -96 },
+            Vertex { x: 192, y: -96 },
+            Vertex { x: 192, y: 32 },
+        ]);
+        map.walls.extend([
+            wall(4, 5, NO_PORTAL),
+            wall(5, 6, NO_PORTAL),
+            wall(6, 2, NO_PORTAL),
+            wall(2, 1, 0),
+            wall(1, 4, NO_PORTAL),
+        ]);
+        map.sectors.push(Sector {
+            wall_count: 5,
+            ..sector(4, 0, 64, CEIL_TEX, 200)
+        });
+        map.with_things(things)
+    };
+    let camera = Camera {
+        x: 60.0,
+        y: -28.0,
+        angle: angle_from_bits(47332),
+        ..centre_camera()
+    };
+    let fixture = Fixture::new(200);
+    let placed = thing(80.0, -63.0, 1, SOLID_SPRITE, 8, 0);
+    // The thing is in view: its centre's column is on screen, in front of the eye.
+    let (sin, cos) = camera.angle.sin_cos();
+    let (dx, dy) = (80.0 - camera.x, -63.0 - camera.y);
+    let (across, depth) = (dx * -sin + dy * cos, dx * cos + dy * sin);
+    let centre_column = 120.0 + 120.0 * across / depth;
+    assert!(depth > 20.0 && (150.0..235.0).contains(&centre_column));
+
+    let frame = fixture.render(&build(vec![placed]).tables(), &camera, &view(Lighting::Off));
+    let behind = fixture.render(&build(Vec::new()).tables(), &camera, &view(Lighting::Off));
+    assert_eq!(frame.surfaces, behind.surfaces);
+    assert_eq!(frame.indices, behind.indices);
+    assert!(!frame.surfaces.contains(&Surface::Thing(0)));
+    assert_eq!(frame.thing_sectors, vec![1]);
+}
+
+/// Two solid sprites standing with `z = 8`. At depth 40 on the centre line a sprite is columns
+/// 108..=131, rows 104..=151 (`v = floor((y + ½ − 80)/3 − 8)`); at depth 48 columns 110..=129,
+/// rows 100..=139. The nearer shows where both do, whatever their order in the table; at equal
+/// depth the later in the table does. At depth 48 with `x' = 2` a sprite covers `[−2, 6)`
+/// across: columns 115..=134 (`2c − 239 ∈ [−10, 30)`), so columns 110..=114 see only the one on
+/// the centre line and 130..=134 only the other.
+#[test]
+fn the_nearer_of_two_overlapping_things_shows() {
+    let fixture = Fixture::new(200);
+    let at = |things: Vec<Thing>| {
+        let map = room(64, NO_PORTAL).with_things(things);
+        fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off))
+    };
+    let far = thing(48.0, 0.0, 0, SOLID_SPRITE, 8, 0);
+    let near = thing(40.0, 0.0, 0, SOLID_SPRITE, 8, 0);
+    let frame = at(vec![far, near]);
+    assert_eq!(frame.surface(120, 120), Surface::Thing(1));
+    assert_eq!(frame.depth(120, 120), 40.0);
+    // `v = floor(40.5/3 − 8) = 5`.
+    assert_eq!(frame.index(120, 120), solid(4, 5));
+    assert_eq!(frame.surface(120, 101), Surface::Thing(0));
+    assert_eq!(frame.surface(120, 145), Surface::Thing(1));
+    let frame = at(vec![near, far]);
+    assert_eq!(frame.surface(120, 120), Surface::Thing(0));
+    assert_eq!(frame.surface(120, 101), Surface::Thing(1));
+
+    let beside = thing(48.0, 2.0, 0, SOLID_SPRITE, 8, 0);
+    let frame = at(vec![far, beside]);
+    assert_eq!(
+        [112, 120, 132].map(|x| frame.surface(x, 120)),
+        [Surface::Thing(0), Surface::Thing(1), Surface::Thing(1)]
+    );
+    let frame = at(vec![beside, far]);
+    assert_eq!(
+        [112, 120, 132].map(|x| frame.surface(x, 120)),
+        [Surface::Thing(1), Surface::Thing(1), Surface::Thing(0)]
+    );
+}
+
+/// A solid sprite hanging `z = 8` below room A's ceiling (64) at depth 48: top at 56, bottom at
+/// 40, `v = floor(56 − 32 + (y + ½ − 80)·48/120)`: rows 20..=59 of column 120, where the wall
+/// shows without it; row 20 is `v = floor(24 − 23.8) = 0`.
+#[test]
+fn a_hanging_thing_hangs_its_top_at_ceiling_minus_z() {
+    let map =
+        room(64, NO_PORTAL).with_things(vec![thing(48.0, 0.0, 0, SOLID_SPRITE, 8, THING_HANGING)]);
+    let fixture = Fixture::new(200);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
+    assert_eq!(
+        runs(&frame, 120),
+        vec![
+            (0, 19, Surface::Ceiling(0)),
+            (20, 59, Surface::Thing(0)),
+            (60, 139, Surface::Wall(1)),
+            (140, 159, Surface::Floor(0))
+        ]
+    );
+    assert_eq!(frame.index(120, 20), solid(4, 0));
+    assert_eq!(frame.index(120, 59), solid(4, 15));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -659,7 +1060,8 @@ fn camera_from_fixed_is_exact() {
 // ---------------------------------------------------------------------------------------------
 // Comparison
 
-/// A 4×3 oracle frame; walls 0..=3 belong to sector 0, 4..=7 to sector 1.
+/// An oracle frame; walls 0..=3 belong to sector 0, 4..=7 to sector 1; things 0, 1, 2 to
+/// sectors 0, 1, 2.
 fn oracle_frame(surfaces: Vec<Surface>, width: usize, height: usize) -> Frame {
     Frame {
         width,
@@ -668,6 +1070,7 @@ fn oracle_frame(surfaces: Vec<Surface>, width: usize, height: usize) -> Frame {
         depths: vec![1.0; surfaces.len()],
         surfaces,
         wall_sectors: vec![0, 0, 0, 0, 1, 1, 1, 1],
+        thing_sectors: vec![0, 1, 2],
     }
 }
 
@@ -771,6 +1174,62 @@ fn compare_lists_missed_and_extra_sectors() {
         (result.surface_mismatches, result.max_edge_error_px),
         (3, 3)
     );
+}
+
+/// Things 0, 1, 2 belong to sectors 0, 1, 2. The oracle shows things 0 and 1, the engine things
+/// 0 and 2: missed thing [1], extra thing [2]. A thing's pixels are its sector's: the engine
+/// shows sector 2 only through thing 2 (extra), and sector 1 through wall 6 (not missed).
+#[test]
+fn compare_lists_missed_and_extra_things() {
+    use Surface::*;
+    let oracle = oracle_frame(vec![Thing(0), Thing(1), Floor(0), Wall(6)], 4, 1);
+    let engine = [Thing(0), Floor(0), Thing(2), Wall(6)];
+    let result = compare(&engine, &[10; 4], &oracle);
+    assert_eq!(result.missed_things, vec![1]);
+    assert_eq!(result.extra_things, vec![2]);
+    assert!(result.missed_sectors.is_empty());
+    assert_eq!(result.extra_sectors, vec![2]);
+    assert_eq!(oracle.sector_of(Thing(1)), Some(1));
+    assert_eq!(oracle.sector_of(Thing(3)), Option::None);
+
+    // Thing 1 alone in sector 1 takes the sector with it.
+    let oracle = oracle_frame(vec![Thing(0), Thing(1), Floor(0)], 3, 1);
+    let result = compare(&[Thing(0), Floor(0), Floor(0)], &[10; 3], &oracle);
+    assert_eq!(
+        (result.missed_things, result.missed_sectors),
+        (vec![1], vec![1])
+    );
+}
+
+/// With the rows moved, a thing (like a sector) the oracle loses in either moved frame is not
+/// missed; one it keeps in both is.
+#[test]
+fn row_tolerance_forgives_things_lost_in_a_moved_frame() {
+    use Surface::*;
+    let frame = oracle_frame(vec![Thing(0), Thing(1), Floor(0)], 3, 1);
+    let without_1 = oracle_frame(vec![Thing(0), Floor(0), Floor(0)], 3, 1);
+    let engine = [Floor(0), Floor(0), Floor(0)];
+    let result = compare_with_row_tolerance(&engine, &[10; 3], &frame, [&frame, &without_1]);
+    assert_eq!(result.missed_things, vec![0]);
+    assert!(result.missed_sectors.is_empty());
+    let result = compare_with_row_tolerance(&engine, &[10; 3], &frame, [&frame, &frame]);
+    assert_eq!(result.missed_things, vec![0, 1]);
+    assert_eq!(result.missed_sectors, vec![1]);
+}
+
+/// Things are the only surfaces drawn with every channel at least 160 in the diff picture.
+#[test]
+fn things_have_their_own_colours() {
+    use Surface::*;
+    let bright = |s: Surface| surface_colour(s).iter().all(|&c| c >= 160);
+    for i in 0..200 {
+        assert!(bright(Thing(i)), "thing {i}");
+        for other in [Wall(i), Upper(i), Lower(i), Floor(i), Ceiling(i)] {
+            assert!(!bright(other), "{other:?}");
+        }
+    }
+    assert!(!bright(Sky) && !bright(None));
+    assert_ne!(surface_colour(Thing(0)), surface_colour(Thing(1)));
 }
 
 #[test]

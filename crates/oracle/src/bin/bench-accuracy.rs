@@ -4,9 +4,9 @@
 //! line per run:
 //!
 //! `accuracy map=NAME <settings> frames=N pixels=N surface_mismatches=N texel_mismatches=N
-//! wall_edge_px=N missed_sectors=N holes=N`
+//! wall_edge_px=N missed_sectors=N missed_things=N holes=N`
 //!
-//! where the mismatch counts and missed sectors are summed over the frames and `wall_edge_px`
+//! where the mismatch counts, missed sectors and missed things are summed over the frames and `wall_edge_px`
 //! is the largest over them. The engine's frames on the host are the ROM's frames: the emulator
 //! test `emulator_render` proves them identical pixel for pixel.
 
@@ -22,7 +22,7 @@ fn main() {
         let accuracy = bench_run_accuracy(&mut renderer, map, &assets, &settings);
         println!(
             "accuracy map={} {} frames={} pixels={} surface_mismatches={} texel_mismatches={} \
-             wall_edge_px={} missed_sectors={} holes={}",
+             wall_edge_px={} missed_sectors={} missed_things={} holes={}",
             map.name,
             SettingsLabel(&settings),
             accuracy.frames,
@@ -31,6 +31,7 @@ fn main() {
             accuracy.texel_mismatches,
             accuracy.wall_edge_px,
             accuracy.missed_sectors,
+            accuracy.missed_things,
             accuracy.holes,
         );
     }

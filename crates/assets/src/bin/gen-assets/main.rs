@@ -1,5 +1,5 @@
-//! Draws the shipped assets: textures, the sky panorama, the torch sprite, and the benchmark
-//! map. Deterministic (fixed seeds), so re-running it reproduces the committed files.
+//! Draws the shipped assets: textures, the sky panorama, the sprites (torch, pillar, lamp), and
+//! the benchmark map. Deterministic (fixed seeds), so re-running it reproduces the committed files.
 //!
 //! Usage: `cargo run -p portalcast-assets --bin gen-assets -- assets/`
 
@@ -29,17 +29,22 @@ fn run(dir: &Path) -> Result<(), String> {
         &folder(portalcast_assets::SKY_DIR)?.join(portalcast_assets::SKY_FILE),
         &|p| sky.save(p),
     )?;
-    let torch = paint::torch();
-    write_png(
-        &folder(portalcast_assets::SPRITES_DIR)?.join("torch.png"),
-        &|p| torch.save(p),
-    )?;
+    let sprites = folder(portalcast_assets::SPRITES_DIR)?;
+    let sprite_images = [
+        ("torch", paint::torch()),
+        ("pillar", paint::pillar()),
+        ("lamp", paint::lamp()),
+    ];
+    for (name, image) in &sprite_images {
+        write_png(&sprites.join(format!("{name}.png")), &|p| image.save(p))?;
+    }
     let (text, (sectors, walls, portals)) = bench_map::bench_map();
     let map = folder(portalcast_assets::MAPS_DIR)?.join("bench.map");
     std::fs::write(&map, text).map_err(|e| format!("{}: cannot write ({e})", map.display()))?;
     println!(
-        "wrote {} textures, the sky, 1 sprite and bench.map ({sectors} sectors, {walls} walls, {portals} portal sides) into {}",
+        "wrote {} textures, the sky, {} sprites and bench.map ({sectors} sectors, {walls} walls, {portals} portal sides) into {}",
         paint::textures().len(),
+        sprite_images.len(),
         dir.display()
     );
     Ok(())

@@ -1,4 +1,4 @@
-//! Procedural, deterministic painting of the shipped textures, sky and sprite.
+//! Procedural, deterministic painting of the shipped textures, sky and sprites.
 //!
 //! Everything here is drawn from fixed seeds with a small LCG and tileable value noise, so the
 //! PNGs are reproducible byte for byte and tile seamlessly (noise periods divide the image
@@ -434,5 +434,116 @@ pub fn torch() -> RgbaImage {
             return Rgba([70, 64, 58, 255]);
         }
         clear
+    })
+}
+
+/// A stone column, 24×64: a shaft 20 wide, shaded as a cylinder lit from the left and speckled,
+/// between a capital and a base the full width with rounded corners; opaque but for the
+/// corners and the two texels either side of the shaft.
+pub fn pillar() -> RgbaImage {
+    const WIDTH: u32 = 24;
+    const HEIGHT: u32 = 64;
+    let mut rng = Lcg::new(30);
+    let speckle: Vec<f32> = (0..WIDTH * HEIGHT).map(|_| rng.unit()).collect();
+    let stone = [150.0, 144.0, 132.0];
+    RgbaImage::from_fn(WIDTH, HEIGHT, |x, y| {
+        let xf = x as f32 + 0.5;
+        let grain = 0.92 + 0.16 * speckle[(y * WIDTH + x) as usize];
+        // Capital (rows 0..6) and base (rows 58..64): full width, a rim line, round corners.
+        let slab = |top: u32, bottom: u32| -> Option<Rgba<u8>> {
+            if !(top..bottom).contains(&y) {
+                return None;
+            }
+            let corner = (y == top || y + 1 == bottom) && (x == 0 || x + 1 == WIDTH);
+            if corner {
+                return Some(Rgba([0, 0, 0, 0]));
+            }
+            let rim = if y == top || y + 1 == bottom {
+                0.75
+            } else {
+                1.0
+            };
+            let light = 1.05 - 0.3 * (xf / WIDTH as f32);
+            let Rgb([r, g, b]) = shade(stone, light * rim * grain);
+            Some(Rgba([r, g, b, 255]))
+        };
+        if let Some(texel) = slab(0, 6).or_else(|| slab(58, 64)) {
+            return texel;
+        }
+        // Shaft: columns 2..22, lit from the left (cosine across the cylinder), with fluting
+        // every 4 texels.
+        let dx = (xf - 12.0) / 10.0;
+        if dx.abs() > 1.0 {
+            return Rgba([0, 0, 0, 0]);
+        }
+        let facing = (1.0 - dx * dx).sqrt();
+        let light = 0.35 + 0.75 * facing * (1.0 - 0.4 * dx);
+        let flute = if x % 4 == 1 { 0.82 } else { 1.0 };
+        let Rgb([r, g, b]) = shade(stone, light * flute * grain);
+        Rgba([r, g, b, 255])
+    })
+}
+
+/// A hanging lamp, 16×24: a chain of links down the middle (rows 0..9), an iron cap, a
+/// glowing glass body in an iron frame, and a finial below; transparent around it.
+pub fn lamp() -> RgbaImage {
+    let clear = Rgba([0, 0, 0, 0]);
+    let iron = |light: f32| {
+        let Rgb([r, g, b]) = shade([70.0, 64.0, 60.0], light);
+        Rgba([r, g, b, 255])
+    };
+    RgbaImage::from_fn(16, 24, |x, y| {
+        let dx = x as f32 + 0.5 - 8.0;
+        // Chain: alternate links, an upright one (2 texels wide, hollow middle) and a side-on
+        // one (a single texel), 3 rows each.
+        if y < 9 {
+            let link = y / 3;
+            let row = y % 3;
+            return if link % 2 == 0 {
+                // A ring: 2 texels across at its top and bottom, open in the middle row.
+                match (row, x) {
+                    (1, 6) => iron(1.4),
+                    (1, 9) => iron(0.8),
+                    (0 | 2, 7) => iron(1.3),
+                    (0 | 2, 8) => iron(1.0),
+                    _ => clear,
+                }
+            } else if x == 7 || x == 8 {
+                iron(if x == 7 { 1.2 } else { 0.8 })
+            } else {
+                clear
+            };
+        }
+        // Cap: a trapezoid widening from 4 to 12 texels over rows 9..12.
+        if y < 12 {
+            let half = 2.0 + 2.0 * (y - 9) as f32 + 1.0;
+            return if dx.abs() <= half {
+                iron(1.1 - 0.03 * dx)
+            } else {
+                clear
+            };
+        }
+        // Body: rows 12..21, 12 wide; iron frame at the edges and the middle bar, glass glowing
+        // brightest at its centre.
+        if y < 21 {
+            if dx.abs() > 6.0 {
+                return clear;
+            }
+            if dx.abs() > 5.0 || y == 12 || y == 20 {
+                return iron(0.9);
+            }
+            let dy = (y as f32 + 0.5 - 16.5) / 4.5;
+            let glow = (1.0 - (dx / 5.0).powi(2) * 0.6 - dy * dy * 0.4).clamp(0.0, 1.0);
+            let colour = mix([200.0, 110.0, 30.0], [255.0, 245.0, 180.0], glow);
+            let Rgb([r, g, b]) = shade(colour, 1.0);
+            return Rgba([r, g, b, 255]);
+        }
+        // Finial: narrowing to a point.
+        let half = 3.0 - 1.2 * (y - 21) as f32;
+        if dx.abs() <= half.max(0.5) {
+            iron(0.8)
+        } else {
+            clear
+        }
     })
 }

@@ -1,0 +1,186 @@
+//! Sprite columns: the twin of `asm/sprite.s`. A sprite column is a list of opaque runs (posts,
+//! [`portalcast_format::Sprite`]); the kernel draws each run's rows inside a clip window and
+//! skips the transparent rows between them without looking at them.
+//!
+//! The integers, shared with the kernel (16.16 rows and texels):
+//! - a post from texel row `top`, `len` texels long, covers screen rows `[y0, y1)` with
+//!   `y0 = y_top + top·scale` and `y1 = y0 + len·scale` (wrapping adds, as the ARM's);
+//! - it draws rows `first..end`: `first = max((y0 + 0x7fff) >> 16, clip.top)` and
+//!   `end = min((y1 + 0x7fff) >> 16, clip.bottom)` (the rows whose centre `r + ½` is in
+//!   `[y0, y1)`, the walls' row rule);
+//! - the texel of row `first` is `v >> 16` with `v = ((first << 16) + 0x8000 − y0) · iscale >> 16`
+//!   (a 64-bit product), and `v` grows by `iscale` a row. Rounding may take the last row's `v` to
+//!   the post's length: that reads the post's pad texel, a copy of its last.
+//!
+//! Posts run top to bottom, so the kernel stops at the first post that starts at or below the
+//! clip window's bottom.
+
+use super::Window;
+
+/// One sprite column as the kernel takes it.
+#[derive(Clone, Copy, Debug)]
+pub struct SpriteColumn<'a> {
+    /// The column's post count and posts ([`portalcast_format::Sprite::posts`] from the
+    /// column's offset on).
+    pub posts: &'a [u8],
+    /// Screen row of the sprite's top edge (texel row 0), 16.16.
+    pub y_top: i32,
+    /// Screen rows per texel, 16.16.
+    pub scale: i32,
+    /// Texels per screen row, 16.16.
+    pub iscale: u32,
+    /// The rows the column may draw.
+    pub clip: Window,
+    /// Light row the texels go through (an identity row for unlit).
+    pub colormap: &'a [u8; 256],
+}
+
+/// One run of rows a sprite column draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SpriteRun<'a> {
+    /// First screen row.
+    pub row: usize,
+    /// Rows drawn.
+    pub count: usize,
+    /// 16.16 texel position of the first row within `texels`.
+    pub v: u32,
+    /// The post's texels and its pad texel.
+    pub texels: &'a [u8],
+}
+
+impl<'a> SpriteColumn<'a> {
+    /// The runs of rows the kernel draws, top to bottom.
+    pub fn runs(&self) -> impl Iterator<Item = SpriteRun<'a>> + '_ {
+        let posts = self.posts;
+        let count = posts[0];
+        let mut at = 1;
+        let mut done = false;
+        (0..count).filter_map(move |_| {
+            if done {
+                return None;
+            }
+            let top = i32::from(posts[at]);
+            let len = usize::from(posts[at + 1]);
+            let texels = &posts[at + 2..at + 2 + len + 1];
+            at += 2 + len + 1;
+            let y0 = self.y_top.wrapping_add(top.wrapping_mul(self.scale));
+            let y1 = y0.wrapping_add((len as i32).wrapping_mul(self.scale));
+            let first_unclipped = y0.wrapping_add(0x7fff) >> 16;
+            if first_unclipped >= i32::from(self.clip.bottom) {
+                done = true;
+                return None;
+            }
+            let first = first_unclipped.max(i32::from(self.clip.top));
+            let end = (y1.wrapping_add(0x7fff) >> 16).min(i32::from(self.clip.bottom));
+            if first >= end {
+                return None;
+            }
+            let offset = (first << 16).wrapping_add(0x8000).wrapping_sub(y0) as u32;
+            let v = ((u64::from(offset) * u64::from(self.iscale)) >> 16) as u32;
+            Some(SpriteRun {
+                row: first as usize,
+                count: (end - first) as usize,
+                v,
+                texels,
+            })
+        })
+    }
+
+    /// Whether the kernel reads only inside [`SpriteColumn::posts`]: every post header, texel
+    /// and pad lies inside it, and no run's last row steps past its post's pad texel. The GBA's
+    /// canvas checks this before it runs the kernel.
+    pub fn reads_inside(&self) -> bool {
+        self.posts_fit()
+            && self.runs().all(|run| {
+                let last = u64::from(run.v) + (run.count as u64 - 1) * u64::from(self.iscale);
+                ((last >> 16) as usize) < run.texels.len()
+            })
+    }
+
+    fn posts_fit(&self) -> bool {
+        let Some(&count) = self.posts.first() else {
+            return false;
+        };
+        let mut at = 1;
+        for _ in 0..count {
+            let Some(&len) = self.posts.get(at + 1) else {
+                return false;
+            };
+            at += 2 + usize::from(len) + 1;
+        }
+        at <= self.posts.len()
+    }
+
+    /// The palette indices of `run`, top to bottom.
+    pub fn indices(&self, run: SpriteRun<'a>) -> impl Iterator<Item = u8> + 'a {
+        let colormap = self.colormap;
+        let iscale = self.iscale;
+        let mut v = run.v;
+        (0..run.count).map(move |_| {
+            let texel = run.texels[(v >> 16) as usize];
+            v = v.wrapping_add(iscale);
+            colormap[usize::from(texel)]
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const IDENTITY: [u8; 256] = {
+        let mut row = [0u8; 256];
+        let mut i = 0;
+        while i < 256 {
+            row[i] = i as u8;
+            i += 1;
+        }
+        row
+    };
+
+    /// Two posts: rows 1..3 (texels 10, 11) and row 5 (texel 20), with their pads.
+    const POSTS: [u8; 10] = [2, 1, 2, 10, 11, 11, 5, 1, 20, 20];
+
+    fn column(clip: Window, scale: i32) -> SpriteColumn<'static> {
+        SpriteColumn {
+            posts: &POSTS,
+            y_top: 0,
+            scale,
+            iscale: ((1u64 << 32) / scale as u64) as u32,
+            clip,
+            colormap: &IDENTITY,
+        }
+    }
+
+    fn pixels(column: &SpriteColumn) -> Vec<(usize, u8)> {
+        column
+            .runs()
+            .flat_map(|run| (run.row..).zip(column.indices(run)))
+            .collect()
+    }
+
+    #[test]
+    fn one_row_a_texel_skips_the_gap() {
+        let column = column(
+            Window {
+                top: 0,
+                bottom: 100,
+            },
+            1 << 16,
+        );
+        assert_eq!(pixels(&column), [(1, 10), (2, 11), (5, 20)]);
+    }
+
+    #[test]
+    fn doubled_rows_repeat_texels_and_clip_cuts_them() {
+        let column = column(Window { top: 3, bottom: 11 }, 2 << 16);
+        // Post 1 covers rows 2..6, post 2 rows 10..12.
+        assert_eq!(pixels(&column), [(3, 10), (4, 11), (5, 11), (10, 20)]);
+    }
+
+    #[test]
+    fn a_clip_above_a_post_stops_the_column() {
+        let column = column(Window { top: 0, bottom: 2 }, 1 << 16);
+        assert_eq!(pixels(&column), [(1, 10)]);
+    }
+}
