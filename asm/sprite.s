@@ -77,15 +77,28 @@
     orr     r12, r12, r10, lsl #16  @ r12 = v, 16.16
     rsb     r0, r0, r0, lsl #4
     add     r0, r1, r0, lsl #4      @ r0 = dst + first·240
-    @ r11 is the row count; the pixel uses r10 and (read-modify-write) r11, so count in r9's
-    @ upper half would cost a shift a row: keep the count on the stack instead.
-    push    {r9}
-    mov     r9, r11
+    @ The pixel uses r10 and (read-modify-write) r11: the posts left and the next post wait on
+    @ the stack while r9 counts rows and lr blocks. The remainder of rows % 4 one at a time,
+    @ then blocks of 4.
+    push    {r9, lr}
+    mov     lr, r11, lsr #2
+    ands    r9, r11, #3
+    beq     3f
 2:
     SPRITE_PIXEL \kind
     subs    r9, r9, #1
     bne     2b
-    pop     {r9}
+3:
+    movs    r9, lr
+    beq     5f
+4:
+    .rept 4
+    SPRITE_PIXEL \kind
+    .endr
+    subs    r9, r9, #1
+    bne     4b
+5:
+    pop     {r9, lr}
 8:
     mov     r2, lr
     b       1b

@@ -16,7 +16,7 @@ use crate::assets;
 use crate::frame::Resolution;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Floors, Preprocessing, Settings, TexturePlacement};
+use crate::render::view::{Floors, Preprocessing, Settings, TexturePlacement, ThingsShown};
 use crate::render::walk::FrameStats;
 
 /// Frames measured per setting along the [`crate::flight`] path.
@@ -72,6 +72,10 @@ pub fn knob_variants(resolution: Resolution) -> impl Iterator<Item = Settings> {
             floors: Floors::Half,
             ..base
         }))
+        .chain(core::iter::once(Settings {
+            things: ThingsShown::Off,
+            ..base
+        }))
 }
 
 /// The regression guard's runs, first in the bench scene: the bench map at the default
@@ -124,6 +128,7 @@ impl fmt::Display for SettingsLabel<'_> {
         write!(f, " tex={}", settings.textures.label())?;
         write!(f, " prep={}", settings.preprocessing.label())?;
         write!(f, " floors={}", settings.floors.label())?;
+        write!(f, " things={}", settings.things.label())?;
         Ok(())
     }
 }

@@ -88,6 +88,7 @@ impl<'m> Game<'m> {
             textures: self.settings.textures,
             preprocessing: self.settings.preprocessing,
             floors: self.settings.floors,
+            things: self.settings.things,
         }
     }
 
@@ -180,6 +181,7 @@ impl<'m> Game<'m> {
                 }
             }
             Entry::Hud => self.hud = !self.hud,
+            Entry::Things => self.settings.things = self.settings.things.next(),
             Entry::Textures => {
                 self.settings.textures = match self.settings.textures {
                     TexturePlacement::Ewram => TexturePlacement::Rom,

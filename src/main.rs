@@ -176,7 +176,7 @@ mod rom {
                 rate.frame_lines_cycles += meter::cycles_since(started);
             }
             let settings = game.settings;
-            let view = View::new(&camera, &settings);
+            let view = View::new(&camera, &settings).at_tick(game.ticks());
             let page = VramPage::back_of(display.shown_page());
             let address = page.address();
             let mut canvas = VramCanvas::new(page, settings.resolution);
@@ -194,19 +194,16 @@ mod rom {
             if frame_lines {
                 let started = meter::now();
                 log::info(format_args!(
-                    "render map={} frame={frame} res={} lighting={} tex={} prep={} floors={} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={}",
+                    "render map={} frame={frame} {} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={} sprites={}",
                     game.map().name,
-                    settings.resolution.label(),
-                    demo::lighting_label(settings.lighting),
-                    settings.textures.label(),
-                    settings.preprocessing.label(),
-                    settings.floors.label(),
+                    bench::SettingsLabel(&settings),
                     stats.wall_ticks,
                     stats.plane_ticks,
                     stats.sector_visits,
                     stats.wall_columns,
                     stats.span_pixels,
                     stats.column_pixels,
+                    stats.things_drawn,
                 ));
                 rate.frame_lines_cycles += meter::cycles_since(started);
             }
@@ -415,7 +412,8 @@ mod rom {
             .take(1)
             .chain(Flight::new(map).take(bench::FRAMES_PER_SETTING as usize));
         for (index, camera) in frames.enumerate() {
-            let view = View::new(&camera, settings);
+            // The fly-through's clock: a tick a frame (the first, unmeasured, repeats frame 0).
+            let view = View::new(&camera, settings).at_tick((index as u32).saturating_sub(1));
             let page = VramPage::back_of(display.shown_page());
             let mut canvas = if kernels {
                 VramCanvas::new(page, settings.resolution)
@@ -596,9 +594,35 @@ mod rom {
         };
         let (flat_dbl_unlit, flat_dbl_lit) =
             (flat_dbl(&mut doubled, false), flat_dbl(&mut doubled, true));
+        // A sprite column of one post, a texel a row: 160 rows against 32.
+        let sprite_cost = |canvas: &mut VramCanvas, x: usize| {
+            let mut run = |count: usize| {
+                let mut posts = [0u8; 4 + 160];
+                posts[..3].copy_from_slice(&[1, 0, count as u8]);
+                posts[3..3 + count + 1].copy_from_slice(&texels[..count + 1]);
+                let column = portalcast::raster::sprite::SpriteColumn {
+                    posts: &posts,
+                    y_top: 0,
+                    scale: 1 << 16,
+                    iscale: 1 << 16,
+                    clip: portalcast::raster::Window {
+                        top: 0,
+                        bottom: count as i16,
+                    },
+                    colormap: &colormap,
+                };
+                let started = meter::now();
+                canvas.sprite_column(x, &column);
+                meter::cycles_since(started)
+            };
+            (run(160) - run(32)) * 100 / 128
+        };
+        let sprite_dbl = sprite_cost(&mut doubled, 7);
+        let sprite_native = sprite_cost(&mut native, 7);
         log::info(format_args!(
             "kernel-cycles-x100 col_dbl_unlit={col_unlit} col_dbl_lit={col_lit} col_native_lit={col_native_lit} \
-             flat_dbl_unlit={flat_dbl_unlit} flat_dbl_lit={flat_dbl_lit} flat_pair_unlit={flat_pair_unlit} flat_pair_lit={flat_pair_lit}"
+             flat_dbl_unlit={flat_dbl_unlit} flat_dbl_lit={flat_dbl_lit} flat_pair_unlit={flat_pair_unlit} flat_pair_lit={flat_pair_lit} \
+             sprite_dbl={sprite_dbl} sprite_native={sprite_native}"
         ));
     }
 

@@ -14,7 +14,7 @@ use crate::raster::flat::{FlatTexture, PackedUv};
 use crate::raster::Canvas;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Floors, Preprocessing, TexturePlacement};
+use crate::render::view::{Floors, Preprocessing, TexturePlacement, ThingsShown};
 
 /// One line of the menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,10 +37,12 @@ pub enum Entry {
     Floors,
     /// The heads-up display: frame rate and cycles of the last frame.
     Hud,
+    /// Things drawn or not.
+    Things,
 }
 
 /// The menu's entries, top to bottom.
-pub const ENTRIES: [Entry; 9] = [
+pub const ENTRIES: [Entry; 10] = [
     Entry::Resolution,
     Entry::Lighting,
     Entry::Map,
@@ -50,6 +52,7 @@ pub const ENTRIES: [Entry; 9] = [
     Entry::Preprocessing,
     Entry::Floors,
     Entry::Hud,
+    Entry::Things,
 ];
 
 impl Entry {
@@ -65,6 +68,7 @@ impl Entry {
             Entry::Preprocessing => "PREP",
             Entry::Floors => "FLOOR",
             Entry::Hud => "HUD",
+            Entry::Things => "THING",
         }
     }
 }
@@ -90,6 +94,8 @@ pub struct Shown<'a> {
     pub preprocessing: Preprocessing,
     /// Floor resolution.
     pub floors: Floors,
+    /// Things drawn or not.
+    pub things: ThingsShown,
 }
 
 impl Entry {
@@ -108,6 +114,7 @@ impl Entry {
             Entry::Floors if !Floors::offered_at(shown.resolution) => "-",
             Entry::Floors => shown.floors.label(),
             Entry::Hud => on_off(shown.hud),
+            Entry::Things => shown.things.label(),
         }
     }
 }

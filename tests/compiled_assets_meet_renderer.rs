@@ -260,8 +260,10 @@ fn render_first_frames(compiled: &Compiled) -> Result<(), String> {
     static PLACEHOLDER: [u8; 64 * 16] = [1; 64 * 16];
     let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
     let sprites: Vec<_> = compiled.sprites().iter().map(|s| s.sprite()).collect();
+    let sprite_sets: Vec<_> = compiled.sprite_sets().iter().map(|s| s.set()).collect();
     let assets = RenderAssets {
         sprites: &sprites,
+        sprite_sets: &sprite_sets,
         textures: &textures,
         sky: compiled.sky().map_or(
             Sky {

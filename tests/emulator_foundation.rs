@@ -223,6 +223,8 @@ fn kernel_costs_are_measured_with_iwram_texels() {
         "flat_dbl_lit",
         "flat_pair_unlit",
         "flat_pair_lit",
+        "sprite_dbl",
+        "sprite_native",
     ] {
         let hundredths = number(&line, name);
         // Sanity only (a benchmark reports, it does not time-test): between 3 and 30 cycles.

@@ -14,7 +14,9 @@ use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
 use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
-use portalcast::render::view::{Floors, Preprocessing, Settings, TexturePlacement, View};
+use portalcast::render::view::{
+    Floors, Preprocessing, Settings, TexturePlacement, ThingsShown, View,
+};
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_harness::{Emulator, Keys};
@@ -32,6 +34,7 @@ struct Compared {
     menu: bool,
     cycles: u64,
     things_drawn: u32,
+    things: ThingsShown,
 }
 
 /// Runs the ROM frame by frame and compares each frame it draws with the host's render.
@@ -87,6 +90,7 @@ impl Checker {
             textures,
             preprocessing,
             floors,
+            things,
         } = settings;
         let camera = player.camera();
         let mut page = HostPage::new();
@@ -98,7 +102,7 @@ impl Checker {
         let stats = self.renderer.render(
             &map,
             &self.assets,
-            &View::new(&camera, &settings),
+            &View::new(&camera, &settings).at_tick(player.tick),
             &mut canvas,
         );
         if player.hud {
@@ -117,6 +121,7 @@ impl Checker {
                 textures,
                 preprocessing,
                 floors,
+                things,
             };
             menu::draw(
                 &mut canvas,
@@ -172,6 +177,7 @@ impl Checker {
             menu: menu_open,
             cycles: number(text, "cycles"),
             things_drawn: stats.things_drawn,
+            things,
         });
     }
 
@@ -247,11 +253,13 @@ fn rom_frames_are_identical_to_the_host_renderer() {
     // The quality knobs at the end of the menu: the textures from the cartridge, the scene
     // preprocessing, then half-width floors, which need 240×160 (down from the preprocessing
     // wraps to the resolution, two up is the floors).
-    let knob_phases: [&[Keys]; 4] = [
+    let knob_phases: [&[Keys]; 5] = [
         &[start, down, down, down, right, start],
         &[start, down, right, start],
         &[start, down, down, down, right, up, up, right, start],
         // The HUD on: its figures are this frame's cycles, which the host reads from the line.
+        &[start, down, right, start],
+        // Things off, the last entry.
         &[start, down, right, start],
     ];
     for presses in knob_phases {
@@ -292,6 +300,10 @@ fn rom_frames_are_identical_to_the_host_renderer() {
             "floors {floors:?} never compared at 240x160"
         );
     }
+    assert!(
+        compared.iter().any(|c| c.things == ThingsShown::Off),
+        "no frame with things off compared"
+    );
     assert!(
         compared.iter().any(|c| c.hud),
         "no frame with the HUD compared"

@@ -41,7 +41,10 @@ fn sprite_covers(
     index: usize,
 ) -> Option<Vec<bool>> {
     let thing = &map.things[index];
-    let sprite = &portalcast::assets::SPRITES[usize::from(thing.sprite)];
+    // The shipped tiny map's things are still images seen alike from every side.
+    let set = &portalcast::assets::SPRITE_SETS[usize::from(thing.sprite)];
+    assert_eq!((set.frames, set.rotations), (1, 1), "{}", set.name);
+    let sprite = &portalcast::assets::SPRITES[usize::from(set.first)];
     let (sin, cos) = portalcast_oracle::engine_direction(camera);
     let (dx, dy) = (
         f64::from(thing.x_fx8) / 256.0 - camera.x,
@@ -89,7 +92,7 @@ fn compare_frame(
 ) -> Seen {
     let (map, settings) = render_line_settings(render_line);
     let camera = player.camera();
-    let view = View::new(&camera, &settings);
+    let view = View::new(&camera, &settings).at_tick(player.tick);
     let mut canvas = RecordingCanvas::new(settings.resolution);
     renderer.render(
         &map,

@@ -436,7 +436,7 @@ fn outcome(
                 preprocessing,
                 ..Settings::DEFAULT
             };
-            compare_with_engine(renderer, map, assets, &pose.camera, &settings)
+            compare_with_engine(renderer, map, assets, &pose.camera, &settings, 0)
         })
     }));
     QUIET_PANICS.with(|quiet| quiet.set(false));
@@ -711,7 +711,7 @@ fn each_map_reaches_its_extreme() {
             resolution: Resolution::R240x160,
             ..Settings::DEFAULT
         };
-        let run = compare_with_engine(&mut renderer, m, &assets, &camera, &settings);
+        let run = compare_with_engine(&mut renderer, m, &assets, &camera, &settings, 0);
         let sectors: BTreeSet<u16> = run
             .oracle
             .surfaces
@@ -780,7 +780,7 @@ fn render_one_pose() {
         resolution,
         ..Settings::DEFAULT
     };
-    let run = compare_with_engine(&mut Renderer::new(), &map, &assets, &camera, &settings);
+    let run = compare_with_engine(&mut Renderer::new(), &map, &assets, &camera, &settings, 0);
     println!("{:?}\n{:?}", run.comparison, run.stats);
     let png = common::screenshot_dir().join("extreme-pose.png");
     portalcast_oracle::write_diff_png(&run.engine.surfaces, &run.oracle, &png)

@@ -527,8 +527,23 @@ fn validate(map: &MapTables, compiled: &Compiled) -> Result<(), String> {
     let start = map.player_start;
     check_place(map, "player start", start.x_fx8, start.y_fx8, start.sector)?;
     for (index, thing) in map.things.iter().enumerate() {
-        if usize::from(thing.sprite) >= compiled.sprites().len() {
-            return Err(format!("thing {index}: sprite {}", thing.sprite));
+        let Some(set) = compiled.sprite_sets().get(usize::from(thing.sprite)) else {
+            return Err(format!("thing {index}: sprite set {}", thing.sprite));
+        };
+        let images = usize::from(set.frames) * usize::from(set.rotations);
+        let first = usize::from(set.first);
+        let Some(set_images) = compiled.sprites().get(first..first + images) else {
+            return Err(format!("thing {index}: sprite set {} images", set.name));
+        };
+        let size = |i: &portalcast_assets::CompiledSprite| (i.width, i.height);
+        if set_images.is_empty() || set_images.iter().any(|i| size(i) != size(&set_images[0])) {
+            return Err(format!(
+                "thing {index}: sprite set {} image sizes",
+                set.name
+            ));
+        }
+        if thing.frame_ticks == 0 {
+            return Err(format!("thing {index}: frame ticks 0"));
         }
         check_place(
             map,
@@ -551,7 +566,9 @@ fn check_thing_fits(
     index: usize,
     thing: &portalcast_format::Thing,
 ) -> Result<(), String> {
-    let sprite = &compiled.sprites()[usize::from(thing.sprite)];
+    // A set's images share one size (the compiler's promise): its first stands for all.
+    let set = &compiled.sprite_sets()[usize::from(thing.sprite)];
+    let sprite = &compiled.sprites()[usize::from(set.first)];
     let sector = &map.sectors[usize::from(thing.sector)];
     if 2 * u32::from(thing.radius) < u32::from(sprite.width) {
         return Err(format!(
@@ -728,8 +745,10 @@ struct RenderFault {
 fn render(map: &MapTables, compiled: &Compiled) -> Result<(), RenderFault> {
     let textures: Vec<Texture> = compiled.textures().iter().map(|t| t.texture()).collect();
     let sprites: Vec<_> = compiled.sprites().iter().map(|s| s.sprite()).collect();
+    let sprite_sets: Vec<_> = compiled.sprite_sets().iter().map(|s| s.set()).collect();
     let assets = RenderAssets {
         sprites: &sprites,
+        sprite_sets: &sprite_sets,
         textures: &textures,
         sky: match compiled.sky() {
             Some(sky) => sky.sky(),

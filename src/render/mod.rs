@@ -15,7 +15,7 @@ pub mod visits;
 pub mod walk;
 pub mod walls;
 
-use portalcast_format::{Colormap, Sky, Sprite, Texture};
+use portalcast_format::{Colormap, Sky, Sprite, SpriteSet, Texture};
 
 /// What the renderer draws with: the compiled textures, the sky and the light colormap.
 #[derive(Clone, Copy, Debug)]
@@ -26,6 +26,8 @@ pub struct RenderAssets<'a> {
     pub sky: Sky<'a>,
     /// Light rows.
     pub colormap: &'a Colormap,
-    /// Sprites by index (things refer to them by index).
+    /// Sprite images by index.
     pub sprites: &'a [Sprite<'a>],
+    /// Sprite sets by index (things refer to them by index): which image a thing shows.
+    pub sprite_sets: &'a [SpriteSet<'a>],
 }

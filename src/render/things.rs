@@ -168,7 +168,10 @@ impl Things {
         let range = map.things_range(sector_index);
         let sector = &map.sectors[usize::from(sector_index)];
         for (index, thing) in range.clone().zip(&map.things[range]) {
-            let Some(sprite) = assets.sprites.get(usize::from(thing.sprite)) else {
+            let Some(image) = image_of(frame, thing) else {
+                continue;
+            };
+            let Some(sprite) = assets.sprites.get(image) else {
                 continue;
             };
             let Some(mut seen) = project(frame, sector, thing, sprite) else {
@@ -192,6 +195,7 @@ impl Things {
             seen.first = columns_first as i16;
             seen.end = columns_end as i16;
             seen.thing = index as u16;
+            seen.sprite = image as u16;
             seen.clips_at = self.clips_used as u16;
             self.clips[self.clips_used..self.clips_used + columns]
                 .copy_from_slice(&clip[columns_first as usize..columns_end as usize]);
@@ -245,6 +249,21 @@ impl Things {
         self.stats.drawn = self.count as u32;
         self.stats
     }
+}
+
+/// The image of `thing`'s sprite set the frame shows: its animation frame at the view's tick,
+/// seen from the eye's side of it.
+fn image_of(frame: &ThingView, thing: &Thing) -> Option<usize> {
+    let set = frame.assets.sprite_sets.get(usize::from(thing.sprite))?;
+    let eye = frame.view.eye.position;
+    let (sin, cos) = crate::math::Angle::from_bits(thing.angle).sin_cos();
+    let rotation = set.rotation(
+        eye.x.to_bits() - thing.x_fx8,
+        eye.y.to_bits() - thing.y_fx8,
+        sin.to_bits(),
+        cos.to_bits(),
+    );
+    Some(set.image(frame.view.tick, thing.frame_ticks.max(1), rotation))
 }
 
 /// Whether `a` is drawn before `b`: farther, or as far and earlier in the map.
@@ -309,7 +328,7 @@ fn project(
     Some(VisibleThing {
         depth,
         thing: 0,
-        sprite: thing.sprite,
+        sprite: 0,
         first: first as i16,
         end: end as i16,
         clips_at: 0,

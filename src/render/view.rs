@@ -39,6 +39,45 @@ pub struct Settings {
     pub preprocessing: Preprocessing,
     /// Horizontal resolution of floors and ceilings under 240-wide walls.
     pub floors: Floors,
+    /// Whether things are drawn.
+    pub things: ThingsShown,
+}
+
+/// The things knob: things drawn or not, to measure what they cost.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ThingsShown {
+    /// Every thing in view drawn (the default).
+    On,
+    /// No thing drawn: the scene alone.
+    Off,
+}
+
+impl ThingsShown {
+    /// Both settings, on first.
+    pub const ALL: [ThingsShown; 2] = [ThingsShown::On, ThingsShown::Off];
+
+    /// The label the ROM prints and the benchmarks read.
+    pub const fn label(self) -> &'static str {
+        match self {
+            ThingsShown::On => "on",
+            ThingsShown::Off => "off",
+        }
+    }
+
+    /// Parses [`ThingsShown::label`].
+    pub fn from_label(label: &str) -> Option<ThingsShown> {
+        ThingsShown::ALL
+            .into_iter()
+            .find(|things| things.label() == label)
+    }
+
+    /// The other setting (the menu toggles it).
+    pub const fn next(self) -> ThingsShown {
+        match self {
+            ThingsShown::On => ThingsShown::Off,
+            ThingsShown::Off => ThingsShown::On,
+        }
+    }
 }
 
 /// The thesis' scene preprocessing knob (its §3.4, ×1.7 on its scenes): a first pass over the
@@ -118,6 +157,7 @@ impl Settings {
         textures: TexturePlacement::Ewram,
         preprocessing: Preprocessing::Off,
         floors: Floors::Full,
+        things: ThingsShown::On,
     };
 }
 
@@ -193,6 +233,10 @@ pub struct View {
     pub preprocessing: Preprocessing,
     /// Floors and ceilings at half the horizontal resolution (only ever true at 240 wide).
     pub halved_floors: bool,
+    /// The game tick (60 a second) the frame shows: it picks the things' animation frames.
+    pub tick: u32,
+    /// Whether things are drawn.
+    pub things: ThingsShown,
 }
 
 impl View {
@@ -210,6 +254,13 @@ impl View {
             lighting: settings.lighting,
             preprocessing: settings.preprocessing,
             halved_floors: settings.floors == Floors::Half && Floors::offered_at(resolution),
+            tick: 0,
+            things: settings.things,
         }
+    }
+
+    /// The view at game tick `tick`.
+    pub const fn at_tick(self, tick: u32) -> View {
+        View { tick, ..self }
     }
 }

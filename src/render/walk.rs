@@ -12,7 +12,7 @@ use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
 use super::things::{ThingView, Things};
-use super::view::{Preprocessing, View};
+use super::view::{Preprocessing, ThingsShown, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
     owned_columns_in, SteppedWall, VertexSplit, WallProjector, WallRows, WallStepper, ROW_HEIGHTS,
@@ -660,7 +660,7 @@ impl<W: WindowStore> Renderer<W> {
             windows.floor[range.clone()].fill(UNSET);
         }
         let walls_started = (self.clock)();
-        if !scene.map.things_in(sector_index).is_empty() {
+        if scene.view.things == ThingsShown::On && !scene.map.things_in(sector_index).is_empty() {
             // Before the walls: the clip windows are still the ones the sector is seen through.
             self.things.collect(
                 &scene.things,

@@ -160,7 +160,9 @@ pub fn render_line_settings(
 ) {
     use portalcast::frame::Resolution;
     use portalcast::render::demo;
-    use portalcast::render::view::{Floors, Preprocessing, Settings, TexturePlacement};
+    use portalcast::render::view::{
+        Floors, Preprocessing, Settings, TexturePlacement, ThingsShown,
+    };
     let map = demo::map_named(field(text, "map").unwrap()).expect("the ROM names a compiled map");
     let settings = Settings {
         resolution: Resolution::from_label(field(text, "res").unwrap()).unwrap(),
@@ -168,6 +170,7 @@ pub fn render_line_settings(
         textures: TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap(),
         preprocessing: Preprocessing::from_label(field(text, "prep").unwrap()).unwrap(),
         floors: Floors::from_label(field(text, "floors").unwrap()).unwrap(),
+        things: ThingsShown::from_label(field(text, "things").unwrap()).unwrap(),
     };
     (map, settings)
 }

@@ -184,6 +184,7 @@ pub struct HostAssets<'c> {
     sky: portalcast_format::Sky<'c>,
     colormap: &'c portalcast_format::Colormap,
     sprites: Vec<portalcast_format::Sprite<'c>>,
+    sprite_sets: Vec<portalcast_format::SpriteSet<'c>>,
 }
 
 impl<'c> HostAssets<'c> {
@@ -194,6 +195,7 @@ impl<'c> HostAssets<'c> {
             sky: compiled.sky().expect("an asset set with a sky").sky(),
             colormap: compiled.colormap(),
             sprites: compiled.sprites().iter().map(|s| s.sprite()).collect(),
+            sprite_sets: compiled.sprite_sets().iter().map(|s| s.set()).collect(),
         }
     }
 
@@ -204,6 +206,7 @@ impl<'c> HostAssets<'c> {
             sky: self.sky,
             colormap: self.colormap,
             sprites: &self.sprites,
+            sprite_sets: &self.sprite_sets,
         }
     }
 
@@ -214,6 +217,7 @@ impl<'c> HostAssets<'c> {
             sky: &self.sky,
             colormap: self.colormap,
             sprites: &self.sprites,
+            sprite_sets: &self.sprite_sets,
         }
     }
 }

@@ -24,6 +24,7 @@ const TARGET_SLICE_BYTES: usize = 8;
 const TEXTURE_DESCRIPTOR_BYTES: usize = 2 * TARGET_SLICE_BYTES + TARGET_SLICE_BYTES + 4;
 const SKY_DESCRIPTOR_BYTES: usize = 4 + TARGET_SLICE_BYTES;
 const SPRITE_DESCRIPTOR_BYTES: usize = 2 * TARGET_SLICE_BYTES + 4;
+const SPRITE_SET_DESCRIPTOR_BYTES: usize = TARGET_SLICE_BYTES + 4;
 const MAP_DESCRIPTOR_BYTES: usize = 5 * TARGET_SLICE_BYTES + core::mem::size_of::<PlayerStart>();
 
 const IWRAM_BYTES: usize = 32 * 1024;
@@ -208,7 +209,8 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
     }
     let _ = writeln!(
         s,
-        "/// Sprites used by things, sorted by name; things index this table."
+        "/// The images of the sprite sets, set by set in [`SPRITE_SETS`]' order, frames major,\n\
+         /// rotations minor; sets index this table."
     );
     let _ = writeln!(s, "pub static SPRITES: &[{FORMAT}::Sprite<'static>] = &[");
     for (sprite, offset) in compiled.sprites.iter().zip(&blobs.sprite_offsets) {
@@ -219,6 +221,22 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
             sprite.width,
             sprite.height,
             sprite.posts.len()
+        );
+    }
+    let _ = writeln!(s, "];\n");
+    let _ = writeln!(
+        s,
+        "/// Sprite sets used by things, sorted by name; things index this table."
+    );
+    let _ = writeln!(
+        s,
+        "pub static SPRITE_SETS: &[{FORMAT}::SpriteSet<'static>] = &["
+    );
+    for set in &compiled.sprite_sets {
+        let _ = writeln!(
+            s,
+            "    {FORMAT}::SpriteSet {{ name: {:?}, first: {}, frames: {}, rotations: {} }},",
+            set.name, set.first, set.frames, set.rotations
         );
     }
     let _ = writeln!(s, "];\n");
@@ -287,8 +305,8 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
     for t in &map.things {
         let _ = writeln!(
             s,
-            "    {FORMAT}::Thing {{ x_fx8: {}, y_fx8: {}, angle: {}, sprite: {}, sector: {}, z: {}, radius: {}, flags: {} }},",
-            t.x_fx8, t.y_fx8, t.angle, t.sprite, t.sector, t.z, t.radius, t.flags
+            "    {FORMAT}::Thing {{ x_fx8: {}, y_fx8: {}, angle: {}, sprite: {}, sector: {}, z: {}, radius: {}, flags: {}, frame_ticks: {} }},",
+            t.x_fx8, t.y_fx8, t.angle, t.sprite, t.sector, t.z, t.radius, t.flags, t.frame_ticks
         );
     }
     let _ = writeln!(s, "];");
@@ -356,9 +374,13 @@ pub(crate) fn size_report(compiled: &Compiled) -> String {
         .as_ref()
         .map_or(0, |s| s.texels.len() + SKY_DESCRIPTOR_BYTES);
     let sprite_names: usize = compiled.sprites.iter().map(|s| s.name.len()).sum();
+    let set_names: usize = compiled.sprite_sets.iter().map(|s| s.name.len()).sum();
     let sprites = blobs.sprites.len()
         + compiled.sprites.len() * SPRITE_DESCRIPTOR_BYTES
         + sprite_names
+        + TARGET_SLICE_BYTES
+        + compiled.sprite_sets.len() * SPRITE_SET_DESCRIPTOR_BYTES
+        + set_names
         + TARGET_SLICE_BYTES;
     let maps: usize = compiled
         .maps
@@ -412,7 +434,11 @@ pub(crate) fn size_report(compiled: &Compiled) -> String {
     row(
         "sprites",
         sprites,
-        counted(compiled.sprites.len(), "sprite"),
+        format!(
+            "{} of {}",
+            counted(compiled.sprites.len(), "image"),
+            counted(compiled.sprite_sets.len(), "sprite set")
+        ),
     );
     let map_notes: Vec<String> = compiled
         .maps

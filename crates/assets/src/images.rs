@@ -85,18 +85,11 @@ pub(crate) fn check_sky(image: &RgbaImage) -> Vec<Located> {
     errors
 }
 
-/// A sprite: sides 1..=256; alpha below 128 means transparent, and some pixel must be opaque.
+/// A sprite image: sides 1..=256; alpha below 128 means transparent, and some pixel must be
+/// opaque.
 pub(crate) fn check_sprite(image: &RgbaImage) -> Vec<Located> {
-    let mut errors = Vec::new();
-    for (what, value) in [("width", image.width()), ("height", image.height())] {
-        if !(1..=SPRITE_SIDE_MAX).contains(&value) {
-            errors.push((
-                Loc::START,
-                format!("{what} {value} is outside 1..={SPRITE_SIDE_MAX}; resize the sprite"),
-            ));
-        }
-    }
-    if !image.pixels().any(|p| p.0[3] >= SPRITE_ALPHA_OPAQUE) {
+    let mut errors = check_sprite_sides(image.width(), image.height(), "resize the sprite");
+    if !has_opaque_pixel(image) {
         errors.push((
             Loc::START,
             format!(
@@ -105,6 +98,25 @@ pub(crate) fn check_sprite(image: &RgbaImage) -> Vec<Located> {
         ));
     }
     errors
+}
+
+/// The sides of a sprite image, `width` × `height`: each 1..=256 (`fix` says what to do).
+pub(crate) fn check_sprite_sides(width: u32, height: u32, fix: &str) -> Vec<Located> {
+    [("width", width), ("height", height)]
+        .into_iter()
+        .filter(|(_, value)| !(1..=SPRITE_SIDE_MAX).contains(value))
+        .map(|(what, value)| {
+            (
+                Loc::START,
+                format!("{what} {value} is outside 1..={SPRITE_SIDE_MAX}; {fix}"),
+            )
+        })
+        .collect()
+}
+
+/// Whether some pixel of a sprite image is opaque (alpha 128 or more).
+pub(crate) fn has_opaque_pixel(image: &RgbaImage) -> bool {
+    image.pixels().any(|p| p.0[3] >= SPRITE_ALPHA_OPAQUE)
 }
 
 fn first_transparent(image: &RgbaImage, what: &str) -> Option<Located> {

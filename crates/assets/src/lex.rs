@@ -3,7 +3,7 @@
 use portalcast_format::limits::{HEIGHT_DIFF_MAX, WORLD_COORD_MAX};
 
 use crate::diag::{Loc, Located};
-use crate::source::{Spanned, ThingOptions};
+use crate::source::{Spanned, ThingOptions, DEFAULT_FRAME_TICKS};
 
 /// A whitespace-separated word of a line and where it starts.
 #[derive(Clone, Copy, Debug)]
@@ -168,8 +168,11 @@ pub(crate) fn split_flags<'t>(
     (rest, found)
 }
 
-/// The options of a `thing` line: its `flags` (from [`split_flags`]) and its `z=` and
-/// `radius=` settings (taken from `keys`), if every value is valid (each bad one is reported).
+/// Largest `anim=`: game ticks a frame shows (255 ticks, over 4 seconds).
+pub(crate) const FRAME_TICKS_MAX: i64 = 255;
+
+/// The options of a `thing` line: its `flags` (from [`split_flags`]) and its `z=`, `radius=`
+/// and `anim=` settings (taken from `keys`), if every value is valid (each bad one is reported).
 pub(crate) fn thing_options(
     flags: &[Token<'_>],
     keys: &mut KeyValues<'_>,
@@ -188,12 +191,20 @@ pub(crate) fn thing_options(
             .ok(),
         None => Some(None),
     };
+    let frame_ticks = match keys.take("anim") {
+        Some(t) => integer_in(t, "anim", 1, FRAME_TICKS_MAX)
+            .map(|ticks| ticks as u16)
+            .map_err(|e| errors.push(e))
+            .ok(),
+        None => Some(DEFAULT_FRAME_TICKS),
+    };
     let has = |flag: &str| flags.iter().any(|f| f.text == flag);
     Some(ThingOptions {
         z: z?,
         hanging: has("hang"),
         solid: has("solid"),
         radius: radius?,
+        frame_ticks: frame_ticks?,
     })
 }
 

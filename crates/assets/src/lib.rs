@@ -3,7 +3,7 @@
 //!
 //! [`compile_dir`] reads an asset directory (the repo's `assets/` or a user's), checks every map
 //! and every image the maps use, and returns a [`Compiled`] set: palette, colormap, textures
-//! with mip chains, sky, sprites and map tables, owned in `Vec`s. [`Compiled::write_to`] emits
+//! with mip chains, sky, sprite images and sets, and map tables, owned in `Vec`s. [`Compiled::write_to`] emits
 //! them into `OUT_DIR` as `assets.rs` (Rust statics) plus binary blobs pulled in with
 //! `include_bytes!`. Host tests can instead borrow the tables directly
 //! ([`Compiled::map`]) and run the engine on a freshly compiled map.
@@ -24,13 +24,16 @@ pub mod numeric_tables;
 mod palette;
 mod placement;
 mod source;
+mod sprite_sets;
 mod texels;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
-use portalcast_format::{Colormap, MapTables, Palette, Sky, Sprite, Texture, NO_TEXTURE, SKY};
+use portalcast_format::{
+    Colormap, MapTables, Palette, Sky, Sprite, SpriteSet, Texture, NO_TEXTURE, SKY,
+};
 
 pub use diag::{CompileErrors, Diagnostic, Loc};
 pub use map_build::{wall_length_fx8, Catalog, CompiledMap};
@@ -41,8 +44,10 @@ pub const TEXT_MAP_EXTENSION: &str = "map";
 pub const GRID_MAP_EXTENSION: &str = "grid";
 /// Folder of wall and flat textures, inside the asset directory.
 pub const TEXTURES_DIR: &str = "textures";
-/// Folder of sprite images.
+/// Folder of sprite images (sprite sets: `NAME.png`, or animation frames and rotations).
 pub const SPRITES_DIR: &str = "sprites";
+/// Most sprite images the maps' sets may hold in all: a set's first image is a `u16` index.
+const SPRITE_IMAGES_MAX: usize = u16::MAX as usize + 1;
 /// Folder of the sky panorama.
 pub const SKY_DIR: &str = "sky";
 /// The sky panorama's file name inside [`SKY_DIR`].
@@ -108,10 +113,12 @@ impl CompiledSky {
     }
 }
 
-/// A sprite compiled for the ROM.
+/// A sprite image compiled for the ROM.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct CompiledSprite {
-    /// File name without extension.
+    /// Its set's name, then `.K` (frame K, from 1) if the set is animated, then `.rR` if it has
+    /// rotations: `torch`, `flame.3`, `statue.r5`, `knight.2.r0` (a strip's frames are named as
+    /// if they were separate files).
     pub name: String,
     /// Width in texels.
     pub width: u16,
@@ -133,6 +140,32 @@ impl CompiledSprite {
     }
 }
 
+/// A sprite set compiled for the ROM: its images are
+/// [`Compiled::sprites`]`[first + frame·rotations + rotation]`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CompiledSpriteSet {
+    /// The set's name, as things give it.
+    pub name: String,
+    /// Index of its first image in [`Compiled::sprites`].
+    pub first: u16,
+    /// Animation frames (1: still).
+    pub frames: u8,
+    /// 1, or 8 (rotation `r` is the thing seen from the direction facing + r·45°).
+    pub rotations: u8,
+}
+
+impl CompiledSpriteSet {
+    /// The set as the ROM sees it.
+    pub fn set(&self) -> SpriteSet<'_> {
+        SpriteSet {
+            name: &self.name,
+            first: self.first,
+            frames: self.frames,
+            rotations: self.rotations,
+        }
+    }
+}
+
 /// A compiled asset set: everything the maps use, and nothing else.
 #[derive(Clone, Debug)]
 pub struct Compiled {
@@ -143,6 +176,7 @@ pub struct Compiled {
     textures: Vec<CompiledTexture>,
     sky: Option<CompiledSky>,
     sprites: Vec<CompiledSprite>,
+    sprite_sets: Vec<CompiledSpriteSet>,
     maps: Vec<CompiledMap>,
     left_out: Vec<String>,
 }
@@ -176,9 +210,16 @@ impl Compiled {
         self.sky.as_ref()
     }
 
-    /// Sprites used by some thing, sorted by name; things index this list.
+    /// The images of the sprite sets, set by set in [`Compiled::sprite_sets`]' order, each
+    /// set's frames in order and each frame's rotations in order; sets index this list.
     pub fn sprites(&self) -> &[CompiledSprite] {
         &self.sprites
+    }
+
+    /// Sprite sets used by some thing, sorted by name; things index this list
+    /// ([`portalcast_format::Thing::sprite`]).
+    pub fn sprite_sets(&self) -> &[CompiledSpriteSet] {
+        &self.sprite_sets
     }
 
     /// All maps, sorted by name.
@@ -218,11 +259,12 @@ impl Compiled {
     }
 }
 
-/// Parses and checks one map from text, against a catalog of texture and sprite names (no
+/// Parses and checks one map from text, against a catalog of texture and sprite set names (no
 /// images are read). `file_name` picks the format by extension (`.map` or `.grid`) and names
-/// the file in errors. Texture and sprite indices in the result refer to the catalog's lists.
-/// Things are checked against the sprite sizes the catalog knows ([`Catalog::with_sprite_size`];
-/// a sprite without one counts as 0×0, so its things get radius 0 unless `radius=` says more).
+/// the file in errors. Texture and sprite set indices in the result refer to the catalog's
+/// lists. Things are checked against the sprite sizes the catalog knows
+/// ([`Catalog::with_sprite_size`]; a set without one counts as 0×0, so its things get radius 0
+/// unless `radius=` says more).
 pub fn compile_map_str(
     file_name: &str,
     text: &str,
@@ -323,6 +365,7 @@ fn png_files(dir: &Path) -> BTreeMap<String, PathBuf> {
 struct Usage {
     wall_textures: Vec<bool>,
     flat_textures: Vec<bool>,
+    /// By sprite set.
     sprites: Vec<bool>,
     sky: bool,
 }
@@ -332,7 +375,7 @@ impl Usage {
         let mut usage = Usage {
             wall_textures: vec![false; catalog.textures().len()],
             flat_textures: vec![false; catalog.textures().len()],
-            sprites: vec![false; catalog.sprites().len()],
+            sprites: vec![false; catalog.sprite_sets().len()],
             sky: false,
         };
         for map in maps {
@@ -393,9 +436,9 @@ fn check_flat_shapes(
     }
 }
 
-/// Compiles the asset directory `dir`: `textures/*.png`, `sprites/*.png`, `sky/sky.png` and
-/// `maps/*.map`, `maps/*.grid` (see `docs/MAP_FORMAT.md`). Only what some map uses is kept.
-/// Returns every error found, sorted by file and position.
+/// Compiles the asset directory `dir`: `textures/*.png`, `sprites/*.png` (sprite sets),
+/// `sky/sky.png` and `maps/*.map`, `maps/*.grid` (see `docs/MAP_FORMAT.md`). Only what some map
+/// uses is kept. Returns every error found, sorted by file and position.
 pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
     if !dir.is_dir() {
         let what = if dir.exists() {
@@ -418,10 +461,11 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
     let sky_path = dir.join(SKY_DIR).join(SKY_FILE);
     let maps_dir = dir.join(MAPS_DIR);
     let texture_files = png_files(&textures_dir);
-    let sprite_files = png_files(&sprites_dir);
+    let (set_sources, set_errors) = sprite_sets::scan(&png_files(&sprites_dir));
+    errors.extend(set_errors);
     let catalog = Catalog::new(
         texture_files.keys().cloned(),
-        sprite_files.keys().cloned(),
+        set_sources.iter().map(|set| set.name.clone()),
         sky_path.is_file(),
     );
     if catalog.textures().len() >= usize::from(SKY) {
@@ -537,19 +581,36 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             left_out.push(format!("{TEXTURES_DIR}/{name}.png"));
         }
     }
-    let mut sprite_images = Vec::new();
-    // Width and height of each sprite (by catalog index) that loaded and passed its checks.
-    let mut sprite_sizes = vec![None; catalog.sprites().len()];
-    for (index, (name, path)) in sprite_files.iter().enumerate() {
+    // The used sets (by catalog index) with their images, if they all loaded and passed
+    // their checks.
+    let mut set_images = Vec::new();
+    // Width and height of each set's images (by catalog index), where known.
+    let mut sprite_sizes = vec![None; catalog.sprite_sets().len()];
+    let mut image_count = 0;
+    // The sprite files read (`load` holds `files_read` until the sky is loaded).
+    let mut sprite_files_read = Vec::new();
+    for (index, set) in set_sources.iter().enumerate() {
         if usage.sprites[index] {
-            let image = load(path, images::check_sprite, &mut errors);
-            sprite_sizes[index] = image
+            image_count += set.image_count();
+            let images = sprite_sets::load(set, &mut sprite_files_read, &mut errors);
+            sprite_sizes[index] = images
                 .as_ref()
-                .map(|image| (image.width() as u16, image.height() as u16));
-            sprite_images.push((name, image));
+                .map(|images| (images[0].width() as u16, images[0].height() as u16));
+            set_images.push((set, images));
         } else {
-            left_out.push(format!("{SPRITES_DIR}/{name}.png"));
+            left_out.extend(set.file_names.iter().cloned());
         }
+    }
+    if image_count > SPRITE_IMAGES_MAX {
+        errors.push(Diagnostic::new(
+            &sprites_dir,
+            (
+                Loc::START,
+                format!(
+                    "the sprite sets the maps use hold {image_count} images, more than the {SPRITE_IMAGES_MAX} the sprite table can index; use fewer frames or rotations"
+                ),
+            ),
+        ));
     }
     for (map, (path, fits)) in maps.iter_mut().zip(&thing_fits) {
         let found = map_build::finish_things(map, fits, |sprite| {
@@ -566,6 +627,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
         }
         None
     };
+    files_read.extend(sprite_files_read);
     if !errors.is_empty() {
         return Err(CompileErrors::sorted(errors));
     }
@@ -575,9 +637,9 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
         .into_iter()
         .filter_map(|(i, n, image)| Some((i, n, image?)))
         .collect();
-    let sprite_images: Vec<(&String, RgbaImage)> = sprite_images
+    let set_images: Vec<(&sprite_sets::SetSource, Vec<RgbaImage>)> = set_images
         .into_iter()
-        .filter_map(|(n, image)| Some((n, image?)))
+        .filter_map(|(set, images)| Some((set, images?)))
         .collect();
 
     let mut samples = Vec::new();
@@ -587,7 +649,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
     if let Some(image) = &sky_image {
         texels::opaque_samples(image, &mut samples);
     }
-    for (_, image) in &sprite_images {
+    for image in set_images.iter().flat_map(|(_, images)| images) {
         texels::opaque_samples(image, &mut samples);
     }
     let mut quantiser = palette::Quantiser::new(&samples);
@@ -611,18 +673,28 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             rows,
         });
     }
-    let mut sprite_index = vec![0u16; catalog.sprites().len()];
+    let mut set_index = vec![0u16; catalog.sprite_sets().len()];
+    let mut sprite_sets = Vec::new();
     let mut sprites = Vec::new();
-    for (name, image) in &sprite_images {
-        if let Ok(old) = catalog.sprites().binary_search(name) {
-            sprite_index[old] = sprites.len() as u16;
+    for (set, images) in &set_images {
+        if let Ok(old) = catalog.sprite_sets().binary_search(&set.name) {
+            set_index[old] = sprite_sets.len() as u16;
         }
-        sprites.push(CompiledSprite {
-            name: (*name).clone(),
-            width: image.width() as u16,
-            height: image.height() as u16,
-            posts: texels::sprite_columns(image, &mut quantiser),
+        sprite_sets.push(CompiledSpriteSet {
+            name: set.name.clone(),
+            // At most SPRITE_IMAGES_MAX images in all (checked above).
+            first: sprites.len() as u16,
+            frames: set.frames,
+            rotations: set.rotations,
         });
+        for (image_index, image) in images.iter().enumerate() {
+            sprites.push(CompiledSprite {
+                name: set.image_name(image_index),
+                width: image.width() as u16,
+                height: image.height() as u16,
+                posts: texels::sprite_columns(image, &mut quantiser),
+            });
+        }
     }
     let sky = sky_image.map(|image| CompiledSky {
         width_log2: image.width().trailing_zeros() as u8,
@@ -644,7 +716,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             sector.ceil_texture = remap(sector.ceil_texture);
         }
         for thing in &mut map.things {
-            thing.sprite = sprite_index[usize::from(thing.sprite)];
+            thing.sprite = set_index[usize::from(thing.sprite)];
         }
     }
     files_read.extend([textures_dir, sprites_dir, dir.join(SKY_DIR), maps_dir]);
@@ -661,6 +733,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
         textures,
         sky,
         sprites,
+        sprite_sets,
         maps,
         left_out,
     })

@@ -21,53 +21,55 @@ use crate::source::{
     CeilingSource, SourceMap, SourcePlace, SourceSector, SourceThing, SourceWall, Spanned,
 };
 
-/// What an asset directory offers, by name; maps are checked against it. Texture and sprite
+/// What an asset directory offers, by name; maps are checked against it. Texture and sprite set
 /// indices in a [`CompiledMap`] built against a catalog are positions in its sorted name lists.
+/// A thing names a sprite set (`sprites/NAME.png`, or its animation frames or rotations:
+/// `docs/MAP_FORMAT.md`, "Sprites").
 ///
 /// The checks that need a sprite's size (a thing's footprint and height) use the sizes given with
-/// [`Catalog::with_sprite_size`]; a sprite without one counts as 0×0 there.
+/// [`Catalog::with_sprite_size`]; a set without one counts as 0×0 there.
 /// [`crate::compile_dir`] checks things against the sprite images themselves.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Catalog {
     textures: Vec<String>,
-    sprites: Vec<String>,
-    /// Width and height per sprite, where known.
+    sprite_sets: Vec<String>,
+    /// Width and height of each set's images (all the same size), where known.
     sprite_sizes: Vec<Option<(u16, u16)>>,
     has_sky: bool,
 }
 
 impl Catalog {
-    /// A catalog of texture and sprite names (sorted and deduplicated here), and whether a sky
-    /// panorama exists.
+    /// A catalog of texture and sprite set names (sorted and deduplicated here), and whether a
+    /// sky panorama exists.
     pub fn new<T: Into<String>, S: Into<String>>(
         textures: impl IntoIterator<Item = T>,
-        sprites: impl IntoIterator<Item = S>,
+        sprite_sets: impl IntoIterator<Item = S>,
         has_sky: bool,
     ) -> Catalog {
         let mut textures: Vec<String> = textures.into_iter().map(Into::into).collect();
-        let mut sprites: Vec<String> = sprites.into_iter().map(Into::into).collect();
+        let mut sprite_sets: Vec<String> = sprite_sets.into_iter().map(Into::into).collect();
         textures.sort();
         textures.dedup();
-        sprites.sort();
-        sprites.dedup();
+        sprite_sets.sort();
+        sprite_sets.dedup();
         Catalog {
             textures,
-            sprite_sizes: vec![None; sprites.len()],
-            sprites,
+            sprite_sizes: vec![None; sprite_sets.len()],
+            sprite_sets,
             has_sky,
         }
     }
 
-    /// The catalog with the size of sprite `name` known (`width` × `height` texels), for the
-    /// checks of things that use it. A name not in the catalog is ignored.
+    /// The catalog with the size of the images of sprite set `name` known (`width` × `height`
+    /// texels), for the checks of things that use it. A name not in the catalog is ignored.
     pub fn with_sprite_size(mut self, name: &str, width: u16, height: u16) -> Catalog {
-        if let Ok(index) = self.sprites.binary_search_by(|s| s.as_str().cmp(name)) {
+        if let Ok(index) = self.sprite_sets.binary_search_by(|s| s.as_str().cmp(name)) {
             self.sprite_sizes[index] = Some((width, height));
         }
         self
     }
 
-    /// The size given for the sprite at `index`, if any.
+    /// The size given for the images of the sprite set at `index`, if any.
     pub(crate) fn sprite_size(&self, index: u16) -> Option<(u16, u16)> {
         self.sprite_sizes.get(usize::from(index)).copied().flatten()
     }
@@ -77,9 +79,9 @@ impl Catalog {
         &self.textures
     }
 
-    /// Sprite names, sorted.
-    pub fn sprites(&self) -> &[String] {
-        &self.sprites
+    /// Sprite set names, sorted; things index this list.
+    pub fn sprite_sets(&self) -> &[String] {
+        &self.sprite_sets
     }
 
     /// Whether a sky panorama exists.
@@ -92,7 +94,7 @@ impl Catalog {
     }
 
     fn sprite(&self, name: &Spanned<String>, errors: &mut Vec<Located>) -> u16 {
-        lookup(&self.sprites, name, "sprite", "sprites", errors)
+        lookup(&self.sprite_sets, name, "sprite", "sprites", errors)
     }
 }
 
@@ -379,9 +381,10 @@ fn thing_fit(
 /// Checks each thing of `map` against its sprite's size and sets its footprint radius: the
 /// `radius=` written, at least half the sprite's width rounded up (the default), and the disc
 /// of that radius must lie inside the thing's sector; the sprite must fit between the sector's
-/// floor and ceiling. `fits` are [`build`]'s, in the order of `map.things`; `size` gives a
-/// sprite's width and height by its index in `map`, or `None` to skip the checks (an image that
-/// did not load, already reported). Returns the errors, each at the thing's place.
+/// floor and ceiling. `fits` are [`build`]'s, in the order of `map.things`; `size` gives the
+/// width and height of a sprite set's images (all the same size) by its index in `map`, or
+/// `None` to skip the checks (an image that did not load, already reported). Returns the
+/// errors, each at the thing's place.
 pub(crate) fn finish_things(
     map: &mut CompiledMap,
     fits: &[ThingFit],
@@ -1430,6 +1433,7 @@ fn tables(
                 } else {
                     0
                 } | if thing.options.solid { THING_SOLID } else { 0 },
+                frame_ticks: thing.options.frame_ticks,
             }
         })
         .zip(fits)

@@ -28,7 +28,7 @@ const GRID_SIDE_MAX: usize = 256;
 const OPEN_KEYS: &[&str] = &["floor", "ceil", "floor_tex", "ceil_tex", "light", "side"];
 const SOLID_KEYS: &[&str] = &["tex"];
 const PLAYER_KEYS: &[&str] = &["on", "angle"];
-const THING_KEYS: &[&str] = &["on", "angle", "z", "radius"];
+const THING_KEYS: &[&str] = &["on", "angle", "z", "radius", "anim"];
 
 struct OpenKind {
     symbol: char,

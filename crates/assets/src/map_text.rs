@@ -17,7 +17,7 @@ const DEFAULT_LIGHT: u8 = portalcast_format::LIGHT_NEUTRAL;
 const SECTOR_KEYS: &[&str] = &["floor", "ceil", "floor_tex", "ceil_tex", "light"];
 const WALL_KEYS: &[&str] = &["tex", "portal", "upper", "lower", "xoff", "yoff"];
 const PLACE_KEYS: &[&str] = &["angle"];
-const THING_KEYS: &[&str] = &["angle", "z", "radius"];
+const THING_KEYS: &[&str] = &["angle", "z", "radius", "anim"];
 
 /// A wall as written: vertex and sector names not yet resolved.
 struct WrittenWall<'t> {

@@ -79,8 +79,8 @@ pub(crate) struct SourceThing {
     pub options: ThingOptions,
 }
 
-/// The optional words of a `thing` line: `z=H`, `hang`, `solid`, `radius=R`.
-#[derive(Clone, Debug, Default)]
+/// The optional words of a `thing` line: `z=H`, `hang`, `solid`, `radius=R`, `anim=TICKS`.
+#[derive(Clone, Debug)]
 pub(crate) struct ThingOptions {
     /// Units above the floor of the sprite's bottom (hanging: below the ceiling of its top).
     pub z: i64,
@@ -88,4 +88,21 @@ pub(crate) struct ThingOptions {
     pub solid: bool,
     /// The footprint radius written, if any (else half the sprite's width, rounded up).
     pub radius: Option<Spanned<i64>>,
+    /// Game ticks each animation frame shows (`anim=`, else [`DEFAULT_FRAME_TICKS`]).
+    pub frame_ticks: u16,
+}
+
+/// Game ticks (60 a second) each animation frame of a thing shows when it gives no `anim=`.
+pub(crate) const DEFAULT_FRAME_TICKS: u16 = 8;
+
+impl Default for ThingOptions {
+    fn default() -> ThingOptions {
+        ThingOptions {
+            z: 0,
+            hanging: false,
+            solid: false,
+            radius: None,
+            frame_ticks: DEFAULT_FRAME_TICKS,
+        }
+    }
 }

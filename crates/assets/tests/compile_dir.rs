@@ -387,6 +387,7 @@ fn write_to_emits_source_and_blobs() {
         "pub static TEXTURES:",
         "pub static SKY:",
         "pub static SPRITES:",
+        "pub static SPRITE_SETS:",
         "pub static MAPS:",
     ] {
         assert!(source.contains(item), "missing {item}");
@@ -517,4 +518,6 @@ fn no_sprite_blob_is_declared_without_things() {
     let source = std::fs::read_to_string(out.path("assets.rs")).expect("assets.rs");
     assert!(!source.contains("SPRITE_BLOB"), "{source}");
     assert!(source.contains("pub static SPRITES:"));
+    assert!(source
+        .contains("pub static SPRITE_SETS: &[::portalcast_format::SpriteSet<'static>] = &[\n];"));
 }

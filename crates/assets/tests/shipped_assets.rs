@@ -7,7 +7,7 @@ mod common;
 use std::collections::{BTreeMap, HashMap, VecDeque};
 
 use common::{shipped_assets, Scratch};
-use portalcast_assets::{compile_dir, Compiled, CompiledSprite};
+use portalcast_assets::{compile_dir, Compiled};
 use portalcast_format::{MapTables, Sector, NO_TEXTURE, SKY, THING_HANGING};
 
 fn compiled() -> Compiled {
@@ -32,7 +32,7 @@ fn strictly_inside(map: &MapTables<'_>, sector: &Sector, x_fx8: i32, y_fx8: i32)
     })
 }
 
-fn check_invariants(map: &MapTables<'_>, texture_count: usize, sprites: &[CompiledSprite]) {
+fn check_invariants(map: &MapTables<'_>, texture_count: usize, compiled: &Compiled) {
     let name = map.name;
     let mut next_wall = 0;
     for (index, sector) in map.sectors.iter().enumerate() {
@@ -103,7 +103,16 @@ fn check_invariants(map: &MapTables<'_>, texture_count: usize, sprites: &[Compil
         "{name}: player inside"
     );
     for (index, thing) in map.things.iter().enumerate() {
-        let sprite = &sprites[usize::from(thing.sprite)];
+        // A set's images are in the table, all of one size.
+        let set = &compiled.sprite_sets()[usize::from(thing.sprite)];
+        let first = usize::from(set.first);
+        let images = &compiled.sprites()
+            [first..first + usize::from(set.frames) * usize::from(set.rotations)];
+        let sprite = &images[0];
+        assert!(images
+            .iter()
+            .all(|i| (i.width, i.height) == (sprite.width, sprite.height)));
+        assert!(thing.frame_ticks >= 1, "{name}: thing {index} frame ticks");
         let sector = &map.sectors[usize::from(thing.sector)];
         assert!(
             strictly_inside(map, sector, thing.x_fx8, thing.y_fx8),
@@ -150,25 +159,93 @@ fn shipped_maps_satisfy_the_table_invariants() {
     let names: Vec<&str> = compiled.maps().iter().map(|m| m.name.as_str()).collect();
     assert_eq!(names, ["bench", "grid", "tiny"]);
     for map in compiled.maps() {
-        check_invariants(&map.tables(), compiled.textures().len(), compiled.sprites());
+        check_invariants(&map.tables(), compiled.textures().len(), &compiled);
     }
-    // The pillar and the lamp are shipped for maps to place; no shipped map does yet.
+    // The flame and the statue are shipped for maps to place; no shipped map does yet.
+    let mut unused = vec!["sprites/flame.strip4.png".to_string()];
+    unused.extend((0..8).map(|r| format!("sprites/statue.r{r}.png")));
     assert_eq!(
         compiled.left_out(),
-        ["sprites/lamp.png", "sprites/pillar.png"],
+        unused,
         "every other shipped asset is used"
     );
-    let torch = &compiled.sprites()[0];
-    assert_eq!((torch.name.as_str(), torch.width), ("torch", 16));
+    let sets = compiled.sprite_sets();
+    let torch = sets
+        .iter()
+        .position(|set| set.name == "torch")
+        .expect("the torch is used");
+    let image = &compiled.sprites()[usize::from(sets[torch].first)];
+    assert_eq!((image.name.as_str(), image.width), ("torch", 16));
     for map in compiled.maps() {
         assert!(
             map.things
                 .iter()
+                .filter(|t| usize::from(t.sprite) == torch)
                 .all(|t| t.radius == 8 && t.z == 0 && t.flags == 0),
             "{}: shipped torches stand on the floor, radius 8",
             map.name
         );
     }
+}
+
+/// The shipped sets with several images (placed in a scratch copy of the assets): the flame's
+/// four frames and the statue's eight rotations are each different pictures of one size.
+#[test]
+fn shipped_animated_and_rotated_sets_compile() {
+    let scratch = Scratch::new("shipped-sets");
+    for folder in ["textures", "sprites", "sky"] {
+        let from = shipped_assets().join(folder);
+        for entry in std::fs::read_dir(&from).expect("shipped folder") {
+            let path = entry.expect("entry").path();
+            let name = path
+                .file_name()
+                .expect("name")
+                .to_string_lossy()
+                .into_owned();
+            scratch.write(
+                &format!("{folder}/{name}"),
+                &std::fs::read(&path).expect("shipped file"),
+            );
+        }
+    }
+    scratch.write(
+        "maps/room.map",
+        b"vertex a 0 0\nvertex b 128 0\nvertex c 128 128\nvertex d 0 128\n\
+          sector room floor=0 ceil=96 floor_tex=stone ceil_tex=stone\n\
+          wall a b tex=brick\nwall b c tex=brick\nwall c d tex=brick\nwall d a tex=brick\n\
+          player 64 64\nthing flame 32 32 anim=6\nthing statue 96 96 angle=90 solid\n",
+    );
+    let compiled = compile_dir(&scratch.dir).unwrap_or_else(|e| panic!("{e}"));
+    let sets: Vec<_> = compiled.sprite_sets().iter().map(|s| s.set()).collect();
+    assert_eq!(
+        sets.iter()
+            .map(|s| (s.name, s.first, s.frames, s.rotations))
+            .collect::<Vec<_>>(),
+        [("flame", 0, 4, 1), ("statue", 4, 1, 8)]
+    );
+    let images = compiled.sprites();
+    assert_eq!(images.len(), 12);
+    for (range, size) in [(0..4, (16, 24)), (4..12, (24, 48))] {
+        for a in range.clone() {
+            assert_eq!(
+                (images[a].width, images[a].height),
+                size,
+                "{}",
+                images[a].name
+            );
+            for b in range.clone().filter(|&b| b > a) {
+                assert_ne!(
+                    images[a].posts, images[b].posts,
+                    "{} and {} differ",
+                    images[a].name, images[b].name
+                );
+            }
+        }
+    }
+    assert_eq!(images[4].name, "statue.r0");
+    let map = &compiled.maps()[0];
+    let ticks: Vec<u16> = map.things.iter().map(|t| t.frame_ticks).collect();
+    assert_eq!(ticks, [6, 8]);
 }
 
 /// A wall as the naive reader sees it: its start point and the sector its portal names.

@@ -23,7 +23,7 @@ pub use map::{
     THING_SOLID,
 };
 pub use texture::{
-    bgr555, colormap_row, Colormap, Palette, Post, Sky, Sprite, Texture, LIGHT_LEVELS,
+    bgr555, colormap_row, Colormap, Palette, Post, Sky, Sprite, SpriteSet, Texture, LIGHT_LEVELS,
     LIGHT_NEUTRAL, POST_HEADER_BYTES, TRANSPARENT,
 };
 

@@ -117,7 +117,8 @@ pub struct Thing {
     pub y_fx8: i32,
     /// Facing, binary angle as [`PlayerStart::angle`].
     pub angle: u16,
-    /// Index into the sprites table.
+    /// Index into the sprite sets table (`SpriteSet`: its images, animation frames and
+    /// rotations).
     pub sprite: u16,
     /// The sector that strictly contains the thing.
     pub sector: u16,
@@ -129,6 +130,8 @@ pub struct Thing {
     pub radius: u16,
     /// [`THING_HANGING`], [`THING_SOLID`].
     pub flags: u16,
+    /// Game ticks (60 a second) each animation frame of its sprite set shows; at least 1.
+    pub frame_ticks: u16,
 }
 
 /// [`Thing::flags`]: the sprite hangs from the ceiling ([`Thing::z`] below it) instead of

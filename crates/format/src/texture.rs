@@ -163,6 +163,72 @@ pub struct Sprite<'a> {
     pub posts: &'a [u8],
 }
 
+/// A thing's images: an animation of `frames` frames, each seen from `rotations` directions
+/// (1, or 8 a turn apart by 45°). Image `first + frame·rotations + rotation` of the sprites
+/// table shows frame `frame` seen from rotation `rotation` ([`SpriteSet::rotation`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct SpriteSet<'a> {
+    /// The set's name (the sprite name things give).
+    pub name: &'a str,
+    /// Index of its first image in the sprites table.
+    pub first: u16,
+    /// Animation frames (1: still).
+    pub frames: u8,
+    /// Directions it is seen from: 1 or 8.
+    pub rotations: u8,
+}
+
+/// `tan(22.5°)` in 16.16, rounded: the boundary between two of eight rotations.
+const TAN_22_5_FX16: i64 = 27_146;
+
+impl SpriteSet<'_> {
+    /// The image (index in the sprites table) shown at game tick `tick` (60 a second), each
+    /// frame shown for `frame_ticks` ticks (at least 1), from rotation `rotation` (below
+    /// [`SpriteSet::rotations`]).
+    #[inline]
+    pub const fn image(&self, tick: u32, frame_ticks: u16, rotation: u8) -> usize {
+        let frame = (tick / frame_ticks as u32) % self.frames as u32;
+        self.first as usize + frame as usize * self.rotations as usize + rotation as usize
+    }
+
+    /// Which of the set's rotations shows a thing facing `facing` (binary angle, 65536 a turn)
+    /// to an eye at `(dx, dy)` from it (any fixed-point scale, the same for both): rotation `r`
+    /// is the thing seen from the direction `facing + r·45°`, the nearest of eight (rotation 0:
+    /// the thing faces the eye). Always 0 for a set with one rotation. `sin` and `cos` are the
+    /// facing's, 16.16.
+    pub fn rotation(&self, dx: i32, dy: i32, sin: i32, cos: i32) -> u8 {
+        if self.rotations != 8 {
+            return 0;
+        }
+        let (dx, dy, sin, cos) = (dx as i64, dy as i64, sin as i64, cos as i64);
+        // The eye's direction in the thing's frame: `along` its facing, `across` toward growing
+        // angles.
+        let along = dx * cos + dy * sin;
+        let across = dy * cos - dx * sin;
+        if across.abs() * 65_536 < TAN_22_5_FX16 * along.abs() {
+            if along >= 0 {
+                0
+            } else {
+                4
+            }
+        } else if along.abs() * 65_536 < TAN_22_5_FX16 * across.abs() {
+            if across > 0 {
+                2
+            } else {
+                6
+            }
+        } else {
+            match (along > 0, across > 0) {
+                (true, true) => 1,
+                (false, true) => 3,
+                (false, false) => 5,
+                (true, false) => 7,
+            }
+        }
+    }
+}
+
 /// Bytes a post takes before its texels: first row and length.
 pub const POST_HEADER_BYTES: usize = 2;
 
@@ -233,6 +299,32 @@ impl<'a> Sprite<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rotations_turn_with_the_facing_and_frames_with_the_tick() {
+        let set = SpriteSet {
+            name: "s",
+            first: 10,
+            frames: 3,
+            rotations: 8,
+        };
+        // The eye 48 west of the thing; (sin, cos) of the facing in 16.16.
+        let rotation = |sin: i32, cos: i32| set.rotation(-48 << 8, 0, sin, cos);
+        let half = 46_341; // cos 45°
+        assert_eq!(rotation(0, 65_536), 4); // facing east: its back
+        assert_eq!(rotation(65_536, 0), 2); // facing south
+        assert_eq!(rotation(0, -65_536), 0); // facing west: its front
+        assert_eq!(rotation(-65_536, 0), 6); // facing north
+        assert_eq!(rotation(half, half), 3); // facing south-east
+        assert_eq!(set.image(0, 4, 5), 15);
+        assert_eq!(set.image(4, 4, 5), 23);
+        assert_eq!(set.image(12, 4, 5), 15);
+        let still = SpriteSet {
+            rotations: 1,
+            ..set
+        };
+        assert_eq!(still.rotation(-48, 0, 0, 65_536), 0);
+    }
 
     fn texture(width_log2: u8, height_log2: u8) -> Texture<'static> {
         Texture {

@@ -153,17 +153,19 @@ pub struct EngineComparison {
     pub comparison: Comparison,
 }
 
-/// Renders `camera`'s view of `map` at `settings` with the engine (`renderer`, on the host) and
-/// with the oracle (same viewport and lighting rule; the oracle is exact, so the engine's
-/// quality knobs only change the engine's side), and compares them.
+/// Renders `camera`'s view of `map` at `settings` and game tick `tick` with the engine
+/// (`renderer`, on the host) and with the oracle (same viewport, lighting rule and tick; the
+/// oracle is exact, so the engine's quality knobs only change the engine's side), and compares
+/// them.
 pub fn compare_with_engine(
     renderer: &mut Renderer,
     map: &MapTables,
     assets: &RenderAssets,
     camera: &view::Camera,
     settings: &Settings,
+    tick: u32,
 ) -> EngineComparison {
-    let view = View::new(camera, settings);
+    let view = View::new(camera, settings).at_tick(tick);
     let mut engine = RecordingCanvas::new(settings.resolution);
     let stats = renderer.render(map, assets, &view, &mut engine);
     let oracle_assets = Assets {
@@ -171,8 +173,12 @@ pub fn compare_with_engine(
         sky: &assets.sky,
         colormap: assets.colormap,
         sprites: assets.sprites,
+        sprite_sets: assets.sprite_sets,
     };
-    let oracle_view = crate::View::from_viewport(&view.viewport, view.lighting);
+    let oracle_view = crate::View {
+        tick,
+        ..crate::View::from_viewport(&view.viewport, view.lighting)
+    };
     let oracle = render(
         map,
         &oracle_assets,
@@ -241,9 +247,13 @@ pub fn bench_run_accuracy(
     let mut accuracy = RunAccuracy::default();
     let poses = Flight::new(map)
         .take(FRAMES_PER_SETTING as usize)
+        .enumerate()
         .step_by(ACCURACY_FRAME_STEP as usize);
-    for camera in poses {
-        accuracy.add(&compare_with_engine(renderer, map, assets, &camera, settings).comparison);
+    // The fly-through's clock is a tick a frame, as in the ROM's bench scene.
+    for (frame, camera) in poses {
+        let tick = frame as u32;
+        accuracy
+            .add(&compare_with_engine(renderer, map, assets, &camera, settings, tick).comparison);
     }
     accuracy
 }

@@ -164,6 +164,8 @@ pub struct View {
     pub horizon_y: f64,
     /// The lighting rule, as the engine's.
     pub lighting: Lighting,
+    /// The game tick the frame shows (things' animation frames), as the engine's view's.
+    pub tick: u32,
 }
 
 impl View {
@@ -176,6 +178,7 @@ impl View {
             focal_y: f64::from(viewport.focal_y),
             horizon_y: f64::from(viewport.horizon_y),
             lighting,
+            tick: 0,
         }
     }
 }
@@ -190,8 +193,10 @@ pub struct Assets<'a> {
     pub sky: &'a Sky<'a>,
     /// The light colormap.
     pub colormap: &'a Colormap,
-    /// Sprites, indexed by [`Thing::sprite`](portalcast_format::Thing::sprite).
+    /// Sprite images, indexed by the sets.
     pub sprites: &'a [Sprite<'a>],
+    /// Sprite sets, indexed by [`Thing::sprite`](portalcast_format::Thing::sprite).
+    pub sprite_sets: &'a [portalcast_format::SpriteSet<'a>],
 }
 
 /// A rendered frame, row-major (`y * width + x`).

@@ -235,6 +235,32 @@ fn thing_sectors(map: &MapTables) -> Vec<u16> {
     sectors
 }
 
+/// The image of `thing`'s sprite set at the view's tick, seen from the eye at `(-dx, -dy)` from
+/// it: the animation frame `floor(tick / frame_ticks) mod frames`, and of eight rotations the
+/// one nearest the angle from the thing's facing to the direction of the eye, measured in the
+/// direction of growing binary angles (f64 `atan2`, the rule of `SpriteSet`).
+fn image_of<'a>(
+    assets: &Assets<'a>,
+    view: &View,
+    thing: &portalcast_format::Thing,
+    dx: f64,
+    dy: f64,
+) -> Option<&'a portalcast_format::Sprite<'a>> {
+    let set = assets.sprite_sets.get(usize::from(thing.sprite))?;
+    let frame = (view.tick / u32::from(thing.frame_ticks.max(1))) % u32::from(set.frames);
+    let rotation = if set.rotations == 8 {
+        let to_eye = (-dy).atan2(-dx);
+        let facing = crate::angle_from_bits(thing.angle);
+        let turns = (to_eye - facing).rem_euclid(core::f64::consts::TAU) / core::f64::consts::TAU;
+        ((turns * 8.0).round() as u32) % 8
+    } else {
+        0
+    };
+    let image =
+        usize::from(set.first) + frame as usize * usize::from(set.rotations) + rotation as usize;
+    assets.sprites.get(image)
+}
+
 /// The things of the map in eye space, those at least [`THING_DEPTH_MIN`] deep, nearest first
 /// (ties: the later in the map's table first), so the first one a pixel's ray meets is the one
 /// it shows.
@@ -260,16 +286,14 @@ fn thing_views<'a>(
             if depth < f64::from(THING_DEPTH_MIN) {
                 return None;
             }
-            let sprite = assets
-                .sprites
-                .get(usize::from(thing.sprite))
-                .unwrap_or_else(|| {
-                    panic!(
-                        "thing {index}: sprite {} out of range ({} sprites)",
-                        thing.sprite,
-                        assets.sprites.len()
-                    )
-                });
+            let sprite = image_of(assets, view, thing, dx, dy).unwrap_or_else(|| {
+                panic!(
+                    "thing {index}: sprite set {} out of range ({} sets, {} images)",
+                    thing.sprite,
+                    assets.sprite_sets.len(),
+                    assets.sprites.len()
+                )
+            });
             let (width, height) = (f64::from(sprite.width), f64::from(sprite.height));
             let sector_heights = &map.sectors[usize::from(sector)];
             let top = if thing.flags & THING_HANGING != 0 {

@@ -12,8 +12,8 @@ use std::collections::BTreeSet;
 use portalcast::render::light::light_row;
 use portalcast::render::surface::THING_DEPTH_MIN;
 use portalcast_format::{
-    Colormap, MapTables, PlayerStart, Sector, Sky, Sprite, Texture, Thing, Vertex, Wall, NO_PORTAL,
-    NO_TEXTURE, SKY, THING_HANGING, TRANSPARENT,
+    Colormap, MapTables, PlayerStart, Sector, Sky, Sprite, SpriteSet, Texture, Thing, Vertex, Wall,
+    NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING, TRANSPARENT,
 };
 use portalcast_oracle::{
     angle_from_bits, angle_to_bits, compare, compare_with_row_tolerance, find_sector, render,
@@ -187,6 +187,25 @@ impl Fixture {
     }
 
     fn render(&self, map: &MapTables, camera: &Camera, view: &View) -> Frame {
+        // One still image a set.
+        let sets: Vec<SpriteSet> = (0..self.sprites.len())
+            .map(|first| SpriteSet {
+                name: "s",
+                first: first as u16,
+                frames: 1,
+                rotations: 1,
+            })
+            .collect();
+        self.render_with_sets(map, camera, view, &sets)
+    }
+
+    fn render_with_sets(
+        &self,
+        map: &MapTables,
+        camera: &Camera,
+        view: &View,
+        sprite_sets: &[SpriteSet],
+    ) -> Frame {
         let textures: Vec<Texture> = self.textures.iter().map(OwnedTexture::texture).collect();
         let sky = Sky {
             width_log2: 3,
@@ -199,6 +218,7 @@ impl Fixture {
             sky: &sky,
             colormap: &self.colormap,
             sprites: &sprites,
+            sprite_sets,
         };
         render(map, &assets, camera, view)
     }
@@ -331,6 +351,7 @@ fn view(lighting: Lighting) -> View {
         focal_y: 120.0,
         horizon_y: 80.0,
         lighting,
+        tick: 0,
     }
 }
 
@@ -690,6 +711,7 @@ fn thing(x: f64, y: f64, sector: u16, sprite: u16, z: i16, flags: u16) -> Thing 
         z,
         radius: 4,
         flags,
+        frame_ticks: 1,
     }
 }
 
@@ -966,6 +988,58 @@ fn a_hanging_thing_hangs_its_top_at_ceiling_minus_z() {
     );
     assert_eq!(frame.index(120, 20), solid(4, 0));
     assert_eq!(frame.index(120, 59), solid(4, 15));
+}
+
+/// A set's image follows the tick (`floor(tick / frame_ticks) mod frames`) and the side the
+/// eye sees (rotation `r`: the thing seen from its facing plus `r`·45°).
+#[test]
+fn a_set_shows_the_frame_of_the_tick_and_the_rotation_of_the_eye() {
+    let mut fixture = Fixture::new(200);
+    // Images 2.. are solid, each one index: 8 rotations (set 0), then two frames (set 1).
+    fixture.sprites.truncate(2);
+    for image in 0..10u8 {
+        fixture
+            .sprites
+            .push(OwnedSprite::new(8, 16, move |_, _| Some(100 + image)));
+    }
+    let sets = [
+        SpriteSet {
+            name: "rotating",
+            first: 2,
+            frames: 1,
+            rotations: 8,
+        },
+        SpriteSet {
+            name: "animated",
+            first: 10,
+            frames: 2,
+            rotations: 1,
+        },
+    ];
+    let shown = |set: u16, facing: u16, tick: u32| {
+        let mut thing = thing(48.0, 0.0, 0, set, 8, 0);
+        thing.angle = facing;
+        thing.frame_ticks = 4;
+        let map = room(64, NO_PORTAL).with_things(vec![thing]);
+        let view = View {
+            tick,
+            ..view(Lighting::Off)
+        };
+        let frame = fixture.render_with_sets(&map.tables(), &centre_camera(), &view, &sets);
+        assert_eq!(frame.surface(120, 110), Surface::Thing(0));
+        frame.index(120, 110)
+    };
+    // The eye is west of the thing: facing east it sees the back (r4), facing south (a quarter
+    // turn on) r2, facing west the front (r0), facing north r6; between, the diagonals.
+    assert_eq!(shown(0, 0, 0), 100 + 4);
+    assert_eq!(shown(0, 16384, 0), 100 + 2);
+    assert_eq!(shown(0, 32768, 0), 100);
+    assert_eq!(shown(0, 49152, 0), 100 + 6);
+    assert_eq!(shown(0, 8192, 0), 100 + 3);
+    // Four ticks a frame, two frames.
+    assert_eq!(shown(1, 0, 3), 108);
+    assert_eq!(shown(1, 0, 4), 109);
+    assert_eq!(shown(1, 0, 8), 108);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -24,7 +24,7 @@ fn target(resolution: &str) -> Option<(u64, u64)> {
 }
 
 /// What each measured kernel is, and its target in cycles per pixel where the brief sets one.
-const KERNELS: [(&str, &str, Option<f64>); 7] = [
+const KERNELS: [(&str, &str, Option<f64>); 9] = [
     (
         "col_dbl_unlit",
         "column, 120-wide (STRB mirrored), unlit",
@@ -40,6 +40,16 @@ const KERNELS: [(&str, &str, Option<f64>); 7] = [
     ("flat_dbl_lit", "span, 120-wide, lit", Some(9.0)),
     ("flat_pair_unlit", "span, 240-wide pairs, unlit", None),
     ("flat_pair_lit", "span, 240-wide pairs, lit", Some(9.0)),
+    (
+        "sprite_dbl",
+        "sprite post, 120-wide (STRB mirrored), lit",
+        None,
+    ),
+    (
+        "sprite_native",
+        "sprite post, 240-wide (read-modify-write), lit",
+        None,
+    ),
 ];
 
 /// What each stage the ROM times covers.

@@ -401,5 +401,43 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
          thing torch 640.5 -384.5\n\
          thing torch 384.5 -896.5"
     );
+    let _ = writeln!(text, "\n{HALL_THINGS}");
     (text, (areas.len(), walls, portals))
 }
+
+/// The great hall's furnishings, over twenty things in view from the start (issue 17: the
+/// bench's things): solid pillars at the inner corners of the corner sectors, torches along the
+/// walls, lamps hanging over the aisles, a statue seen from eight sides on the dais and four
+/// flickering braziers round it. Each footprint lies inside its sector.
+const HALL_THINGS: &str = "\
+# The hall's furnishings: pillars, torches, hanging lamps, a statue (8 rotations) on the dais
+# and four braziers (animated) round it.
+thing pillar 176 176 solid
+thing pillar 592 176 solid
+thing pillar 176 592 solid
+thing pillar 592 592 solid
+thing torch 200 24
+thing torch 280 24
+thing torch 488 24
+thing torch 568 24
+thing torch 24 300
+thing torch 24 460
+thing torch 744 300
+thing torch 744 460
+thing torch 24 560
+thing torch 744 560
+thing lamp 320 128 hang
+thing lamp 448 128 hang
+thing lamp 128 320 hang
+thing lamp 640 320 hang
+thing lamp 320 600 hang
+thing lamp 448 600 hang
+thing lamp 384 200 hang
+thing lamp 384 560 hang
+thing lamp 200 448 hang
+thing lamp 568 448 hang
+thing statue 384 384 angle=90 solid radius=16
+thing flame 288 288 anim=6
+thing flame 480 288 anim=7
+thing flame 288 480 anim=8
+thing flame 480 480 anim=5";

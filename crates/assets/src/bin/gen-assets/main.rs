@@ -1,10 +1,11 @@
-//! Draws the shipped assets: textures, the sky panorama, the sprites (torch, pillar, lamp), and
-//! the benchmark map. Deterministic (fixed seeds), so re-running it reproduces the committed files.
+//! Draws the shipped assets: textures, the sky panorama, the sprites (torch, pillar, lamp, the
+//! animated brazier flame as a strip, the statue in eight rotations), and the benchmark map. Deterministic (fixed seeds), so re-running it reproduces the committed files.
 //!
 //! Usage: `cargo run -p portalcast-assets --bin gen-assets -- assets/`
 
 mod bench_map;
 mod paint;
+mod sets;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -30,11 +31,18 @@ fn run(dir: &Path) -> Result<(), String> {
         &|p| sky.save(p),
     )?;
     let sprites = folder(portalcast_assets::SPRITES_DIR)?;
-    let sprite_images = [
-        ("torch", paint::torch()),
-        ("pillar", paint::pillar()),
-        ("lamp", paint::lamp()),
+    let mut sprite_images = vec![
+        ("torch".to_string(), paint::torch()),
+        ("pillar".to_string(), paint::pillar()),
+        ("lamp".to_string(), paint::lamp()),
+        (
+            format!("flame.strip{}", sets::FLAME_FRAMES),
+            sets::flame_strip(),
+        ),
     ];
+    for rotation in 0..sets::STATUE_ROTATIONS {
+        sprite_images.push((format!("statue.r{rotation}"), sets::statue(rotation)));
+    }
     for (name, image) in &sprite_images {
         write_png(&sprites.join(format!("{name}.png")), &|p| image.save(p))?;
     }
@@ -42,7 +50,7 @@ fn run(dir: &Path) -> Result<(), String> {
     let map = folder(portalcast_assets::MAPS_DIR)?.join("bench.map");
     std::fs::write(&map, text).map_err(|e| format!("{}: cannot write ({e})", map.display()))?;
     println!(
-        "wrote {} textures, the sky, {} sprites and bench.map ({sectors} sectors, {walls} walls, {portals} portal sides) into {}",
+        "wrote {} textures, the sky, {} sprite files and bench.map ({sectors} sectors, {walls} walls, {portals} portal sides) into {}",
         paint::textures().len(),
         sprite_images.len(),
         dir.display()

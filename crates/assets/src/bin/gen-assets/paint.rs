@@ -96,11 +96,11 @@ fn clamp_byte(value: f32) -> u8 {
 }
 
 /// `colour * factor`, per channel, clamped.
-fn shade(colour: [f32; 3], factor: f32) -> Rgb<u8> {
+pub(crate) fn shade(colour: [f32; 3], factor: f32) -> Rgb<u8> {
     Rgb(colour.map(|c| clamp_byte(c * factor)))
 }
 
-fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
+pub(crate) fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
     [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t.clamp(0.0, 1.0))
 }
 
