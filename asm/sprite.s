@@ -1,8 +1,8 @@
-@ Sprite column kernels: the opaque runs (posts) of one sprite column, clipped to a window.
+@ Sprite column kernel: the opaque runs (posts) of one sprite column, clipped to a window.
 @ ARM code in IWRAM. Rust twin: src/raster/sprite.rs (its header gives the integers; identical
 @ pixels, tested by the kernel check).
 @
-@ r0 = *const SpriteJob:
+@ pc_sprite, r0 = *const SpriteJob:
 @   +0  dst       *mut u8    row 0 of the screen column: page + 2*x (doubled) or page + (x & ~1)
 @   +4  posts     *const u8  the column: post count, then each post (top, length, texels, pad)
 @   +8  y_top     i32        screen row of texel row 0, 16.16
@@ -10,36 +10,32 @@
 @   +16 iscale    u32        texels per row, 16.16
 @   +20 clip      u32        window: first row in the low half, one past the last in the high
 @   +24 colormap  *const u8  256-entry light row (an identity row draws unlit)
+@   +28 blend     *const u8  the 256×256 table (behind·256 + front) the blending runs read
+@   +32 run       address    the run routine that draws each post's rows (below)
 @
-@ Variants: pc_sprite_dbl (120 wide: STRB writes both bytes of the halfword), pc_sprite_even and
-@ pc_sprite_odd (240 wide: read-modify-write of the halfword, keeping the neighbour's byte).
+@ pc_sprite walks the posts and finds each one's rows in the window and its first texel; a run
+@ routine draws them. One post loop for every way of drawing keeps IWRAM small. Run routines
+@ (not callable from Rust: their registers are these, not the C ABI's):
+@   in   r0 the first pixel's byte in VRAM, r2 the post's texels, r12 v (16.16), r11 rows (≥ 1),
+@        r5 iscale, r7 colormap, r1 the blend table
+@   free r3, r4, r9, r10, r11; keep everything else, return with bx lr
+@   pc_sprite_run_dbl           120 wide: STRB writes both bytes of the halfword
+@   pc_sprite_run_even, _odd    240 wide: read-modify-write of the halfword, keeping the other byte
+@   pc_sprite_run_blend_dbl, _blend_even, _blend_odd: the same, each pixel the blend of the lit
+@                               texel over the one behind it, read back from VRAM
 @ Cycles per pixel: docs/BENCH.md.
 
-    .macro SPRITE_PIXEL kind
-    ldrb    r10, [r2, r12, lsr #16]
-    ldrb    r10, [r7, r10]
-    add     r12, r12, r5
-    .ifc \kind, dbl
-    strb    r10, [r0], #240
-    .else
-    ldrh    r11, [r0]
-    .ifc \kind, odd
-    and     r11, r11, #0xff
-    orr     r11, r11, r10, lsl #8
-    .else
-    and     r11, r11, #0xff00
-    orr     r11, r11, r10
-    .endif
-    strh    r11, [r0], #240
-    .endif
-    .endm
+    .section .iwram.pc_sprite, "ax", %progbits
+    .arm
 
-    .macro SPRITE_KERNEL name, kind
-    .global \name
-    .type \name, %function
+    .global pc_sprite
+    .type pc_sprite, %function
     .align 2
-\name:
+pc_sprite:
     push    {r4-r11, lr}
+    add     r8, r0, #28
+    ldmia   r8, {r8, r9}
+    push    {r8, r9}                @ [sp]: the blend table, [sp, #4]: the run routine
     ldmia   r0, {r1-r7}             @ dst, posts, y_top, scale, iscale, clip, colormap
     mov     r8, r6, lsl #16
     mov     r8, r8, asr #16         @ r8 = clip top
@@ -77,42 +73,126 @@
     orr     r12, r12, r10, lsl #16  @ r12 = v, 16.16
     rsb     r0, r0, r0, lsl #4
     add     r0, r1, r0, lsl #4      @ r0 = dst + first·240
-    @ The pixel uses r10 and (read-modify-write) r11: the posts left and the next post wait on
-    @ the stack while r9 counts rows and lr blocks. The remainder of rows % 4 one at a time,
-    @ then blocks of 4.
-    push    {r9, lr}
-    mov     lr, r11, lsr #2
-    ands    r9, r11, #3
-    beq     3f
-2:
-    SPRITE_PIXEL \kind
-    subs    r9, r9, #1
-    bne     2b
-3:
-    movs    r9, lr
-    beq     5f
-4:
-    .rept 4
-    SPRITE_PIXEL \kind
-    .endr
-    subs    r9, r9, #1
-    bne     4b
-5:
-    pop     {r9, lr}
+    push    {r1, r3, r4, r9, lr}    @ the run may use r1, r3, r4, r9
+    ldr     r1, [sp, #20]           @ the blend table
+    ldr     r9, [sp, #24]           @ the run routine
+    mov     lr, pc
+    bx      r9
+    pop     {r1, r3, r4, r9, lr}
 8:
     mov     r2, lr
     b       1b
 9:
+    add     sp, sp, #8
     pop     {r4-r11, lr}
+    bx      lr
+    .size pc_sprite, . - pc_sprite
+
+    @ Looks up the lit texel of the row into r10 and steps v.
+    .macro LIT_TEXEL
+    ldrb    r10, [r2, r12, lsr #16]
+    ldrb    r10, [r7, r10]
+    add     r12, r12, r5
+    .endm
+
+    @ 120 wide: the remainder of rows % 4 one at a time, then blocks of 4.
+    .global pc_sprite_run_dbl
+    .type pc_sprite_run_dbl, %function
+    .align 2
+pc_sprite_run_dbl:
+    mov     r3, r11, lsr #2
+    ands    r11, r11, #3
+    beq     2f
+1:
+    LIT_TEXEL
+    strb    r10, [r0], #240
+    subs    r11, r11, #1
+    bne     1b
+2:
+    cmp     r3, #0
+    bxeq    lr
+3:
+    .rept 4
+    LIT_TEXEL
+    strb    r10, [r0], #240
+    .endr
+    subs    r3, r3, #1
+    bne     3b
+    bx      lr
+    .size pc_sprite_run_dbl, . - pc_sprite_run_dbl
+
+    @ 240 wide: the byte `\odd` of each halfword.
+    .macro RUN_NATIVE name, odd
+    .global \name
+    .type \name, %function
+    .align 2
+\name:
+1:
+    LIT_TEXEL
+    ldrh    r9, [r0]
+    .if \odd
+    and     r9, r9, #0xff
+    orr     r9, r9, r10, lsl #8
+    .else
+    and     r9, r9, #0xff00
+    orr     r9, r9, r10
+    .endif
+    strh    r9, [r0], #240
+    subs    r11, r11, #1
+    bne     1b
     bx      lr
     .size \name, . - \name
     .endm
 
-    .section .iwram.pc_sprite, "ax", %progbits
-    .arm
-    SPRITE_KERNEL pc_sprite_dbl, dbl
-    SPRITE_KERNEL pc_sprite_even, even
-    SPRITE_KERNEL pc_sprite_odd, odd
+    RUN_NATIVE pc_sprite_run_even, 0
+    RUN_NATIVE pc_sprite_run_odd, 1
+
+    .global pc_sprite_run_blend_dbl
+    .type pc_sprite_run_blend_dbl, %function
+    .align 2
+pc_sprite_run_blend_dbl:
+1:
+    LIT_TEXEL
+    ldrb    r9, [r0]
+    add     r9, r10, r9, lsl #8
+    ldrb    r10, [r1, r9]
+    strb    r10, [r0], #240
+    subs    r11, r11, #1
+    bne     1b
+    bx      lr
+    .size pc_sprite_run_blend_dbl, . - pc_sprite_run_blend_dbl
+
+    .macro RUN_BLEND_NATIVE name, odd
+    .global \name
+    .type \name, %function
+    .align 2
+\name:
+1:
+    LIT_TEXEL
+    ldrh    r9, [r0]
+    .if \odd
+    mov     r3, r9, lsr #8
+    .else
+    and     r3, r9, #0xff
+    .endif
+    add     r3, r10, r3, lsl #8
+    ldrb    r10, [r1, r3]
+    .if \odd
+    and     r9, r9, #0xff
+    orr     r9, r9, r10, lsl #8
+    .else
+    and     r9, r9, #0xff00
+    orr     r9, r9, r10
+    .endif
+    strh    r9, [r0], #240
+    subs    r11, r11, #1
+    bne     1b
+    bx      lr
+    .size \name, . - \name
+    .endm
+
+    RUN_BLEND_NATIVE pc_sprite_run_blend_even, 0
+    RUN_BLEND_NATIVE pc_sprite_run_blend_odd, 1
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

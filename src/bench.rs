@@ -249,6 +249,8 @@ mod tests {
             things_drawn: u32::MAX,
             things_dropped: u32::MAX,
             thing_ticks: u32::MAX,
+            middles_drawn: u32::MAX,
+            translucent_drawn: u32::MAX,
         };
         let stats = FrameStats {
             sky_pixels: 0,

@@ -90,6 +90,22 @@ const fn sprite_posts() -> ([u8; SPRITE_POSTS_LEN], [usize; SPRITE_RUNS.len()]) 
 
 static SPRITE_POSTS: ([u8; SPRITE_POSTS_LEN], [usize; SPRITE_RUNS.len()]) = sprite_posts();
 
+/// A blend table for the check: every entry a function of both indices, so a wrong pixel
+/// behind or a wrong texel shows.
+static CHECK_BLEND: portalcast_format::BlendTable = {
+    let mut table = [[0u8; 256]; 256];
+    let mut behind = 0;
+    while behind < 256 {
+        let mut front = 0;
+        while front < 256 {
+            table[behind][front] = ((behind * 3 + front * 5 + 7) & 0xff) as u8;
+            front += 1;
+        }
+        behind += 1;
+    }
+    table
+};
+
 /// The identity light row: sprites drawn unlit go through it.
 static IDENTITY: [u8; 256] = {
     let mut row = [0u8; 256];
@@ -213,6 +229,8 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             iscale: ((1u64 << 32) / scale as u64) as u32,
             clip: crate::raster::Window { top, bottom },
             colormap: if job % 3 == 0 { &IDENTITY } else { &COLORMAP },
+            // One job in four translucent, over whatever the earlier jobs drew.
+            blend: (job % 4 == 1).then_some(&CHECK_BLEND),
         };
         canvas.sprite_column(rng.below(width) as usize, &sprite);
     }

@@ -594,8 +594,15 @@ mod rom {
         };
         let (flat_dbl_unlit, flat_dbl_lit) =
             (flat_dbl(&mut doubled, false), flat_dbl(&mut doubled, true));
-        // A sprite column of one post, a texel a row: 160 rows against 32.
-        let sprite_cost = |canvas: &mut VramCanvas, x: usize| {
+        // A sprite column of one post, a texel a row: 160 rows against 32 (translucent: over
+        // the page, through a blend table, which any 64 KiB of the cartridge can stand in for).
+        let blend: Option<&portalcast_format::BlendTable> =
+            portalcast::assets::BLEND.or_else(|| {
+                portalcast::assets::SKY
+                    .and_then(|sky| sky.texels.get(..65536))
+                    .and_then(|bytes| bytes.as_chunks::<256>().0.try_into().ok())
+            });
+        let sprite_cost = |canvas: &mut VramCanvas, x: usize, blend| {
             let mut run = |count: usize| {
                 let mut posts = [0u8; 4 + 160];
                 posts[..3].copy_from_slice(&[1, 0, count as u8]);
@@ -610,6 +617,7 @@ mod rom {
                         bottom: count as i16,
                     },
                     colormap: &colormap,
+                    blend,
                 };
                 let started = meter::now();
                 canvas.sprite_column(x, &column);
@@ -617,12 +625,13 @@ mod rom {
             };
             (run(160) - run(32)) * 100 / 128
         };
-        let sprite_dbl = sprite_cost(&mut doubled, 7);
-        let sprite_native = sprite_cost(&mut native, 7);
+        let sprite_dbl = sprite_cost(&mut doubled, 7, None);
+        let sprite_native = sprite_cost(&mut native, 7, None);
+        let sprite_blend_dbl = blend.map_or(0, |table| sprite_cost(&mut doubled, 7, Some(table)));
         log::info(format_args!(
             "kernel-cycles-x100 col_dbl_unlit={col_unlit} col_dbl_lit={col_lit} col_native_lit={col_native_lit} \
              flat_dbl_unlit={flat_dbl_unlit} flat_dbl_lit={flat_dbl_lit} flat_pair_unlit={flat_pair_unlit} flat_pair_lit={flat_pair_lit} \
-             sprite_dbl={sprite_dbl} sprite_native={sprite_native}"
+             sprite_dbl={sprite_dbl} sprite_native={sprite_native} sprite_blend_dbl={sprite_blend_dbl}"
         ));
     }
 

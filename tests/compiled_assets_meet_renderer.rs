@@ -264,6 +264,7 @@ fn render_first_frames(compiled: &Compiled) -> Result<(), String> {
     let assets = RenderAssets {
         sprites: &sprites,
         sprite_sets: &sprite_sets,
+        blend: compiled.blend(),
         textures: &textures,
         sky: compiled.sky().map_or(
             Sky {

@@ -186,8 +186,9 @@ fn asm_kernels_write_the_same_vram_as_their_twins() {
 fn the_kernel_check_stack_stays_in_its_reserve() {
     let mut emulator = boot();
     emulator.set_keys(Keys::L | Keys::R);
+    // The measurement, then a round of about eight frames (the sprite columns take two).
     emulator
-        .run_frames(40)
+        .run_frames(80)
         .unwrap_or_else(|error| panic!("{error}"));
     let lines = lines_starting(&emulator, "stack ");
     assert!(
@@ -225,6 +226,7 @@ fn kernel_costs_are_measured_with_iwram_texels() {
         "flat_pair_lit",
         "sprite_dbl",
         "sprite_native",
+        "sprite_blend_dbl",
     ] {
         let hundredths = number(&line, name);
         // Sanity only (a benchmark reports, it does not time-test): between 3 and 30 cycles.

@@ -143,11 +143,13 @@ fn a_jump_lifts_the_eye_to_48_above_the_floor_and_lands() {
 
 #[test]
 fn climbing_the_stairs_ends_on_the_top_landing() {
-    // Run on (Select + B), north onto the dais, a right-angle turn east, along the corridor
-    // to the lower landing's east wall, a turn north, up the eight steps to the top landing.
+    // Run on (Select + B), north onto the dais (a step right first, past the statue), a
+    // right-angle turn east, along the corridor to the lower landing's east wall, a turn
+    // north, up the eight steps to the top landing.
     let script = "
 10-13: SELECT
 11-12: B
+20-32: R
 20-72: UP
 100-135: RIGHT
 150-420: UP

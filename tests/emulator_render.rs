@@ -34,6 +34,8 @@ struct Compared {
     menu: bool,
     cycles: u64,
     things_drawn: u32,
+    middles_drawn: u32,
+    translucent_drawn: u32,
     things: ThingsShown,
 }
 
@@ -177,6 +179,8 @@ impl Checker {
             menu: menu_open,
             cycles: number(text, "cycles"),
             things_drawn: stats.things_drawn,
+            middles_drawn: stats.middles_drawn,
+            translucent_drawn: stats.translucent_drawn,
             things,
         });
     }
@@ -251,12 +255,14 @@ fn rom_frames_are_identical_to_the_host_renderer() {
     }
     checker.hold_until_compared(right, 2, false);
     // The quality knobs at the end of the menu: the textures from the cartridge, the scene
-    // preprocessing, then half-width floors, which need 240×160 (down from the preprocessing
-    // wraps to the resolution, two up is the floors).
+    // preprocessing, then half-width floors, which need 240×160 (four down from the
+    // preprocessing wraps to the resolution, three up is the floors).
     let knob_phases: [&[Keys]; 5] = [
         &[start, down, down, down, right, start],
         &[start, down, right, start],
-        &[start, down, down, down, right, up, up, right, start],
+        &[
+            start, down, down, down, down, right, up, up, up, right, start,
+        ],
         // The HUD on: its figures are this frame's cycles, which the host reads from the line.
         &[start, down, right, start],
         // Things off, the last entry.
@@ -285,6 +291,14 @@ fn rom_frames_are_identical_to_the_host_renderer() {
     assert!(
         compared.iter().any(|c| c.things_drawn > 0 && !c.menu),
         "no frame with a thing in view compared"
+    );
+    assert!(
+        compared.iter().any(|c| c.middles_drawn > 0 && !c.menu),
+        "no frame with a portal's middle image compared"
+    );
+    assert!(
+        compared.iter().any(|c| c.translucent_drawn > 0 && !c.menu),
+        "no frame with a translucent thing or middle compared"
     );
     for preprocessing in Preprocessing::ALL {
         assert!(

@@ -9,7 +9,7 @@
 //!
 //! - on error: every diagnostic is one `file:line:col: message` line naming the map (or the maps
 //!   folder), at a place inside the file, and nothing was written;
-//! - on success: [`Compiled::write_to`] leaves exactly the four output files; an independent
+//! - on success: [`Compiled::write_to`] leaves exactly the five output files; an independent
 //!   validator (exact integer arithmetic, written here from `crates/format`'s documented
 //!   invariants, not from the compiler's code) accepts the tables; and the host engine renders
 //!   the player's first frame at every resolution, and a frame after a
@@ -44,7 +44,10 @@ use portalcast_assets::{compile_dir, CompileErrors, Compiled};
 use portalcast_format::limits::{
     HEIGHT_MAX, HEIGHT_MIN, TEXTURE_COORD_MAX, WALL_LENGTH_MAX, WORLD_COORD_MAX,
 };
-use portalcast_format::{MapTables, Sky, Texture, NO_PORTAL, NO_TEXTURE, SKY};
+use portalcast_format::{
+    MapTables, Sky, Texture, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING, THING_SOLID,
+    THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
+};
 use portalcast_oracle::RecordingCanvas;
 use proptest::prelude::*;
 use proptest::sample::Index;
@@ -64,6 +67,8 @@ const TEXTURES: &[&str] = &[
 ];
 /// The shipped sprite.
 const SPRITE: &str = "torch";
+/// Shipped still sprite sets, for portal middles (`mid=`).
+const MIDDLES: &[&str] = &["grate", "lamp", "pillar", "torch", "window"];
 
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -261,8 +266,9 @@ fn check_errors(
 }
 
 /// The output files of [`Compiled::write_to`].
-const OUTPUT_FILES: [&str; 4] = [
+const OUTPUT_FILES: [&str; 5] = [
     "assets.rs",
+    "assets_blend.bin",
     "assets_sky.bin",
     "assets_sprites.bin",
     "assets_texels.bin",
@@ -288,6 +294,12 @@ fn check_compiled(
     }
     let source = std::fs::read_to_string(workspace.out.join("assets.rs"))
         .map_err(|e| format!("assets.rs: {e}"))?;
+    let blend = std::fs::metadata(workspace.out.join("assets_blend.bin"))
+        .map_err(|e| format!("assets_blend.bin: {e}"))?
+        .len();
+    if blend != compiled.blend().map_or(0, |_| 65536) {
+        return Err(format!("assets_blend.bin holds {blend} bytes"));
+    }
     let texels = std::fs::metadata(workspace.out.join("assets_texels.bin"))
         .map_err(|e| format!("assets_texels.bin: {e}"))?
         .len();
@@ -553,6 +565,21 @@ fn validate(map: &MapTables, compiled: &Compiled) -> Result<(), String> {
             thing.sector,
         )?;
         check_thing_fits(map, compiled, index, thing)?;
+        if thing.flags & !(THING_HANGING | THING_SOLID | THING_TRANSLUCENT) != 0 {
+            return Err(format!("thing {index}: flags {:#x}", thing.flags));
+        }
+    }
+    // The blend table ships exactly when something is drawn translucent.
+    let translucent = map
+        .walls
+        .iter()
+        .any(|w| w.flags & WALL_MIDDLE_TRANSLUCENT != 0)
+        || map.things.iter().any(|t| t.flags & THING_TRANSLUCENT != 0);
+    if translucent != compiled.blend().is_some() {
+        return Err(format!(
+            "translucent: {translucent}, blend table: {}",
+            compiled.blend().is_some()
+        ));
     }
     Ok(())
 }
@@ -628,11 +655,26 @@ fn check_wall_textures(
         if !wall_texture(wall.texture)
             || wall.upper_texture != NO_TEXTURE
             || wall.lower_texture != NO_TEXTURE
+            || wall.middle != NO_TEXTURE
+            || wall.flags != 0
         {
             return Err(format!("sector {s} wall {i}: solid wall textures {wall:?}"));
         }
         return Ok(());
     };
+    // A middle is a still sprite set; its flags need it.
+    let middle_ok = if wall.middle == NO_TEXTURE {
+        wall.flags == 0
+    } else {
+        wall.flags & !(WALL_MIDDLE_BLOCKS | WALL_MIDDLE_TRANSLUCENT) == 0
+            && compiled
+                .sprite_sets()
+                .get(usize::from(wall.middle))
+                .is_some_and(|set| (set.frames, set.rotations) == (1, 1))
+    };
+    if !middle_ok {
+        return Err(format!("sector {s} wall {i}: middle {wall:?}"));
+    }
     let Some(there) = map.sectors.get(usize::from(neighbour)) else {
         return Err(format!(
             "sector {s} wall {i}: portal to missing sector {neighbour}"
@@ -641,13 +683,21 @@ fn check_wall_textures(
     if usize::from(neighbour) == s {
         return Err(format!("sector {s} wall {i}: portal to itself"));
     }
-    let back = map
+    let back: Vec<_> = map
         .sector_walls(there)
         .iter()
-        .filter(|w| w.start == wall.end && w.end == wall.start && usize::from(w.portal) == s);
-    if back.count() != 1 {
+        .filter(|w| w.start == wall.end && w.end == wall.start && usize::from(w.portal) == s)
+        .collect();
+    let [back] = back.as_slice() else {
         return Err(format!(
             "sector {s} wall {i}: sector {neighbour} has no single matching wall back"
+        ));
+    };
+    if (back.middle, back.flags) != (wall.middle, wall.flags) {
+        return Err(format!(
+            "sector {s} wall {i}: its middle {:?} differs from the wall back's {:?}",
+            (wall.middle, wall.flags),
+            (back.middle, back.flags)
         ));
     }
     if wall.texture != NO_TEXTURE || !strip_ok(wall.upper_texture) || !strip_ok(wall.lower_texture)
@@ -749,6 +799,7 @@ fn render(map: &MapTables, compiled: &Compiled) -> Result<(), RenderFault> {
     let assets = RenderAssets {
         sprites: &sprites,
         sprite_sets: &sprite_sets,
+        blend: compiled.blend(),
         textures: &textures,
         sky: match compiled.sky() {
             Some(sky) => sky.sky(),
@@ -965,6 +1016,13 @@ const KEYWORDS: &[&str] = &[
     "on=.",
     "on=@",
     "side=step",
+    "mid=grate",
+    "mid=window",
+    "mid=flame",
+    "mid=statue",
+    "mid=nope",
+    "blocks",
+    "translucent",
     "torch",
     "#",
     "=",
@@ -1278,6 +1336,9 @@ struct Layout {
     vertices_last: bool,
     strips_always: bool,
     offsets: Option<(i16, i16)>,
+    /// A middle on every portal, given on the side of the lower-numbered sector (the other
+    /// side gets it): the set, `blocks`, `translucent`.
+    middle: Option<(Index, bool, bool)>,
 }
 
 fn layout() -> impl Strategy<Value = Layout> {
@@ -1287,15 +1348,17 @@ fn layout() -> impl Strategy<Value = Layout> {
         any::<bool>(),
         any::<bool>(),
         prop::option::weighted(0.3, (any::<i16>(), any::<i16>())),
+        prop::option::weighted(0.25, (any::<Index>(), any::<bool>(), any::<bool>())),
     )
         .prop_map(
-            |(counter_clockwise, rotate, vertices_last, strips_always, offsets)| Layout {
+            |(counter_clockwise, rotate, vertices_last, strips_always, offsets, middle)| Layout {
                 counter_clockwise,
                 rotate,
                 vertices_last,
                 strips_always,
                 // -32768 is out of range; a mutation can still write it.
                 offsets: offsets.map(|(x, y)| (x.max(-32767), y.max(-32767))),
+                middle,
             },
         )
 }
@@ -1411,6 +1474,17 @@ impl Drawing {
                         if layout.strips_always || there.floor > here.floor {
                             let _ = write!(sectors, " lower={}", there.side.get(TEXTURES));
                         }
+                        if let (Some((set, blocks, translucent)), true) =
+                            (&layout.middle, s < other)
+                        {
+                            let _ = write!(sectors, " mid={}", set.get(MIDDLES));
+                            if *blocks {
+                                sectors.push_str(" blocks");
+                            }
+                            if *translucent {
+                                sectors.push_str(" translucent");
+                            }
+                        }
                     }
                     None => {
                         let _ = write!(sectors, " tex={}", here.side.get(TEXTURES));
@@ -1499,6 +1573,9 @@ fn thing_words(room: f64, gap: i64, pick: usize) -> Option<String> {
     if pick % 7 == 3 {
         let radius = least + (pick / 420) as i64 % (room - least + 1);
         let _ = write!(words, " radius={radius}");
+    }
+    if pick % 11 == 4 {
+        words.push_str(" translucent");
     }
     Some(words)
 }

@@ -2,7 +2,8 @@
 //! map. After every tick (`common::player::check_tick`, exact geometry): the centre is strictly
 //! inside the sector the player tracks, its path crossed no solid wall and no portal the body
 //! could not enter, the eye keeps its room to floor and ceiling, and the disc does not sink
-//! into solid walls.
+//! into solid walls or enter a solid thing's disc. The same on test maps of solid things set
+//! in corners, against walls and by portals, and of a cluster of them.
 
 mod common;
 
@@ -83,8 +84,12 @@ fn place(map: &MapTables, sector_pick: usize, weights: &[u32], angle: u16) -> Op
 
 fn random_moves_keep_the_invariants(map_name: &str) {
     let map = portalcast::render::demo::map_named(map_name).expect("a shipped map");
+    random_moves_keep_the_invariants_on(&map, CASES);
+}
+
+fn random_moves_keep_the_invariants_on(map: &MapTables, cases: u32) {
     let config = ProptestConfig {
-        cases: CASES,
+        cases,
         ..ProptestConfig::default()
     };
     proptest!(config, |(
@@ -93,17 +98,17 @@ fn random_moves_keep_the_invariants(map_name: &str) {
         moves in prop::collection::vec(a_move(), MOVES_PER_CASE),
     )| {
         let player = if from_the_start {
-            Some(Player::spawn(&map))
+            Some(Player::spawn(map))
         } else {
-            place(&map, start.0, &start.1, start.2)
+            place(map, start.0, &start.1, start.2)
         };
         prop_assume!(player.is_some());
         let mut player = player.unwrap();
         for (index, step) in moves.iter().enumerate() {
             for tick in 0..step.ticks {
                 let before = player;
-                player.tick(&step.intent, &map);
-                if let Err(problem) = check_tick(&map, &before, &player) {
+                player.tick(&step.intent, map);
+                if let Err(problem) = check_tick(map, &before, &player) {
                     prop_assert!(false, "move {index} tick {tick} ({:?}): {problem}", step.intent);
                 }
             }
@@ -124,6 +129,19 @@ fn random_moves_never_leave_the_grid_map() {
 #[test]
 fn random_moves_never_leave_the_tiny_map() {
     random_moves_keep_the_invariants("tiny");
+}
+
+#[test]
+fn random_moves_never_enter_solid_things() {
+    let compiled = common::player::compile_map("things.map", common::player::THINGS_MAP);
+    // Small and quick: five times the shipped maps' cases.
+    random_moves_keep_the_invariants_on(&compiled.tables(), 5 * CASES);
+}
+
+#[test]
+fn random_moves_never_enter_a_cluster_of_solid_things() {
+    let compiled = common::player::compile_map("cluster.map", common::player::CLUSTER_MAP);
+    random_moves_keep_the_invariants_on(&compiled.tables(), 5 * CASES);
 }
 
 #[test]

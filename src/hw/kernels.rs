@@ -167,6 +167,8 @@ const _: () = {
     assert!(size_of::<WallRun>() == 204);
     assert!(offset_of!(SpriteJob, y_top) == 8);
     assert!(offset_of!(SpriteJob, colormap) == 24);
+    assert!(offset_of!(SpriteJob, blend) == 28);
+    assert!(offset_of!(SpriteJob, run) == 32);
 };
 
 /// The argument block of the column kernels (`asm/column.s`).
@@ -190,6 +192,9 @@ struct SpriteJob {
     iscale: u32,
     clip: u32,
     colormap: *const u8,
+    blend: *const u8,
+    /// The run routine's address (`SPRITE_RUNS`).
+    run: usize,
 }
 
 /// The argument block of the flat kernels (`asm/flat.s`).
@@ -241,9 +246,30 @@ static FLAT_KERNELS: [[[FlatKernel; 4]; 2]; 2] = [
     ],
 ];
 
-/// Sprite kernels by packing (doubled, even, odd).
-static SPRITE_KERNELS: [unsafe extern "C" fn(*const SpriteJob); 3] =
-    kernel_table!(SpriteJob; pc_sprite_dbl, pc_sprite_even, pc_sprite_odd);
+extern "C" {
+    fn pc_sprite(job: *const SpriteJob);
+    // Run routines of `pc_sprite`, with its own register convention (asm/sprite.s): never
+    // called from Rust, only their addresses handed to it.
+    fn pc_sprite_run_dbl();
+    fn pc_sprite_run_even();
+    fn pc_sprite_run_odd();
+    fn pc_sprite_run_blend_dbl();
+    fn pc_sprite_run_blend_even();
+    fn pc_sprite_run_blend_odd();
+}
+
+/// The run routines of `pc_sprite` by `[translucent][packing]` (packing doubled, even, odd).
+fn sprite_run(translucent: bool, packing: usize) -> usize {
+    let runs: [[unsafe extern "C" fn(); 3]; 2] = [
+        [pc_sprite_run_dbl, pc_sprite_run_even, pc_sprite_run_odd],
+        [
+            pc_sprite_run_blend_dbl,
+            pc_sprite_run_blend_even,
+            pc_sprite_run_blend_odd,
+        ],
+    ];
+    runs[usize::from(translucent)][packing] as usize
+}
 
 /// The sky's unlit column kernels by packing (doubled, even, odd), at the sky's height: outside
 /// the kernel banks.
@@ -498,13 +524,19 @@ impl Canvas for VramCanvas {
             iscale: column.iscale,
             clip: clip.word(),
             colormap: column.colormap.as_ptr(),
+            blend: column
+                .blend
+                .map_or(core::ptr::null(), |blend| blend.as_ptr().cast()),
+            run: sprite_run(column.blend.is_some(), packing),
         };
         if self.kernels && !clip.is_empty() {
             // SAFETY: the window's rows lie inside the page (checked above), so every store
             // does; every post header, texel and pad the kernel reads lies inside
             // `column.posts` (`reads_inside` walked the kernel's runs); the colormap has 256
-            // entries. The kernel is in IWRAM outside the banks.
-            unsafe { SPRITE_KERNELS[packing](&job) };
+            // entries, and the blend table, which only the translucent runs read, 65,536 (every
+            // behind·256 + front); the run routine is one of `pc_sprite`'s, for this packing.
+            // The kernel is in IWRAM outside the banks.
+            unsafe { pc_sprite(&job) };
         }
     }
 

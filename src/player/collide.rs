@@ -3,9 +3,9 @@
 //!
 //! # What blocks
 //!
-//! A solid wall, and a portal into a sector the [`Body`] may not enter: one whose floor is more
-//! than [`STEP_UP_MAX`] above the feet, or whose ceiling leaves less than [`HEADROOM`] above the
-//! eye the body would have there. Portals into sectors the body may enter are open: the disc
+//! A solid wall, a solid thing (below), and a portal into a sector the [`Body`] may not enter:
+//! one whose floor is more than [`STEP_UP_MAX`] above the feet, or whose ceiling leaves less
+//! than [`HEADROOM`] above the eye the body would have there. Portals into sectors the body may enter are open: the disc
 //! passes over them, and the walls of the sectors behind them block it too (the jambs of a
 //! doorway, the far side of a corridor). These sectors are found by a walk through open portals
 //! near the move (no search over all sectors), at most [`MAX_NEARBY_SECTORS`] of them.
@@ -29,7 +29,9 @@
 //!   is refused;
 //! - [`track`] follows the centre's straight path exactly (64-bit cross products, no
 //!   tolerance) from its sector through the portals it crosses: every crossed wall must be an
-//!   open portal, and the end point must lie strictly inside the sector reached. A path that
+//!   open portal (one whose heights admit the body and whose middle image does not block:
+//!   `WALL_MIDDLE_BLOCKS` makes a portal a wall to the body), and the end point must lie
+//!   strictly inside the sector reached. A path that
 //!   runs exactly through a vertex, or ends exactly on a wall's line, is nudged by 1/256 unit
 //!   (the first of the eight neighbouring positions that tracks cleanly).
 //!
@@ -37,8 +39,40 @@
 //! inside its sector: the exact checks are the guarantee, the pushes only make the motion
 //! pleasant. The pushes use square roots and divisions rounded away from the wall (never short
 //! of the radius by more than a rounding step).
+//!
+//! # Solid things
+//!
+//! A thing with [`THING_SOLID`] is a disc of its [`Thing::radius`] around its position, whatever
+//! the heights (a jump does not clear it, a hanging one blocks too): the body may not overlap it,
+//! that is come nearer its centre than [`RADIUS`] plus its radius (its reach). A step considers
+//! the solid things of the sectors the walk above reached (its own and those behind open
+//! portals near it) and of the sectors behind the blocking portals it kept, whose discs meet
+//! the step's box. That is every one the body can touch: a body overlapping a thing's disc
+//! overlaps its sector (the compiler keeps the disc inside it), so it reaches that sector
+//! across the portals between the two centres, within its own disc, which the walk follows or
+//! keeps as blocking (up to [`MAX_NEARBY_SECTORS`], as for walls). The walk notes whether those
+//! sectors have things at all (a bounds test per sector on a map without things, two reads on
+//! one with some); only then are their things read, and a list of the solid ones near is made
+//! (`Discs`: room for a few, beyond which each pass reads them from the map again).
+//!
+//! A disc is one more obstacle of the pushes, after the segments in each pass: a radial push to
+//! exactly its reach or beyond (the root rounded down, the quotients away from its centre; at its
+//! very centre, along +x), the push of a wall's vertex with a larger radius. So a step whose
+//! pushes settle ends clear of every disc, exactly. One whose pushes do not settle, or that a
+//! nudge moves by 1/256, must also pass an exact test (64-bit squares, no tolerance): it
+//! overlaps no disc, or, if the step began overlapping some (a start placed in a thing), no
+//! deeper than it began (the largest `reach² − distance²`); otherwise the step tries x alone,
+//! then y alone, then stays. The guarantee for things: **the body never ends a step nearer a
+//! solid thing's centre than the sum of the radii**, unless it began the step so (then no
+//! deeper, and a push moves it out), on top of the walls' guarantees, which hold as they did
+//! (discs only add pushes and a test; the passes stay bounded). A thing behind a solid wall of
+//! another sector is kept away by that wall (to its tolerance). A disc pushes the body round
+//! it, so a glancing move slides round; a gap between a thing and a wall narrower than the body
+//! refuses the step.
 
-use portalcast_format::{MapTables, Sector, Vertex, Wall, NO_PORTAL, NO_TEXTURE};
+use portalcast_format::{
+    MapTables, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, THING_SOLID, WALL_MIDDLE_BLOCKS,
+};
 
 use crate::math::{segment_contact, Fx24_8, SegmentContact, WorldPoint};
 use crate::render::ratio::leading_zeros;
@@ -70,8 +104,11 @@ const MAX_HOPS: usize = 8;
 const RADIUS_BITS: i32 = RADIUS * 256;
 
 /// A point in 24.8 bits. The pushes' points stay within 2^23 bits: a target is within the
-/// declared world (2^21 bits) plus a step, and one settling adds at most
-/// `PUSH_PASSES · 2 · MAX_SEGMENTS` pushes of at most `2 · RADIUS_BITS + 1` each (under 2^22).
+/// declared world (2^21 bits) plus a step, a thing's push leaves the point within √2 times its
+/// reach plus 2 bits of its centre ([`Disc::push`]), whose disc lies inside the world (its
+/// sector's), so within 2^22 bits, and one settling adds at most
+/// `PUSH_PASSES · 2 · MAX_SEGMENTS` segment pushes of at most `2 · RADIUS_BITS + 1` each (under
+/// 2^22) after either.
 /// Their differences with map vertices fit 32 bits and their products 64: every product below
 /// multiplies two 32-bit values into 64 bits, one ARM instruction.
 type Bits = (i32, i32);
@@ -197,20 +234,27 @@ fn slide_step(
     let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
     // Room for a few segments, which is quick to clear; more take the slower path.
     let mut few = [&NO_SEGMENT; FEW_SEGMENTS];
-    match Obstacles::near(map, sector, &bounds, body, &mut few, target) {
-        Some(obstacles) => {
-            // Nothing to push against and the step ends strictly inside its sector: what
-            // try_moves' first try finds (no push, then track's first test), without a second
-            // pass over the sector's walls.
-            if obstacles.ends.is_empty() && obstacles.target_inside {
-                if let Some(to) = point_from_bits(target) {
-                    return (to, sector);
-                }
-            }
-            try_moves(map, sector, from, step, body, &obstacles)
-        }
-        None => slide_step_among_many(map, sector, from, step, body, &bounds, target),
+    let mut reached = [0; MAX_NEARBY_SECTORS];
+    let Some(obstacles) =
+        Obstacles::near(map, sector, &bounds, body, &mut few, &mut reached, target)
+    else {
+        return slide_step_among_many(map, sector, from, step, body, &bounds, target);
+    };
+    // Only a step near things looks for solid ones (a list of them is large: it is filled
+    // only then, and stays out of `Obstacles`, which every step copies).
+    if obstacles.things_near(map) {
+        let discs = Discs::near(map, &obstacles, bounds);
+        return try_moves(map, sector, from, step, body, &obstacles, discs.as_ref());
     }
+    // Nothing to push against and the step ends strictly inside its sector: what try_moves'
+    // first try finds (no push, then track's first test), without a second pass over the
+    // sector's walls.
+    if obstacles.ends.is_empty() && obstacles.target_inside {
+        if let Some(to) = point_from_bits(target) {
+            return (to, sector);
+        }
+    }
+    try_moves(map, sector, from, step, body, &obstacles, None)
 }
 
 /// [`slide_step`] when more than [`FEW_SEGMENTS`] blocking segments are near. Out of line.
@@ -225,14 +269,22 @@ fn slide_step_among_many(
     target: Bits,
 ) -> (WorldPoint, u16) {
     let mut many = [&NO_SEGMENT; MAX_SEGMENTS];
-    match Obstacles::near(map, sector, bounds, body, &mut many, target) {
-        Some(obstacles) => try_moves(map, sector, from, step, body, &obstacles),
-        None => unreachable!("a list of MAX_SEGMENTS segments drops the rest"),
-    }
+    let mut reached = [0; MAX_NEARBY_SECTORS];
+    let Some(obstacles) =
+        Obstacles::near(map, sector, bounds, body, &mut many, &mut reached, target)
+    else {
+        unreachable!("a list of MAX_SEGMENTS segments drops the rest")
+    };
+    let discs = if obstacles.things_near(map) {
+        Discs::near(map, &obstacles, *bounds)
+    } else {
+        None
+    };
+    try_moves(map, sector, from, step, body, &obstacles, discs.as_ref())
 }
 
 /// The rest of [`slide_step`]: the step, else along x alone, else along y alone, among
-/// `obstacles`.
+/// `obstacles` and `discs`.
 #[inline(never)]
 fn try_moves(
     map: &MapTables,
@@ -241,20 +293,29 @@ fn try_moves(
     step: Delta,
     body: &Body,
     obstacles: &Obstacles,
+    discs: Option<&Discs>,
 ) -> (WorldPoint, u16) {
-    // Only needed for a target the pushes leave overlapping: most steps never compute it.
+    // Only needed for a target the pushes leave overlapping: most steps never compute them.
     let mut allowed = None;
+    let mut allowed_depth = None;
     let tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
     let try_count = if step.x != 0 && step.y != 0 { 3 } else { 1 };
     for (index, attempt) in tries[..try_count].iter().enumerate() {
         let target = (from.x.to_bits() + attempt.x, from.y.to_bits() + attempt.y);
-        let (settled, pushes_done) = obstacles.push_out(target);
+        let (settled, pushes_done) = obstacles.push_out(target, discs);
         // When the last pass pushed nothing, no segment pushes the result: its overlap is 0.
         if !pushes_done {
             let allowed = *allowed
                 .get_or_insert_with(|| obstacles.overlap(point_bits(from)).max(OVERLAP_TOLERANCE));
             if obstacles.overlap(settled) > allowed {
                 continue;
+            }
+            // Unsettled pushes may leave the disc in a thing: never deeper than it began.
+            if let Some(discs) = discs {
+                let allowed = *allowed_depth.get_or_insert_with(|| discs.depth(point_bits(from)));
+                if discs.depth(settled) > allowed {
+                    continue;
+                }
             }
         }
         let Some(to) = point_from_bits(settled) else {
@@ -265,7 +326,8 @@ fn try_moves(
         if unpushed_step && obstacles.target_inside {
             return (to, sector);
         }
-        if let Some((to, sector)) = track_nudged(map, sector, from, to, body, unpushed_step) {
+        if let Some((to, sector)) = track_nudged(map, sector, from, to, body, unpushed_step, discs)
+        {
             return (to, sector);
         }
     }
@@ -273,7 +335,8 @@ fn try_moves(
 }
 
 /// [`track`], and on a degenerate path the same for the eight positions 1/256 unit around
-/// `to` (toward the motion first). The position reached and its sector, if any tracks.
+/// `to` (toward the motion first) that overlap none of `discs` deeper than `from` does. The
+/// position reached and its sector, if any tracks.
 fn track_nudged(
     map: &MapTables,
     sector: u16,
@@ -281,6 +344,7 @@ fn track_nudged(
     to: WorldPoint,
     body: &Body,
     to_outside: bool,
+    discs: Option<&Discs>,
 ) -> Option<(WorldPoint, u16)> {
     // `to_outside`: the caller knows `to` is not strictly inside `sector`, track's first test.
     let tracked = if to_outside {
@@ -290,7 +354,7 @@ fn track_nudged(
     };
     match tracked {
         Track::Inside(sector) => Some((to, sector)),
-        Track::Blocked | Track::Degenerate => track_nudges(map, sector, from, to, body),
+        Track::Blocked | Track::Degenerate => track_nudges(map, sector, from, to, body, discs),
     }
 }
 
@@ -302,7 +366,11 @@ fn track_nudges(
     from: WorldPoint,
     to: WorldPoint,
     body: &Body,
+    discs: Option<&Discs>,
 ) -> Option<(WorldPoint, u16)> {
+    // A nudge may not take the disc into a thing (the pushes left `to` clear of them, or no
+    // deeper than `from`).
+    let allowed = discs.map(|discs| discs.depth(point_bits(from)));
     let sx = if to.x >= from.x { 1 } else { -1 };
     let sy = if to.y >= from.y { 1 } else { -1 };
     let nudges = [
@@ -320,6 +388,11 @@ fn track_nudges(
             Fx24_8::from_bits(to.x.to_bits() + nx),
             Fx24_8::from_bits(to.y.to_bits() + ny),
         );
+        if let (Some(discs), Some(allowed)) = (discs, allowed) {
+            if discs.depth(point_bits(nudged)) > allowed {
+                return None;
+            }
+        }
         match track(map, sector, from, nudged, body) {
             Track::Inside(sector) => Some((nudged, sector)),
             Track::Blocked | Track::Degenerate => None,
@@ -419,7 +492,9 @@ fn track_through_portals(
         let Some(next) = wall.neighbour() else {
             return Track::Blocked;
         };
-        if next != start && !body.admits(&map.sectors[usize::from(next)]) {
+        if wall.flags & WALL_MIDDLE_BLOCKS != 0
+            || (next != start && !body.admits(&map.sectors[usize::from(next)]))
+        {
             return Track::Blocked;
         }
         let Some(twin) = twin_wall(map, wall, current, next) else {
@@ -531,6 +606,14 @@ impl Bounds {
     }
 }
 
+/// Whether `sector` has things ([`MapTables::things_range`] not empty): one bounds test on a map
+/// without things, two reads on a map with some.
+#[inline(always)]
+fn has_things(map: &MapTables, sector: u16) -> bool {
+    let index = usize::from(sector);
+    matches!(map.sector_things.get(index..index + 2), Some(&[first, end]) if first != end)
+}
+
 /// Blocking segments a step keeps in the list it clears on every step (32 bytes); a step near
 /// more takes a slower path with room for [`MAX_SEGMENTS`].
 const FEW_SEGMENTS: usize = 8;
@@ -546,6 +629,8 @@ const NO_SEGMENT: Wall = Wall {
     x_offset: 0,
     y_offset: 0,
     length_fx8: 0,
+    middle: NO_TEXTURE,
+    flags: 0,
 };
 
 /// The blocking segments near one step, as their walls in a list the caller provides: clearing
@@ -554,6 +639,10 @@ const NO_SEGMENT: Wall = Wall {
 struct Obstacles<'a, 'm> {
     vertices: &'m [Vertex],
     ends: &'a [&'m Wall],
+    /// The sectors the walk reached, the step's own first.
+    reached: &'a [u16],
+    /// Whether one of them has things.
+    things_near: bool,
     /// Whether the step's whole target is strictly inside the step's sector.
     target_inside: bool,
 }
@@ -561,8 +650,9 @@ struct Obstacles<'a, 'm> {
 impl<'a, 'm> Obstacles<'a, 'm> {
     /// Walks from `sector` through the open portals that meet `bounds` and keeps every
     /// blocking segment of the sectors reached that meets `bounds`, in `ends`: the first
-    /// [`MAX_SEGMENTS`] of them. `None` if they do not fit a shorter `ends`. On the way, tests
-    /// whether `target` is strictly inside `sector`.
+    /// [`MAX_SEGMENTS`] of them. `None` if they do not fit a shorter `ends`. The sectors reached
+    /// go in `sectors`, `sector` first. On the way, tests whether `target` is strictly inside
+    /// `sector`.
     ///
     /// In IWRAM on the GBA: every step runs it over at least a whole sector's walls.
     #[inline(never)]
@@ -573,16 +663,20 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         bounds: &Bounds,
         body: &Body,
         ends: &'a mut [&'m Wall],
+        sectors: &'a mut [u16; MAX_NEARBY_SECTORS],
         target: Bits,
     ) -> Option<Obstacles<'a, 'm>> {
+        sectors[0] = sector;
         let mut target_inside = true;
+        let mut things_near = false;
         let mut count = 0;
-        let mut sectors = [sector; MAX_NEARBY_SECTORS];
         let mut found = 1;
         let mut next_to_scan = 0;
         while next_to_scan < found {
             let first_sector = next_to_scan == 0;
-            let walls = map.sector_walls(&map.sectors[usize::from(sectors[next_to_scan])]);
+            let here = sectors[next_to_scan];
+            things_near |= has_things(map, here);
+            let walls = map.sector_walls(&map.sectors[usize::from(here)]);
             next_to_scan += 1;
             // Each wall starts where the one before it ends (the format's rule), so one vertex
             // read per wall: they are in ROM.
@@ -603,8 +697,10 @@ impl<'a, 'm> Obstacles<'a, 'm> {
                     continue;
                 }
                 match wall.neighbour() {
+                    // A portal whose middle blocks is a wall to the body.
                     Some(next)
-                        if next == sector || body.admits(&map.sectors[usize::from(next)]) =>
+                        if wall.flags & WALL_MIDDLE_BLOCKS == 0
+                            && (next == sector || body.admits(&map.sectors[usize::from(next)])) =>
                     {
                         if !sectors[..found].contains(&next) && found < MAX_NEARBY_SECTORS {
                             sectors[found] = next;
@@ -625,7 +721,30 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         Some(Obstacles {
             vertices: map.vertices,
             ends: &ends[..count],
+            reached: &sectors[..found],
+            things_near,
             target_inside,
+        })
+    }
+
+    /// Whether a sector the walk reached, or one behind a blocking portal it kept, has things.
+    /// The walk notes the first (in IWRAM, a bounds test per sector on a map without things,
+    /// two reads on one with some); the second, in ROM, only matters for steps against walls
+    /// on maps with things.
+    #[inline(always)]
+    fn things_near(&self, map: &MapTables) -> bool {
+        self.things_near
+            || (!self.ends.is_empty()
+                && !map.sector_things.is_empty()
+                && self.things_behind_blocking_portals(map))
+    }
+
+    /// The second part of [`Obstacles::things_near`]. Out of line.
+    #[inline(never)]
+    fn things_behind_blocking_portals(&self, map: &MapTables) -> bool {
+        self.ends.iter().any(|wall| {
+            wall.neighbour()
+                .is_some_and(|behind| has_things(map, behind))
         })
     }
 
@@ -642,27 +761,55 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         })
     }
 
-    /// `p` pushed out of the segments: a few passes, edges before vertices in each. And whether
-    /// the last pass pushed nothing (the pushes settled before the passes ran out).
+    /// `p` pushed out of the segments and `discs`: a few passes, edges before vertices before
+    /// discs in each. And whether the last pass pushed nothing (the pushes settled before the
+    /// passes ran out; then `p` is clear of every disc, exactly).
     #[inline]
-    fn push_out(&self, p: Bits) -> (Bits, bool) {
+    fn push_out(&self, p: Bits, discs: Option<&Discs>) -> (Bits, bool) {
+        if let Some(discs) = discs {
+            return self.push_out_among_discs(p, discs);
+        }
         if self.ends.is_empty() {
             return (p, true);
         }
         self.push_out_of_some(p)
     }
 
-    /// [`Obstacles::push_out`] with at least one segment. Out of line: most steps have none.
-    /// In IWRAM on the GBA: the steps that slide along walls, corners above all, run it over
-    /// every segment a few times, and from the cartridge it made them the slowest ticks.
+    /// [`Obstacles::push_out`] with at least one segment and no disc. Out of line: most steps
+    /// have none. In IWRAM on the GBA: the steps that slide along walls, corners above all,
+    /// run it over every segment a few times, and from the cartridge it made them the slowest
+    /// ticks.
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".iwram.player_push_out")]
-    fn push_out_of_some(&self, mut p: Bits) -> (Bits, bool) {
+    fn push_out_of_some(&self, p: Bits) -> (Bits, bool) {
+        self.push_passes(p, None)
+    }
+
+    /// [`Obstacles::push_out`] with solid things near. In ROM: only steps near one take it.
+    #[inline(never)]
+    fn push_out_among_discs(&self, p: Bits, discs: &Discs) -> (Bits, bool) {
+        self.push_passes(p, Some(discs))
+    }
+
+    /// The passes of [`Obstacles::push_out`]. Always inlined, so that the segments' copy has
+    /// no code for discs. At most [`PUSH_PASSES`] passes over finite lists (the segments, and
+    /// the discs: at most [`FEW_DISCS`], or the solid things of at most
+    /// `MAX_NEARBY_SECTORS + MAX_SEGMENTS` sectors): it ends.
+    #[inline(always)]
+    fn push_passes(&self, mut p: Bits, discs: Option<&Discs>) -> (Bits, bool) {
         for _ in 0..PUSH_PASSES {
             let mut moved = false;
             for contact in [Contact::Edge, Contact::Vertex] {
                 for segment in self.segments() {
                     if let Some(push) = push_from_segment(p, &segment, contact) {
+                        p = (p.0 + push.0, p.1 + push.1);
+                        moved = true;
+                    }
+                }
+            }
+            if let Some(discs) = discs {
+                for disc in discs.iter() {
+                    if let Some(push) = disc.push(p) {
                         p = (p.0 + push.0, p.1 + push.1);
                         moved = true;
                     }
@@ -696,6 +843,194 @@ impl<'a, 'm> Obstacles<'a, 'm> {
             .map(|(x, y)| wide(x.abs().max(y.abs())))
             .max()
             .unwrap_or(0)
+    }
+}
+
+/// Solid things a step keeps in its list of [`Discs`]; when more are near one step (a cluster
+/// of small ones), every pass reads them all from the map's tables instead.
+const FEW_DISCS: usize = 8;
+
+/// Where the solid things near one step are: the things of the sectors its walk reached and
+/// of the sectors behind the blocking portals it kept, those solid whose discs meet the step's
+/// box.
+#[derive(Clone, Copy)]
+struct NearbyThings<'a, 'm> {
+    map: &'a MapTables<'m>,
+    reached: &'a [u16],
+    ends: &'a [&'m Wall],
+    bounds: Bounds,
+}
+
+impl<'a, 'm> NearbyThings<'a, 'm> {
+    /// Their discs, read from the map's tables. A sector behind two blocking portals gives its
+    /// things twice (a second push from the same disc finds nothing to do).
+    fn discs(self) -> impl Iterator<Item = Disc> + 'a {
+        let NearbyThings {
+            map,
+            reached,
+            ends,
+            bounds,
+        } = self;
+        let behind = ends.iter().filter_map(|wall| wall.neighbour());
+        reached
+            .iter()
+            .copied()
+            .chain(behind)
+            .flat_map(move |sector| map.things_in(sector))
+            .filter_map(move |thing| Disc::solid_near(thing, &bounds))
+    }
+}
+
+/// The discs of the solid things near one step ([`NearbyThings`]), in a short list, or, when
+/// they do not fit it, read from the map on each pass: the same discs in the same order either
+/// way.
+#[derive(Clone, Copy)]
+struct Discs<'a, 'm> {
+    few: [Disc; FEW_DISCS],
+    count: usize,
+    /// Set when there are more than [`FEW_DISCS`].
+    many: Option<NearbyThings<'a, 'm>>,
+}
+
+impl<'a, 'm> Discs<'a, 'm> {
+    /// The solid things near the step `obstacles` were found for, within `bounds`, if there
+    /// is any. Out of line and in ROM: only a step near things runs it
+    /// ([`Obstacles::things_near`]).
+    #[inline(never)]
+    fn near(
+        map: &'a MapTables<'m>,
+        obstacles: &Obstacles<'a, 'm>,
+        bounds: Bounds,
+    ) -> Option<Discs<'a, 'm>> {
+        // Whether there is any, in plain loops: most steps near things find none solid.
+        let solid_near = |sector: u16| {
+            map.things_in(sector)
+                .iter()
+                .any(|thing| Disc::solid_near(thing, &bounds).is_some())
+        };
+        let behind = obstacles.ends.iter().filter_map(|wall| wall.neighbour());
+        let any = obstacles.reached.iter().any(|&sector| solid_near(sector))
+            || behind.into_iter().any(solid_near);
+        if !any {
+            return None;
+        }
+        Some(Discs::list(NearbyThings {
+            map,
+            reached: obstacles.reached,
+            ends: obstacles.ends,
+            bounds,
+        }))
+    }
+
+    /// The discs of `things`, in the list if they fit.
+    #[inline(never)]
+    fn list(things: NearbyThings<'a, 'm>) -> Discs<'a, 'm> {
+        let unused = Disc {
+            centre: (0, 0),
+            reach: 0,
+        };
+        let mut discs = Discs {
+            few: [unused; FEW_DISCS],
+            count: 0,
+            many: None,
+        };
+        for disc in things.discs() {
+            if discs.count == FEW_DISCS {
+                discs.many = Some(things);
+                break;
+            }
+            discs.few[discs.count] = disc;
+            discs.count += 1;
+        }
+        discs
+    }
+
+    /// The discs.
+    fn iter(&self) -> impl Iterator<Item = Disc> + '_ {
+        let few = if self.many.is_some() {
+            &[][..]
+        } else {
+            &self.few[..self.count]
+        };
+        few.iter()
+            .copied()
+            .chain(self.many.into_iter().flat_map(NearbyThings::discs))
+    }
+
+    /// How deep `p` is in the discs: the largest `reach² − distance²` in bits², 0 if it
+    /// overlaps none. Exact.
+    fn depth(&self, p: Bits) -> i64 {
+        self.iter().map(|disc| disc.depth(p)).fold(0, i64::max)
+    }
+}
+
+/// A solid thing's disc, grown by the body's radius: the body overlaps the thing when its centre
+/// is nearer `centre` than `reach`.
+#[derive(Clone, Copy)]
+struct Disc {
+    /// The thing's position, 24.8 bits.
+    centre: Bits,
+    /// [`RADIUS`] plus the thing's radius, in 24.8 bits (under 2^22: the thing's disc lies in
+    /// the world).
+    reach: i32,
+}
+
+impl Disc {
+    /// `thing`'s disc, if it is solid and its footprint meets `bounds`.
+    fn solid_near(thing: &Thing, bounds: &Bounds) -> Option<Disc> {
+        if thing.flags & THING_SOLID == 0 {
+            return None;
+        }
+        let (centre, radius) = ((thing.x_fx8, thing.y_fx8), i32::from(thing.radius) * 256);
+        let corners = (
+            (centre.0 - radius, centre.1 - radius),
+            (centre.0 + radius, centre.1 + radius),
+        );
+        bounds.meets(corners.0, corners.1).then_some(Disc {
+            centre,
+            reach: RADIUS_BITS + radius,
+        })
+    }
+
+    /// `reach² − distance²` from `p` (positive when the body at `p` overlaps the thing), at
+    /// least 0. Exact: `p` within 2^23 bits, the centre within 2^21.
+    fn depth(&self, p: Bits) -> i64 {
+        let (ex, ey) = (
+            wide(p.0) - wide(self.centre.0),
+            wide(p.1) - wide(self.centre.1),
+        );
+        (wide(self.reach) * wide(self.reach) - (ex * ex + ey * ey)).max(0)
+    }
+
+    /// The push that moves `p` to [`Disc::reach`] from the centre, radially, if it is nearer:
+    /// [`push_from_point`] with the larger radius, in 64 bits. Its root rounded down and its
+    /// quotients away from the centre, each coordinate of the result is at least its share of
+    /// the reach: the result is exactly clear of the disc. Beyond it by less than
+    /// `reach / distance + 2` bits (the root is short by less than one): a few bits for a
+    /// step that meets the disc, √2 times the reach at worst (a root of 1 for √2). At the
+    /// centre itself, along +x.
+    fn push(&self, p: Bits) -> Option<Bits> {
+        let reach = self.reach;
+        let (ex, ey) = (p.0 - self.centre.0, p.1 - self.centre.1);
+        // Outside the square round the disc: no product.
+        if ex.unsigned_abs() >= reach.unsigned_abs() || ey.unsigned_abs() >= reach.unsigned_abs() {
+            return None;
+        }
+        // Below the reach (2^22) on each axis: squares under 2^45.
+        let distance_squared = wide(ex) * wide(ex) + wide(ey) * wide(ey);
+        if distance_squared >= wide(reach) * wide(reach) {
+            return None;
+        }
+        if distance_squared == 0 {
+            return Some((reach, 0));
+        }
+        let distance = isqrt_floor(distance_squared as u64) as i64;
+        let gap = wide(reach) - distance;
+        // distance ≥ 1, under 2^22: a 32-bit divisor.
+        Some((
+            div_away_from_zero_by_u32(wide(ex) * gap, distance as u32) as i32,
+            div_away_from_zero_by_u32(wide(ey) * gap, distance as u32) as i32,
+        ))
     }
 }
 
@@ -1025,6 +1360,8 @@ mod tests {
                     vertices[usize::from(index)],
                     vertices[usize::from((index + 1) % count)],
                 ),
+                middle: NO_TEXTURE,
+                flags: 0,
             })
             .collect();
         let sectors = vec![Sector {
@@ -1076,10 +1413,14 @@ mod tests {
             2 * RADIUS_BITS + 256,
         );
         let mut few = [&NO_SEGMENT; FEW_SEGMENTS];
-        assert!(Obstacles::near(&map, 0, &bounds, &STANDING, &mut few, (0, 0)).is_none());
+        let mut reached = [0; MAX_NEARBY_SECTORS];
+        let near = Obstacles::near(&map, 0, &bounds, &STANDING, &mut few, &mut reached, (0, 0));
+        assert!(near.is_none());
         let mut many = [&NO_SEGMENT; MAX_SEGMENTS];
-        let obstacles = Obstacles::near(&map, 0, &bounds, &STANDING, &mut many, (0, 0))
-            .expect("room for every segment");
+        let mut reached = [0; MAX_NEARBY_SECTORS];
+        let obstacles =
+            Obstacles::near(&map, 0, &bounds, &STANDING, &mut many, &mut reached, (0, 0))
+                .expect("room for every segment");
         let in_wall_order: Vec<&Wall> = walls.iter().collect();
         assert_eq!(obstacles.ends, &in_wall_order[..]);
         assert!(obstacles.target_inside);
@@ -1224,6 +1565,67 @@ mod tests {
         assert_eq!(push, (0, 6 * 256));
         // From behind, the wall does not push.
         assert_eq!(push_from_segment((p.0, -p.1), &wall, Contact::Edge), None);
+    }
+
+    #[test]
+    fn a_disc_push_lands_exactly_clear_and_just_beyond_the_reach() {
+        let mut seed = 0x2d35_8dcc_aa6c_78a5u64;
+        let mut next = |bound: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) % bound
+        };
+        let mut pushed = 0;
+        for _ in 0..50_000 {
+            // Reaches from the body's radius to a thing as wide as the world, most of them small.
+            let radius = (next(8192 * 256 + 1) >> next(14)) as i32;
+            let reach = RADIUS_BITS + radius;
+            let limit = 8192 * 256 - radius;
+            let centre = (
+                next(2 * limit as u64 + 1) as i32 - limit,
+                next(2 * limit as u64 + 1) as i32 - limit,
+            );
+            let disc = Disc { centre, reach };
+            let spread = (reach as u64 + 2) >> next(12);
+            let offset = |value: u64| value as i32 - spread as i32;
+            let p = (
+                centre.0 + offset(next(2 * spread + 1)),
+                centre.1 + offset(next(2 * spread + 1)),
+            );
+            let Some(push) = disc.push(p) else {
+                assert_eq!(disc.depth(p), 0, "{p:?} from {centre:?}, reach {reach}");
+                continue;
+            };
+            pushed += 1;
+            assert!(disc.depth(p) > 0);
+            let q = (p.0 + push.0, p.1 + push.1);
+            assert_eq!(
+                disc.depth(q),
+                0,
+                "{p:?} to {q:?} from {centre:?}, reach {reach}"
+            );
+            let length = |(x, y): Bits| {
+                let (x, y) = (f64::from(x - centre.0), f64::from(y - centre.1));
+                (x * x + y * y).sqrt()
+            };
+            if p != centre {
+                let before = length(p).floor();
+                assert!(
+                    length(q) < f64::from(reach) * (1.0 + 1.0 / before) + 2.0,
+                    "{p:?} to {q:?} from {centre:?}, reach {reach}"
+                );
+            }
+        }
+        assert!(pushed > 10_000, "only {pushed} points were in the discs");
+        let disc = Disc {
+            centre: (5 * 256, -7 * 256),
+            reach: 24 * 256,
+        };
+        assert_eq!(disc.push(disc.centre), Some((24 * 256, 0)));
+        // Straight along an axis, exactly to the reach.
+        assert_eq!(disc.push((5 * 256, -256)), Some((0, 18 * 256)));
+        assert_eq!(disc.push((5 * 256, 17 * 256)), None);
     }
 
     #[test]

@@ -8,8 +8,8 @@
 //! is a key sequence and the host can replay what the ROM did.
 //!
 //! - [`input`]: buttons to [`Intent`] (the controls table is there and in the README).
-//! - [`collide`]: the body as a disc against walls and portals, swept steps, sliding, exact
-//!   sector tracking.
+//! - [`collide`]: the body as a disc against walls, portals and solid things, swept steps,
+//!   sliding, exact sector tracking.
 //! - [`vertical`]: standing, crouching, the jump parabola, falling, landing, flying.
 //!
 //! # Horizontal motion

@@ -146,6 +146,16 @@ pub struct HostCanvas<'a> {
 }
 
 impl HostCanvas<'_> {
+    /// The palette index at logical column `x`, row `row`.
+    fn get(&self, x: usize, row: usize) -> u8 {
+        let halfword = self.page.halfwords
+            [row * PAGE_ROW_HALFWORDS + x / self.resolution.pixels_per_halfword()];
+        match (self.resolution.pixels_per_halfword(), x % 2) {
+            (2, 1) => (halfword >> 8) as u8,
+            _ => halfword as u8,
+        }
+    }
+
     fn put(&mut self, x: usize, row: usize, index: u8) {
         let halfword = &mut self.page.halfwords
             [row * PAGE_ROW_HALFWORDS + x / self.resolution.pixels_per_halfword()];
@@ -177,7 +187,9 @@ impl Canvas for HostCanvas<'_> {
         );
         for run in column.runs() {
             for (offset, index) in column.indices(run).enumerate() {
-                self.put(x, run.row + offset, index);
+                let row = run.row + offset;
+                let index = column.over(self.get(x, row), index);
+                self.put(x, row, index);
             }
         }
     }

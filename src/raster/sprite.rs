@@ -33,6 +33,9 @@ pub struct SpriteColumn<'a> {
     pub clip: Window,
     /// Light row the texels go through (an identity row for unlit).
     pub colormap: &'a [u8; 256],
+    /// For a translucent column, the table that blends the lit texel over the pixel behind
+    /// (`blend[behind][front]`).
+    pub blend: Option<&'a portalcast_format::BlendTable>,
 }
 
 /// One run of rows a sprite column draws.
@@ -111,7 +114,16 @@ impl<'a> SpriteColumn<'a> {
         at <= self.posts.len()
     }
 
-    /// The palette indices of `run`, top to bottom.
+    /// The palette index a pixel that held `behind` gets from the lit texel `front`.
+    #[inline]
+    pub fn over(&self, behind: u8, front: u8) -> u8 {
+        match self.blend {
+            Some(blend) => blend[usize::from(behind)][usize::from(front)],
+            None => front,
+        }
+    }
+
+    /// The palette indices of `run`, top to bottom, before any blending.
     pub fn indices(&self, run: SpriteRun<'a>) -> impl Iterator<Item = u8> + 'a {
         let colormap = self.colormap;
         let iscale = self.iscale;
@@ -149,6 +161,7 @@ mod tests {
             iscale: ((1u64 << 32) / scale as u64) as u32,
             clip,
             colormap: &IDENTITY,
+            blend: None,
         }
     }
 

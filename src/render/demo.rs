@@ -48,6 +48,7 @@ pub fn render_assets() -> RenderAssets<'static> {
         colormap: &assets::COLORMAP.0,
         sprites: assets::SPRITES,
         sprite_sets: assets::SPRITE_SETS,
+        blend: assets::BLEND,
     }
 }
 

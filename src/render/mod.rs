@@ -15,7 +15,7 @@ pub mod visits;
 pub mod walk;
 pub mod walls;
 
-use portalcast_format::{Colormap, Sky, Sprite, SpriteSet, Texture};
+use portalcast_format::{BlendTable, Colormap, Sky, Sprite, SpriteSet, Texture};
 
 /// What the renderer draws with: the compiled textures, the sky and the light colormap.
 #[derive(Clone, Copy, Debug)]
@@ -30,4 +30,6 @@ pub struct RenderAssets<'a> {
     pub sprites: &'a [Sprite<'a>],
     /// Sprite sets by index (things refer to them by index): which image a thing shows.
     pub sprite_sets: &'a [SpriteSet<'a>],
+    /// The 50 % blend of translucent things and middles, if any map has them.
+    pub blend: Option<&'a BlendTable>,
 }

@@ -27,6 +27,15 @@
 //!   The compiler keeps each thing's footprint (a disc of at least half its width) and height
 //!   inside its sector, so the rectangle lies inside the sector's volume, and "reaches the sector"
 //!   is exactly "nothing nearer hides it".
+//! - Middles: a portal wall's middle image (its `middle` sprite set, a still image) is drawn in
+//!   the opening, where the pixel's ray passes from the wall's sector into the neighbour (on
+//!   the wall, at the crossing's depth `t`): texel column `floor(u) mod width` with the wall's
+//!   `u`, row `v = floor(anchor + y_offset − h)` with `anchor` the lower of the two ceilings and
+//!   `h` the ray's height at the crossing, shown where `0 ≤ v < height` and the texel is opaque.
+//!   It does not repeat vertically. Lit by the wall's own sector at depth `t`. A thing in the
+//!   wall's sector or nearer covers it; anything behind the portal is covered by it.
+//! - Translucency: a translucent thing or middle shows `blend[behind][front]` (the compiled
+//!   `BlendTable`), `front` its lit texel and `behind` the index the pixel had without it.
 
 /// The surface a pixel belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -48,6 +57,8 @@ pub enum Surface {
     Sky,
     /// A thing's sprite, by index in the map's things table.
     Thing(u16),
+    /// A portal wall's middle image, by wall index.
+    Middle(u16),
 }
 
 /// Nearest eye depth, in world units, at which a thing is drawn (its centre's `z'`): nearer, its

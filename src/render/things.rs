@@ -1,19 +1,26 @@
-//! Things (Doom's r_things): each sector visit collects the things of its sector that fall in
-//! its columns, projected once and with the visit's clip windows over their columns copied (the
-//! window a sector is seen through is exactly where its things may show: module `surface`); after
-//! the scene, the things are drawn back to front, every column through the sprite kernel
-//! clipped to its copied window.
+//! Things and portal middles (Doom's r_things and `R_DrawMasked`): each sector visit collects
+//! the things of its sector that fall in its columns, projected once and with the visit's clip
+//! windows over their columns copied (the window a sector is seen through is exactly where its
+//! things may show: module `surface`), and after its walls the middle images of its portals,
+//! a column each with the opening's window. After the scene they are drawn back to front, every
+//! column through the sprite kernel clipped to its copied window.
 //!
-//! A thing's sprite is a rectangle facing the camera at its centre's depth `z'`, so one depth
-//! orders two things wherever they overlap, and drawing the farther first is exact.
+//! Back to front is the walk's order reversed: a visit's columns lie inside its parent's and
+//! apart from its siblings', so any two visits that share a column are a sector and one seen
+//! through it, and everything of the one behind is drawn first. Within a visit the middles
+//! (on the sector's boundary) go before its things (inside it), and the things by depth: a
+//! sprite is a rectangle facing the camera at its centre's depth `z'`, so one depth orders two
+//! things wherever they overlap.
 
-use portalcast_format::{Sprite, Thing, THING_HANGING};
+use portalcast_format::{
+    Sprite, Thing, Wall, NO_TEXTURE, THING_HANGING, THING_TRANSLUCENT, WALL_MIDDLE_TRANSLUCENT,
+};
 
 use super::light::light_row;
 use super::surface::{Surface, THING_DEPTH_MIN};
 use super::view::View;
 use super::RenderAssets;
-use crate::math::{Fx24_8, WorldPoint};
+use crate::math::{EyePoint, Fx24_8, WorldPoint};
 use crate::raster::sprite::SpriteColumn;
 use crate::raster::{Canvas, Window};
 use portalcast_format::MapTables;
@@ -25,6 +32,12 @@ pub const VISIBLE_THINGS_MAX: usize = 64;
 /// Columns of clip windows the visible things of a frame keep at most (a thing's columns in one
 /// visit take one each); a thing that finds no room is left out and counted.
 pub const THING_CLIP_COLUMNS: usize = 1024;
+
+/// Visible portal middles a frame draws at most; more are left out and counted.
+pub const VISIBLE_MIDDLES_MAX: usize = 32;
+
+/// Columns of portal middles a frame keeps at most.
+pub const MIDDLE_COLUMNS_MAX: usize = 240;
 
 /// The colormap row that changes nothing: unlit sprites draw through it.
 static IDENTITY_ROW: [u8; 256] = {
@@ -41,6 +54,10 @@ static IDENTITY_ROW: [u8; 256] = {
 /// which columns of the visit it covers.
 #[derive(Clone, Copy, Debug, Default)]
 struct VisibleThing {
+    /// The visit that saw it, in the walk's order.
+    visit: u16,
+    /// Drawn at 50 % over what is behind.
+    translucent: bool,
     /// `z'` of the thing's centre, 24.8 bits: the drawing order.
     depth: i32,
     /// Index in the map's things.
@@ -65,13 +82,70 @@ struct VisibleThing {
     iscale: u32,
 }
 
+/// One column of a portal's middle image.
+#[derive(Clone, Copy, Debug, Default)]
+struct MiddleColumn {
+    x: u8,
+    /// The image's column.
+    u: u8,
+    /// The colormap row (`u8::MAX`: unlit).
+    light_row: u8,
+    /// The opening's rows.
+    clip: Window,
+    /// Screen row of the image's top edge, 16.16.
+    y_top: i32,
+    /// Rows per texel, 16.16.
+    scale: i32,
+    /// Texels per row, 16.16.
+    iscale: u32,
+}
+
+/// A portal's middle image as one visit sees it.
+#[derive(Clone, Copy, Debug, Default)]
+struct VisibleMiddle {
+    /// The visit of the wall's sector, in the walk's order.
+    visit: u16,
+    wall: u16,
+    image: u16,
+    translucent: bool,
+    /// Its columns in [`Things::middle_columns`].
+    columns_at: u16,
+    columns: u16,
+}
+
+/// A portal wall as one visit of its sector sees it.
+pub(crate) struct PortalSeen {
+    /// The visit, in the walk's order.
+    pub visit: u16,
+    /// The wall's sector.
+    pub sector: u16,
+    /// The wall's index.
+    pub wall: u16,
+    /// Its start and end in eye space.
+    pub ends: (EyePoint, EyePoint),
+    /// The visit's columns it owns.
+    pub columns: core::ops::Range<i32>,
+}
+
+/// Something the stage draws: a thing or a middle, by index in its list.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Drawn {
+    Thing(u8),
+    Middle(u8),
+}
+
 /// Counters of the things stage in one frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ThingStats {
     /// Things drawn (once per visit they were seen in).
     pub drawn: u32,
-    /// Things seen but left out: no room in [`VISIBLE_THINGS_MAX`] or [`THING_CLIP_COLUMNS`].
+    /// Things and middles seen but left out: no room in [`VISIBLE_THINGS_MAX`],
+    /// [`THING_CLIP_COLUMNS`], [`VISIBLE_MIDDLES_MAX`] or [`MIDDLE_COLUMNS_MAX`].
     pub dropped: u32,
+    /// Portal middles drawn (once per visit of their sector).
+    pub middles: u32,
+    /// Of the things and middles drawn, the translucent ones.
+    pub translucent: u32,
 }
 
 /// The things stage's per-frame memory.
@@ -80,6 +154,11 @@ pub struct Things {
     count: usize,
     clips: [Window; THING_CLIP_COLUMNS],
     clips_used: usize,
+    middles: [VisibleMiddle; VISIBLE_MIDDLES_MAX],
+    middle_count: usize,
+    middle_columns: [MiddleColumn; MIDDLE_COLUMNS_MAX],
+    middle_columns_used: usize,
+    order: [Drawn; VISIBLE_THINGS_MAX + VISIBLE_MIDDLES_MAX],
     stats: ThingStats,
 }
 
@@ -123,6 +202,8 @@ impl Things {
     pub const fn new() -> Things {
         Things {
             visible: [VisibleThing {
+                visit: 0,
+                translucent: false,
                 depth: 0,
                 thing: 0,
                 sprite: 0,
@@ -139,9 +220,31 @@ impl Things {
             count: 0,
             clips: [Window::EMPTY; THING_CLIP_COLUMNS],
             clips_used: 0,
+            middles: [VisibleMiddle {
+                visit: 0,
+                wall: 0,
+                image: 0,
+                translucent: false,
+                columns_at: 0,
+                columns: 0,
+            }; VISIBLE_MIDDLES_MAX],
+            middle_count: 0,
+            middle_columns: [MiddleColumn {
+                x: 0,
+                u: 0,
+                light_row: 0,
+                clip: Window::EMPTY,
+                y_top: 0,
+                scale: 0,
+                iscale: 0,
+            }; MIDDLE_COLUMNS_MAX],
+            middle_columns_used: 0,
+            order: [Drawn::Thing(0); VISIBLE_THINGS_MAX + VISIBLE_MIDDLES_MAX],
             stats: ThingStats {
                 drawn: 0,
                 dropped: 0,
+                middles: 0,
+                translucent: 0,
             },
         }
     }
@@ -150,15 +253,19 @@ impl Things {
     pub fn clear(&mut self) {
         self.count = 0;
         self.clips_used = 0;
+        self.middle_count = 0;
+        self.middle_columns_used = 0;
         self.stats = ThingStats::default();
     }
 
     /// Collects the things of sector `sector_index` that show in the visit's columns
-    /// `first..end`, whose clip windows are `clip` (indexed by column).
+    /// `first..end`, whose clip windows are `clip` (indexed by column); `visit` numbers the
+    /// visit in the walk's order.
     #[inline(never)]
     pub(crate) fn collect(
         &mut self,
         frame: &ThingView,
+        visit: u16,
         sector_index: u16,
         columns: core::ops::Range<i32>,
         clip: &[Window],
@@ -196,6 +303,8 @@ impl Things {
             seen.end = columns_end as i16;
             seen.thing = index as u16;
             seen.sprite = image as u16;
+            seen.visit = visit;
+            seen.translucent = thing.flags & THING_TRANSLUCENT != 0;
             seen.clips_at = self.clips_used as u16;
             self.clips[self.clips_used..self.clips_used + columns]
                 .copy_from_slice(&clip[columns_first as usize..columns_end as usize]);
@@ -205,50 +314,205 @@ impl Things {
         }
     }
 
-    /// Draws the collected things, farthest first (at equal depth, the map's earlier thing
-    /// first), and returns the frame's counts.
+    /// Collects the middle image of the portal `seen` shows (if it has one); `opening` holds the
+    /// windows its columns left for the sector behind (indexed by column).
+    #[inline(never)]
+    pub(crate) fn collect_middle(
+        &mut self,
+        frame: &ThingView,
+        seen: PortalSeen,
+        opening: &[Window],
+    ) {
+        let PortalSeen {
+            visit,
+            sector: sector_index,
+            wall: wall_index,
+            ends: (a, b),
+            columns,
+        } = seen;
+        let (map, assets, view) = (frame.map, frame.assets, frame.view);
+        let wall = &map.walls[usize::from(wall_index)];
+        let Some(image) = middle_image(assets, wall) else {
+            return;
+        };
+        let sprite = &assets.sprites[image];
+        let count = (columns.end - columns.start) as usize;
+        if self.middle_count == VISIBLE_MIDDLES_MAX
+            || self.middle_columns_used + count > MIDDLE_COLUMNS_MAX
+        {
+            self.stats.dropped += 1;
+            return;
+        }
+        let Some(neighbour) = wall.neighbour() else {
+            return;
+        };
+        let sector = &map.sectors[usize::from(sector_index)];
+        let behind = &map.sectors[usize::from(neighbour)];
+        let top = sector.ceil_z.min(behind.ceil_z) + i32::from(wall.y_offset);
+        let viewport = &view.viewport;
+        let twice_focal = 2 * i64::from(viewport.focal_x);
+        let (xa, za) = (i64::from(a.x.to_bits()), i64::from(a.z.to_bits()));
+        let (dx, dz) = (i64::from(b.x.to_bits()) - xa, i64::from(b.z.to_bits()) - za);
+        let above_eye = i64::from(view.eye_z.to_bits()) - i64::from(top << 8);
+        let width = i64::from(sprite.width);
+        let start = self.middle_columns_used;
+        let mut used = start;
+        for x in columns {
+            let window = opening[x as usize];
+            if window.is_empty() {
+                continue;
+            }
+            // Where column x's ray crosses the wall: the fraction `t` of the way from a to b,
+            // in 2.30, from the ray `x'·2d_x = q·z'` (`q = 2x + 1 − W`).
+            let q = i64::from(2 * x + 1 - viewport.width);
+            let numerator = q * za - twice_focal * xa;
+            let denominator = twice_focal * dx - q * dz;
+            if denominator == 0 {
+                continue;
+            }
+            let t = ((numerator << 30) / denominator).clamp(0, 1 << 30);
+            let depth = (za + ((t * dz) >> 30)).max(i64::from(THING_DEPTH_MIN) << 8);
+            let u_fx8 = i64::from(wall.x_offset) * 256 + ((t * i64::from(wall.length_fx8)) >> 30);
+            let inverse_depth = i64::from(Fx24_8::from_bits(depth as i32).recip_fx2_30().to_bits());
+            let y_top = (i64::from(viewport.horizon_y) << 16)
+                + ((above_eye * inverse_depth * i64::from(viewport.focal_y)) >> 22);
+            let light = light_row(sector.light, (depth >> 8) as i32, view.lighting);
+            self.middle_columns[used] = MiddleColumn {
+                x: x as u8,
+                u: ((u_fx8 >> 8).rem_euclid(width)) as u8,
+                light_row: light.map_or(u8::MAX, |row| row as u8),
+                clip: window,
+                y_top: y_top.clamp(-(1 << 30), 1 << 30) as i32,
+                scale: ((inverse_depth * i64::from(viewport.focal_y)) >> 14) as i32,
+                iscale: ((depth * frame.inverse_focal_y) >> 22) as u32,
+            };
+            used += 1;
+        }
+        if used == start {
+            return;
+        }
+        self.middles[self.middle_count] = VisibleMiddle {
+            visit,
+            wall: wall_index,
+            image: image as u16,
+            translucent: wall.flags & WALL_MIDDLE_TRANSLUCENT != 0,
+            columns_at: start as u16,
+            columns: (used - start) as u16,
+        };
+        self.middle_count += 1;
+        self.middle_columns_used = used;
+    }
+
+    /// Draws the collected things and middles back to front, and returns the frame's counts.
     #[inline(never)]
     pub(crate) fn draw(&mut self, assets: &RenderAssets, canvas: &mut impl Canvas) -> ThingStats {
-        let visible = &mut self.visible[..self.count];
+        let drawn = self.count + self.middle_count;
+        let order = &mut self.order[..drawn];
+        for (slot, index) in order.iter_mut().zip(0..self.count) {
+            *slot = Drawn::Thing(index as u8);
+        }
+        for (slot, index) in order[self.count..].iter_mut().zip(0..self.middle_count) {
+            *slot = Drawn::Middle(index as u8);
+        }
         // Insertion sort: a frame's few things, often already nearly in order.
-        for next in 1..visible.len() {
+        let (visible, middles) = (&self.visible, &self.middles);
+        for next in 1..order.len() {
             let mut at = next;
-            while at > 0 && drawn_before(&visible[at], &visible[at - 1]) {
-                visible.swap(at, at - 1);
+            while at > 0 && drawn_before(visible, middles, order[at], order[at - 1]) {
+                order.swap(at, at - 1);
                 at -= 1;
             }
         }
-        for seen in visible.iter() {
-            let sprite = &assets.sprites[usize::from(seen.sprite)];
-            let colormap = match seen.light_row {
-                u8::MAX => &IDENTITY_ROW,
-                row => &assets.colormap[usize::from(row)],
-            };
-            canvas.set_surface(Surface::Thing(seen.thing));
-            let last_column = usize::from(sprite.width) - 1;
-            let mut u = seen.u_first;
-            let clips = &self.clips[usize::from(seen.clips_at)..];
-            for (x, clip) in (seen.first..seen.end).zip(clips) {
-                if !clip.is_empty() {
-                    let column = ((u >> 16) as usize).min(last_column);
-                    canvas.sprite_column(
-                        x as usize,
-                        &SpriteColumn {
-                            posts: &sprite.posts[sprite.column_offset(column)..],
-                            y_top: seen.y_top,
-                            scale: seen.scale,
-                            iscale: seen.iscale,
-                            clip: *clip,
-                            colormap,
-                        },
-                    );
-                }
-                u = u.wrapping_add(seen.iscale_x);
+        for at in 0..drawn {
+            match self.order[at] {
+                Drawn::Thing(index) => self.draw_thing(assets, canvas, usize::from(index)),
+                Drawn::Middle(index) => self.draw_middle(assets, canvas, usize::from(index)),
             }
         }
         self.stats.drawn = self.count as u32;
+        self.stats.middles = self.middle_count as u32;
+        self.stats.translucent = (self.visible[..self.count]
+            .iter()
+            .filter(|t| t.translucent)
+            .count()
+            + self.middles[..self.middle_count]
+                .iter()
+                .filter(|m| m.translucent)
+                .count()) as u32;
         self.stats
     }
+
+    fn draw_thing(&self, assets: &RenderAssets, canvas: &mut impl Canvas, index: usize) {
+        let seen = &self.visible[index];
+        let sprite = &assets.sprites[usize::from(seen.sprite)];
+        let colormap = colormap_row(assets, seen.light_row);
+        let blend = if seen.translucent { assets.blend } else { None };
+        canvas.set_surface(Surface::Thing(seen.thing));
+        let last_column = usize::from(sprite.width) - 1;
+        let mut u = seen.u_first;
+        let clips = &self.clips[usize::from(seen.clips_at)..];
+        for (x, clip) in (seen.first..seen.end).zip(clips) {
+            if !clip.is_empty() {
+                let column = ((u >> 16) as usize).min(last_column);
+                canvas.sprite_column(
+                    x as usize,
+                    &SpriteColumn {
+                        posts: &sprite.posts[sprite.column_offset(column)..],
+                        y_top: seen.y_top,
+                        scale: seen.scale,
+                        iscale: seen.iscale,
+                        clip: *clip,
+                        colormap,
+                        blend,
+                    },
+                );
+            }
+            u = u.wrapping_add(seen.iscale_x);
+        }
+    }
+
+    fn draw_middle(&self, assets: &RenderAssets, canvas: &mut impl Canvas, index: usize) {
+        let middle = &self.middles[index];
+        let sprite = &assets.sprites[usize::from(middle.image)];
+        let blend = if middle.translucent {
+            assets.blend
+        } else {
+            None
+        };
+        canvas.set_surface(Surface::Middle(middle.wall));
+        let at = usize::from(middle.columns_at);
+        for column in &self.middle_columns[at..at + usize::from(middle.columns)] {
+            canvas.sprite_column(
+                usize::from(column.x),
+                &SpriteColumn {
+                    posts: &sprite.posts[sprite.column_offset(usize::from(column.u))..],
+                    y_top: column.y_top,
+                    scale: column.scale,
+                    iscale: column.iscale,
+                    clip: column.clip,
+                    colormap: colormap_row(assets, column.light_row),
+                    blend,
+                },
+            );
+        }
+    }
+}
+
+/// The light row `row` of the assets' colormap, or the identity row for unlit (`u8::MAX`).
+fn colormap_row<'a>(assets: &RenderAssets<'a>, row: u8) -> &'a [u8; 256] {
+    match row {
+        u8::MAX => &IDENTITY_ROW,
+        row => &assets.colormap[usize::from(row)],
+    }
+}
+
+/// The image of `wall`'s middle (a still sprite set's), if it has one.
+fn middle_image(assets: &RenderAssets, wall: &Wall) -> Option<usize> {
+    if wall.middle == NO_TEXTURE {
+        return None;
+    }
+    let set = assets.sprite_sets.get(usize::from(wall.middle))?;
+    Some(usize::from(set.first)).filter(|&image| image < assets.sprites.len())
 }
 
 /// The image of `thing`'s sprite set the frame shows: its animation frame at the view's tick,
@@ -266,9 +530,25 @@ fn image_of(frame: &ThingView, thing: &Thing) -> Option<usize> {
     Some(set.image(frame.view.tick, thing.frame_ticks.max(1), rotation))
 }
 
-/// Whether `a` is drawn before `b`: farther, or as far and earlier in the map.
-fn drawn_before(a: &VisibleThing, b: &VisibleThing) -> bool {
-    a.depth > b.depth || (a.depth == b.depth && a.thing < b.thing)
+/// Whether `a` is drawn before `b`: of a later visit (behind), or of the same visit a middle
+/// before a thing, and of two things the farther, or as far the earlier in the map.
+fn drawn_before(visible: &[VisibleThing], middles: &[VisibleMiddle], a: Drawn, b: Drawn) -> bool {
+    let visit = |item: Drawn| match item {
+        Drawn::Thing(index) => visible[usize::from(index)].visit,
+        Drawn::Middle(index) => middles[usize::from(index)].visit,
+    };
+    let (visit_a, visit_b) = (visit(a), visit(b));
+    if visit_a != visit_b {
+        return visit_a > visit_b;
+    }
+    match (a, b) {
+        (Drawn::Thing(a), Drawn::Thing(b)) => {
+            let (a, b) = (&visible[usize::from(a)], &visible[usize::from(b)]);
+            a.depth > b.depth || (a.depth == b.depth && a.thing < b.thing)
+        }
+        (Drawn::Middle(_), Drawn::Thing(_)) => true,
+        _ => false,
+    }
 }
 
 /// Where `thing`'s sprite lies on the screen of `frame`, with its columns over the whole width;
@@ -326,6 +606,8 @@ fn project(
     let u_first = ((offset * u64::from(iscale_x)) >> 16) as u32;
     let light = light_row(sector.light, depth >> 8, view.lighting);
     Some(VisibleThing {
+        visit: 0,
+        translucent: false,
         depth,
         thing: 0,
         sprite: 0,

@@ -6,12 +6,12 @@
 //! in the renderer's memory rather than on the call stack (`Renderer::walk`): no function calls
 //! itself.
 
-use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, SKY};
+use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, NO_TEXTURE, SKY};
 
 use super::planes;
 use super::spans::Window;
 use super::surface::Surface;
-use super::things::{ThingView, Things};
+use super::things::{PortalSeen, ThingView, Things};
 use super::view::{Preprocessing, ThingsShown, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
@@ -86,6 +86,10 @@ pub struct FrameStats {
     pub things_dropped: u32,
     /// Clock ticks in the things stage's drawing (its collection counts in the wall stage).
     pub thing_ticks: u32,
+    /// Portal middles drawn (once per visit of their sector).
+    pub middles_drawn: u32,
+    /// Of the things and middles drawn, the translucent ones.
+    pub translucent_drawn: u32,
 }
 
 /// The renderer's per-column and per-row working memory: the clip and plane windows every wall
@@ -163,6 +167,10 @@ pub struct Renderer<W: WindowStore = ColumnWindows> {
     frame_stamp: u32,
     /// The things the visits saw, for drawing after the scene.
     things: Things,
+    /// The sectors (by index, a bit each, below [`VISITS_TRACKED`]) with a portal that has a
+    /// middle image, for the map whose walls start at [`Renderer::middles_of`].
+    middle_sectors: [u32; VISITS_TRACKED / 32],
+    middles_of: usize,
 }
 
 /// Vertices (by index) whose eye-space position a frame keeps once computed; higher ones are
@@ -371,6 +379,8 @@ impl<W: WindowStore> Renderer<W> {
             ),
             frame_stamp: 0,
             things: Things::new(),
+            middle_sectors: [0; VISITS_TRACKED / 32],
+            middles_of: 0,
         }
     }
 
@@ -412,6 +422,9 @@ impl<W: WindowStore> Renderer<W> {
             things: ThingView::new(map, assets, view),
         };
         self.things.clear();
+        if self.middles_of != map.walls.as_ptr() as usize {
+            self.find_middle_sectors(map);
+        }
         let planned = view.preprocessing == Preprocessing::On
             && self.plan_visits(&scene, &mut stats, view.sector, 0, width as i32);
         if planned {
@@ -420,11 +433,13 @@ impl<W: WindowStore> Renderer<W> {
             stats.plan_overflows = u32::from(view.preprocessing == Preprocessing::On);
             self.walk(&scene, canvas, &mut stats, view.sector, 0, width as i32);
         }
-        if !map.things.is_empty() {
+        if !map.things.is_empty() || self.middles_of_map() {
             let things_started = (self.clock)();
             let things = self.things.draw(assets, canvas);
             stats.things_drawn = things.drawn;
             stats.things_dropped = things.dropped;
+            stats.middles_drawn = things.middles;
+            stats.translucent_drawn = things.translucent;
             stats.thing_ticks = (self.clock)().wrapping_sub(things_started);
         }
         stats
@@ -445,6 +460,71 @@ impl<W: WindowStore> Renderer<W> {
             );
         }
         self.column_angles_width = viewport.width;
+    }
+
+    /// Marks the sectors of `map` with a portal that has a middle image. Once per map, from ROM.
+    #[inline(never)]
+    fn find_middle_sectors(&mut self, map: &MapTables) {
+        self.middle_sectors = [0; VISITS_TRACKED / 32];
+        for (index, sector) in map.sectors.iter().enumerate().take(VISITS_TRACKED) {
+            if map
+                .sector_walls(sector)
+                .iter()
+                .any(|wall| wall.middle != NO_TEXTURE)
+            {
+                self.middle_sectors[index / 32] |= 1 << (index % 32);
+            }
+        }
+        self.middles_of = map.walls.as_ptr() as usize;
+    }
+
+    /// Whether the map has a portal with a middle image (among its first [`VISITS_TRACKED`]
+    /// sectors; the others are looked at one by one).
+    fn middles_of_map(&self) -> bool {
+        self.middle_sectors.iter().any(|&word| word != 0)
+    }
+
+    /// Whether sector `index` may have a portal with a middle image (sectors past
+    /// [`VISITS_TRACKED`] are looked at).
+    #[inline(always)]
+    fn has_middles(&self, index: u16) -> bool {
+        self.middle_sectors
+            .get(usize::from(index) / 32)
+            .is_none_or(|word| word & (1 << (index % 32)) != 0)
+    }
+
+    /// Collects the middle images of the portals of sector `sector_index` that own columns of
+    /// the visit `first..end`, just drawn: the clip windows now hold the openings. From ROM:
+    /// only sectors with middles come here.
+    #[inline(never)]
+    fn collect_middles(
+        &mut self,
+        scene: &Scene,
+        visit: u16,
+        sector_index: u16,
+        first: i32,
+        end: i32,
+    ) {
+        let sector = &scene.map.sectors[usize::from(sector_index)];
+        let first_wall = sector.first_wall;
+        for (offset, wall) in scene.map.sector_walls(sector).iter().enumerate() {
+            if wall.middle == NO_TEXTURE || wall.portal == NO_PORTAL {
+                continue;
+            }
+            let mut ownership = Ownership::new(first, end);
+            let Some((a, b, start, stop)) = ownership.wall(scene, &self.vertices, wall) else {
+                continue;
+            };
+            let seen = PortalSeen {
+                visit,
+                sector: sector_index,
+                wall: first_wall + offset as u16,
+                ends: (a, b),
+                columns: start..stop,
+            };
+            self.things
+                .collect_middle(&scene.things, seen, &self.windows.windows().clip);
+        }
     }
 
     /// After 2^32 frames the vertex cache's stamps come round: every entry is forgotten. From
@@ -664,12 +744,16 @@ impl<W: WindowStore> Renderer<W> {
             // Before the walls: the clip windows are still the ones the sector is seen through.
             self.things.collect(
                 &scene.things,
+                stats.sector_visits as u16,
                 sector_index,
                 first..end,
                 &self.windows.windows().clip,
             );
         }
         self.draw_walls(scene, canvas, stats, sector, first, end);
+        if self.has_middles(sector_index) {
+            self.collect_middles(scene, stats.sector_visits as u16, sector_index, first, end);
+        }
         debug_assert!(
             !self.windows.windows().ceiling[range.clone()].contains(&UNSET)
                 && !self.windows.windows().floor[range].contains(&UNSET),

@@ -185,6 +185,7 @@ pub struct HostAssets<'c> {
     colormap: &'c portalcast_format::Colormap,
     sprites: Vec<portalcast_format::Sprite<'c>>,
     sprite_sets: Vec<portalcast_format::SpriteSet<'c>>,
+    blend: Option<&'c portalcast_format::BlendTable>,
 }
 
 impl<'c> HostAssets<'c> {
@@ -196,6 +197,7 @@ impl<'c> HostAssets<'c> {
             colormap: compiled.colormap(),
             sprites: compiled.sprites().iter().map(|s| s.sprite()).collect(),
             sprite_sets: compiled.sprite_sets().iter().map(|s| s.set()).collect(),
+            blend: compiled.blend(),
         }
     }
 
@@ -207,6 +209,7 @@ impl<'c> HostAssets<'c> {
             colormap: self.colormap,
             sprites: &self.sprites,
             sprite_sets: &self.sprite_sets,
+            blend: self.blend,
         }
     }
 
@@ -218,6 +221,7 @@ impl<'c> HostAssets<'c> {
             colormap: self.colormap,
             sprites: &self.sprites,
             sprite_sets: &self.sprite_sets,
+            blend: self.blend,
         }
     }
 }

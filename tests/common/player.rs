@@ -8,7 +8,7 @@ use portalcast::player::collide::{Body, RADIUS};
 use portalcast::player::input::Intent;
 use portalcast::player::vertical::CROUCH_EYE;
 use portalcast::player::Player;
-use portalcast_format::MapTables;
+use portalcast_format::{MapTables, THING_SOLID};
 
 /// Index of the sector called `name` in a shipped text map (sectors keep file order).
 pub fn sector_index(map_file: &str, name: &str) -> u16 {
@@ -28,16 +28,19 @@ pub fn sector_index_in(text: &str, name: &str) -> u16 {
         .unwrap_or_else(|| panic!("no sector {name}")) as u16
 }
 
-/// A compiled map's tables, from map text (the shipped texture and sprite names).
+/// A compiled map's tables, from map text (the shipped texture and sprite names; a torch is
+/// 16 wide and 48 tall, so a thing's default radius is 8 and the compiler checks footprints).
 pub fn compile_map(file_name: &str, text: &str) -> portalcast_assets::CompiledMap {
     let catalog = portalcast_assets::Catalog::new(
         [
             "brick", "ceiling", "dirt", "grass", "marble", "metal", "step", "stone", "tiles",
             "trim", "water", "wood",
         ],
-        ["torch"],
+        ["grate", "torch"],
         true,
-    );
+    )
+    .with_sprite_size("torch", 16, 48)
+    .with_sprite_size("grate", 32, 64);
     portalcast_assets::compile_map_str(file_name, text, &catalog)
         .unwrap_or_else(|errors| panic!("{errors}"))
 }
@@ -108,13 +111,30 @@ pub fn solid_overlap(map: &MapTables, p: WorldPoint) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// How deep the disc centred at `p` is in the map's solid things: the largest
+/// `(RADIUS + radius)² − distance²`, in 24.8 bits squared (exact), or 0 if it overlaps none.
+pub fn solid_thing_depth(map: &MapTables, p: WorldPoint) -> i64 {
+    map.things
+        .iter()
+        .filter(|thing| thing.flags & THING_SOLID != 0)
+        .map(|thing| {
+            let reach = i64::from(RADIUS + i32::from(thing.radius)) * 256;
+            let dx = i64::from(p.x.to_bits()) - i64::from(thing.x_fx8);
+            let dy = i64::from(p.y.to_bits()) - i64::from(thing.y_fx8);
+            reach * reach - (dx * dx + dy * dy)
+        })
+        .fold(0, i64::max)
+}
+
 /// Checks what one tick from `before` to `after` must keep:
 /// - the centre strictly inside the tracked sector (exact);
 /// - the centre's path crossing or touching no solid wall, and crossing only portals into
 ///   sectors the body could enter (exact);
 /// - the eye at least 16 above the floor and, where the sector is tall enough, 16 below the
 ///   ceiling;
-/// - the disc overlapping solid walls by no more than 1/16 unit, or no more than before.
+/// - the disc overlapping solid walls by no more than 1/16 unit, or no more than before;
+/// - the disc overlapping no solid thing (its centre at least the sum of the radii from the
+///   thing's, exact), or, if it did before, no deeper ([`solid_thing_depth`]).
 pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<(), String> {
     let polygon = sector_polygon(map, after.sector);
     if point_in_convex_polygon(&polygon, after.position) != Containment::Inside {
@@ -181,6 +201,14 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             solid_overlap(map, before.position)
         ));
     }
+    let depth = solid_thing_depth(map, after.position);
+    if depth > 0 && depth > solid_thing_depth(map, before.position) {
+        return Err(format!(
+            "disc at {:?} overlaps a solid thing (depth {depth} bits², before: {})",
+            after.position,
+            solid_thing_depth(map, before.position)
+        ));
+    }
     Ok(())
 }
 
@@ -194,3 +222,77 @@ pub fn run(player: &mut Player, map: &MapTables, intent: Intent, ticks: u32) {
         }
     }
 }
+
+/// A room with solid things (torches: 16 wide, a default radius of 8): one in the middle of
+/// the north half, two in corners touching both walls, one touching the east wall 16 from the
+/// north wall (a wedge the body cannot enter), one behind an open portal touching its line
+/// (the annex, west), one behind a portal the body may not pass (the ledge, 48 up, east) touching
+/// its line; and a torch that is not solid.
+pub const THINGS_MAP: &str = "
+vertex a 0 0
+vertex b 256 0
+vertex c 256 256
+vertex d 0 256
+vertex e 256 96
+vertex f 256 160
+vertex g 320 96
+vertex h 320 160
+vertex p 0 160
+vertex q 0 96
+vertex r -96 96
+vertex s -96 160
+sector room floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall a b tex=brick
+  wall b e tex=brick
+  wall e f portal=ledge lower=step
+  wall f c tex=brick
+  wall c d tex=brick
+  wall d p tex=brick
+  wall p q portal=annex
+  wall q a tex=brick
+sector ledge floor=48 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall e g tex=brick
+  wall g h tex=brick
+  wall h f tex=brick
+  wall f e portal=room
+sector annex floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall r q tex=brick
+  wall q p portal=room
+  wall p s tex=brick
+  wall s r tex=brick
+player 128.5 200.5
+thing torch 128 64 solid
+thing torch 24 232 solid radius=24
+thing torch 224 224 solid radius=32
+thing torch 232 40 solid radius=24
+thing torch -12 128 solid radius=12
+thing torch 268 128 solid radius=12
+thing torch 64 160
+";
+
+/// A room with a cluster of twelve solid torches (radius 8) 10 units apart, more than the
+/// collision keeps in its short list of things near a step.
+pub const CLUSTER_MAP: &str = "
+vertex a 0 0
+vertex b 256 0
+vertex c 256 256
+vertex d 0 256
+sector room floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall a b tex=brick
+  wall b c tex=brick
+  wall c d tex=brick
+  wall d a tex=brick
+player 40.5 40.5
+thing torch 100 100 solid
+thing torch 110 100 solid
+thing torch 120 100 solid
+thing torch 130 100 solid
+thing torch 100 110 solid
+thing torch 110 110 solid
+thing torch 120 110 solid
+thing torch 130 110 solid
+thing torch 100 120 solid
+thing torch 110 120 solid
+thing torch 120 120 solid
+thing torch 130 120 solid
+";

@@ -14,6 +14,7 @@ pub const ASSETS_RS: &str = "assets.rs";
 const TEXEL_BLOB: &str = "assets_texels.bin";
 const SKY_BLOB: &str = "assets_sky.bin";
 const SPRITE_BLOB: &str = "assets_sprites.bin";
+const BLEND_BLOB: &str = "assets_blend.bin";
 
 const FORMAT: &str = "::portalcast_format";
 
@@ -197,6 +198,32 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
         }
     }
 
+    let _ = writeln!(
+        s,
+        "/// The 50 % blend table, `BLEND[behind][front]`, if some map draws a translucent wall middle\n\
+         /// or thing: the palette index nearest the average of the two colours (0 only for 0 and 0)."
+    );
+    match &compiled.blend {
+        Some(_) => {
+            let _ = writeln!(
+                s,
+                "static BLEND_BLOB: {FORMAT}::Align4<[u8; 65536]> = {FORMAT}::Align4(*include_bytes!({}));\n\
+                 static BLEND_TABLE: &{FORMAT}::BlendTable = match BLEND_BLOB.0.as_chunks::<256>().0.first_chunk::<256>() {{\n    \
+                 Some(table) => table,\n    \
+                 None => panic!(\"the blend blob holds 256 rows of 256\"),\n\
+                 }};\n\
+                 pub static BLEND: Option<&'static {FORMAT}::BlendTable> = Some(BLEND_TABLE);\n",
+                blob(BLEND_BLOB)
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "pub static BLEND: Option<&'static {FORMAT}::BlendTable> = None;\n"
+            );
+        }
+    }
+
     // Without things nothing points into the sprite blob: it is written (empty) but not
     // included, else the ROM build warns that it is never used.
     if !compiled.sprites.is_empty() {
@@ -226,7 +253,7 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
     let _ = writeln!(s, "];\n");
     let _ = writeln!(
         s,
-        "/// Sprite sets used by things, sorted by name; things index this table."
+        "/// Sprite sets used by things and wall middles, sorted by name; things and walls index this table."
     );
     let _ = writeln!(
         s,
@@ -279,8 +306,8 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
     for w in &map.walls {
         let _ = writeln!(
             s,
-            "    {FORMAT}::Wall {{ start: {}, end: {}, portal: {}, texture: {}, upper_texture: {}, lower_texture: {}, x_offset: {}, y_offset: {}, length_fx8: {} }},",
-            w.start, w.end, w.portal, w.texture, w.upper_texture, w.lower_texture, w.x_offset, w.y_offset, w.length_fx8
+            "    {FORMAT}::Wall {{ start: {}, end: {}, portal: {}, texture: {}, upper_texture: {}, lower_texture: {}, x_offset: {}, y_offset: {}, length_fx8: {}, middle: {}, flags: {} }},",
+            w.start, w.end, w.portal, w.texture, w.upper_texture, w.lower_texture, w.x_offset, w.y_offset, w.length_fx8, w.middle, w.flags
         );
     }
     let _ = writeln!(s, "];");
@@ -323,10 +350,15 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
 pub(crate) fn write(compiled: &Compiled, out_dir: &Path) -> io::Result<()> {
     let blobs = blobs(compiled);
     let sky = compiled.sky.as_ref().map_or(&[][..], |s| &s.texels[..]);
-    let files: [(&str, Vec<u8>); 4] = [
+    let blend = compiled
+        .blend
+        .as_ref()
+        .map_or(Vec::new(), |table| table.as_flattened().to_vec());
+    let files: [(&str, Vec<u8>); 5] = [
         (TEXEL_BLOB, blobs.texels.clone()),
         (SKY_BLOB, sky.to_vec()),
         (SPRITE_BLOB, blobs.sprites.clone()),
+        (BLEND_BLOB, blend),
         (ASSETS_RS, source(compiled, &blobs, out_dir).into_bytes()),
     ];
     let mut staged: Vec<(PathBuf, PathBuf)> = Vec::new();
@@ -388,7 +420,10 @@ pub(crate) fn size_report(compiled: &Compiled) -> String {
         .map(|m| map_table_bytes(m) + MAP_DESCRIPTOR_BYTES + m.name.len())
         .sum::<usize>()
         + TARGET_SLICE_BYTES;
-    let total = palette + colormap + textures + sky + sprites + maps;
+    let blend = compiled.blend.as_ref().map_or(0, |table| {
+        core::mem::size_of_val(&**table) + TARGET_SLICE_BYTES / 2
+    });
+    let total = palette + colormap + textures + sky + sprites + blend + maps;
 
     let mut r = String::new();
     let _ = writeln!(
@@ -439,6 +474,15 @@ pub(crate) fn size_report(compiled: &Compiled) -> String {
             counted(compiled.sprites.len(), "image"),
             counted(compiled.sprite_sets.len(), "sprite set")
         ),
+    );
+    row(
+        "blend",
+        blend,
+        if compiled.blend.is_some() {
+            "256 x 256 50 % blend table (translucent wall middles or things)".into()
+        } else {
+            "none (nothing translucent)".into()
+        },
     );
     let map_notes: Vec<String> = compiled
         .maps
@@ -491,6 +535,9 @@ pub(crate) fn size_report(compiled: &Compiled) -> String {
         compiled.sky.as_ref().map_or(0, |s| s.texels.len()),
     );
     ram("sprite texels".into(), blobs.sprites.len());
+    if let Some(table) = &compiled.blend {
+        ram("blend table".into(), core::mem::size_of_val(&**table));
+    }
     let budget = ewram_texel_budget(compiled.textures.len());
     let left: Vec<(&str, usize)> = compiled
         .textures

@@ -128,7 +128,10 @@ impl<'t> KeyValues<'t> {
 }
 
 /// The bare words a `thing` line may carry after its position, in any order among its settings.
-pub(crate) const THING_FLAGS: &[&str] = &["hang", "solid"];
+pub(crate) const THING_FLAGS: &[&str] = &["hang", "solid", "translucent"];
+
+/// The bare words a `wall` line of a `.map` may carry after its two vertices.
+pub(crate) const WALL_FLAGS: &[&str] = &["blocks", "translucent"];
 
 /// Takes the bare option words (`flags`) out of `words`, the words after a directive's name:
 /// only at index `skip` (the first word after its plain values) or later, each at most once.
@@ -203,6 +206,7 @@ pub(crate) fn thing_options(
         z: z?,
         hanging: has("hang"),
         solid: has("solid"),
+        translucent: has("translucent"),
         radius: radius?,
         frame_ticks: frame_ticks?,
     })

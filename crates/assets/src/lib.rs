@@ -32,7 +32,8 @@ use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
 use portalcast_format::{
-    Colormap, MapTables, Palette, Sky, Sprite, SpriteSet, Texture, NO_TEXTURE, SKY,
+    BlendTable, Colormap, MapTables, Palette, Sky, Sprite, SpriteSet, Texture, NO_TEXTURE, SKY,
+    THING_TRANSLUCENT, WALL_MIDDLE_TRANSLUCENT,
 };
 
 pub use diag::{CompileErrors, Diagnostic, Loc};
@@ -179,6 +180,7 @@ pub struct Compiled {
     sprite_sets: Vec<CompiledSpriteSet>,
     maps: Vec<CompiledMap>,
     left_out: Vec<String>,
+    blend: Option<Box<BlendTable>>,
 }
 
 impl Compiled {
@@ -190,6 +192,17 @@ impl Compiled {
     /// The light colormap.
     pub fn colormap(&self) -> &Colormap {
         &self.colormap
+    }
+
+    /// The 50 % blend table (`blend[behind][front]`), if some map draws something translucent (a
+    /// wall middle or a thing); else `None`, and the ROM ships none.
+    ///
+    /// `blend[0][0]` is 0 (transparent); every other entry is an opaque index (1..=255) whose
+    /// shown colour is nearest (squared RGB distance, as the colormap's) to the rounded average
+    /// of the two entries' shown colours, index 0 counting as black, the colour the GBA shows for
+    /// it. The table is symmetric, and `blend[a][a] == a`.
+    pub fn blend(&self) -> Option<&BlendTable> {
+        self.blend.as_deref()
     }
 
     /// Textures used by some map, sorted by name; walls and sectors index this list.
@@ -216,8 +229,8 @@ impl Compiled {
         &self.sprites
     }
 
-    /// Sprite sets used by some thing, sorted by name; things index this list
-    /// ([`portalcast_format::Thing::sprite`]).
+    /// Sprite sets used by some thing or wall middle, sorted by name; things and walls index
+    /// this list ([`portalcast_format::Thing::sprite`], [`portalcast_format::Wall::middle`]).
     pub fn sprite_sets(&self) -> &[CompiledSpriteSet] {
         &self.sprite_sets
     }
@@ -365,9 +378,11 @@ fn png_files(dir: &Path) -> BTreeMap<String, PathBuf> {
 struct Usage {
     wall_textures: Vec<bool>,
     flat_textures: Vec<bool>,
-    /// By sprite set.
+    /// By sprite set: things' and wall middles'.
     sprites: Vec<bool>,
     sky: bool,
+    /// Some wall middle or thing is drawn translucent: the ROM needs the blend table.
+    translucent: bool,
 }
 
 impl Usage {
@@ -377,6 +392,7 @@ impl Usage {
             flat_textures: vec![false; catalog.textures().len()],
             sprites: vec![false; catalog.sprite_sets().len()],
             sky: false,
+            translucent: false,
         };
         for map in maps {
             for wall in &map.walls {
@@ -385,6 +401,10 @@ impl Usage {
                         usage.wall_textures[usize::from(texture)] = true;
                     }
                 }
+                if wall.middle != NO_TEXTURE {
+                    usage.sprites[usize::from(wall.middle)] = true;
+                }
+                usage.translucent |= wall.flags & WALL_MIDDLE_TRANSLUCENT != 0;
             }
             for sector in &map.sectors {
                 usage.flat_textures[usize::from(sector.floor_texture)] = true;
@@ -396,6 +416,7 @@ impl Usage {
             }
             for thing in &map.things {
                 usage.sprites[usize::from(thing.sprite)] = true;
+                usage.translucent |= thing.flags & THING_TRANSLUCENT != 0;
             }
         }
         usage
@@ -463,11 +484,14 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
     let texture_files = png_files(&textures_dir);
     let (set_sources, set_errors) = sprite_sets::scan(&png_files(&sprites_dir));
     errors.extend(set_errors);
-    let catalog = Catalog::new(
+    let mut catalog = Catalog::new(
         texture_files.keys().cloned(),
         set_sources.iter().map(|set| set.name.clone()),
         sky_path.is_file(),
     );
+    for set in &set_sources {
+        catalog = catalog.with_sprite_frames(&set.name, set.frames, set.rotations);
+    }
     if catalog.textures().len() >= usize::from(SKY) {
         errors.push(Diagnostic::new(
             &textures_dir,
@@ -710,6 +734,9 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             wall.texture = remap(wall.texture);
             wall.upper_texture = remap(wall.upper_texture);
             wall.lower_texture = remap(wall.lower_texture);
+            if wall.middle != NO_TEXTURE {
+                wall.middle = set_index[usize::from(wall.middle)];
+            }
         }
         for sector in &mut map.sectors {
             sector.floor_texture = remap(sector.floor_texture);
@@ -730,6 +757,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
         files_read,
         palette: quantiser.palette(),
         colormap: quantiser.colormap(),
+        blend: usage.translucent.then(|| quantiser.blend()),
         textures,
         sky,
         sprites,

@@ -12,7 +12,7 @@ use portalcast_format::limits::{
 };
 use portalcast_format::{
     MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING,
-    THING_SOLID,
+    THING_SOLID, THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
 };
 
 use crate::diag::{Loc, Located};
@@ -28,13 +28,18 @@ use crate::source::{
 ///
 /// The checks that need a sprite's size (a thing's footprint and height) use the sizes given with
 /// [`Catalog::with_sprite_size`]; a set without one counts as 0×0 there.
-/// [`crate::compile_dir`] checks things against the sprite images themselves.
+/// [`crate::compile_dir`] checks things against the sprite images themselves. A portal's middle
+/// image (`mid=`) must be a still set: one frame, no rotations; a set counts as still unless
+/// [`Catalog::with_sprite_frames`] says otherwise ([`crate::compile_dir`] gives every set's, from
+/// its file names).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Catalog {
     textures: Vec<String>,
     sprite_sets: Vec<String>,
     /// Width and height of each set's images (all the same size), where known.
     sprite_sizes: Vec<Option<(u16, u16)>>,
+    /// Animation frames and rotations of each set, where known.
+    sprite_frames: Vec<Option<(u8, u8)>>,
     has_sky: bool,
 }
 
@@ -55,6 +60,7 @@ impl Catalog {
         Catalog {
             textures,
             sprite_sizes: vec![None; sprite_sets.len()],
+            sprite_frames: vec![None; sprite_sets.len()],
             sprite_sets,
             has_sky,
         }
@@ -65,6 +71,16 @@ impl Catalog {
     pub fn with_sprite_size(mut self, name: &str, width: u16, height: u16) -> Catalog {
         if let Ok(index) = self.sprite_sets.binary_search_by(|s| s.as_str().cmp(name)) {
             self.sprite_sizes[index] = Some((width, height));
+        }
+        self
+    }
+
+    /// The catalog with the shape of sprite set `name` known: `frames` animation frames, each
+    /// seen from `rotations` directions (1 or 8). A portal's middle (`mid=`) must name a set of
+    /// one frame and one rotation. A name not in the catalog is ignored.
+    pub fn with_sprite_frames(mut self, name: &str, frames: u8, rotations: u8) -> Catalog {
+        if let Ok(index) = self.sprite_sets.binary_search_by(|s| s.as_str().cmp(name)) {
+            self.sprite_frames[index] = Some((frames, rotations));
         }
         self
     }
@@ -95,6 +111,14 @@ impl Catalog {
 
     fn sprite(&self, name: &Spanned<String>, errors: &mut Vec<Located>) -> u16 {
         lookup(&self.sprite_sets, name, "sprite", "sprites", errors)
+    }
+
+    /// Frames and rotations of the sprite set at `index`, where known.
+    fn sprite_frames(&self, index: u16) -> Option<(u8, u8)> {
+        self.sprite_frames
+            .get(usize::from(index))
+            .copied()
+            .flatten()
     }
 }
 
@@ -274,6 +298,11 @@ pub(crate) fn build(
     if errors.is_empty() {
         check_overlaps(source, &outlines, &mut errors);
     }
+    let middles = if errors.is_empty() {
+        pair_middles(source, &outlines, &mut errors)
+    } else {
+        Vec::new()
+    };
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -310,6 +339,7 @@ pub(crate) fn build(
         source,
         catalog,
         &outlines,
+        &middles,
         player_sector,
         &thing_sectors,
         fits,
@@ -502,6 +532,143 @@ fn check_thing_height(fit: &ThingFit, height: i64, errors: &mut Vec<Located>) {
     errors.extend(message.map(|m| (fit.loc, m)));
 }
 
+/// Checks a wall's middle words as written on its line: `mid=` names a still sprite set, and
+/// `mid=`, `blocks` and `translucent` go on portals only, the last two with `mid=`.
+fn check_middle_words(wall: &SourceWall, catalog: &Catalog, errors: &mut Vec<Located>) {
+    if let Some(name) = &wall.middle {
+        let index = catalog.sprite(name, errors);
+        match catalog.sprite_frames(index) {
+            Some((frames, rotations)) if frames > 1 || rotations > 1 => {
+                let shape = match (frames > 1, rotations > 1) {
+                    (true, true) => format!("{frames} frames in {rotations} rotations"),
+                    (true, false) => format!("{frames} animation frames"),
+                    _ => format!("{rotations} rotations"),
+                };
+                errors.push((
+                    name.loc,
+                    format!(
+                        "mid= needs a still image, but sprite set '{}' has {shape}; use a set of one image (sprites/NAME.png)",
+                        name.value
+                    ),
+                ));
+            }
+            _ => {}
+        }
+    }
+    if wall.portal.is_none() {
+        if let Some(name) = &wall.middle {
+            errors.push((
+                name.loc,
+                "a masked texture on a solid wall: mid= is the image drawn in a portal's opening; remove mid=, or make the wall a portal=SECTOR".to_string(),
+            ));
+        }
+        if let Some(at) = wall.blocks {
+            errors.push((
+                at,
+                "'blocks' applies to portals only (a solid wall always blocks); remove it"
+                    .to_string(),
+            ));
+        }
+        if let Some(at) = wall.translucent {
+            errors.push((
+                at,
+                "'translucent' applies to a portal's middle image only; remove it (and use mid= on a portal)".to_string(),
+            ));
+        }
+        return;
+    }
+    if wall.middle.is_none() {
+        if let Some(at) = wall.blocks {
+            errors.push((
+                at,
+                "'blocks' needs mid= on the same line: a portal the player cannot pass shows what stops it; add mid=SPRITE (a grate, bars), or remove blocks".to_string(),
+            ));
+        }
+        if let Some(at) = wall.translucent {
+            errors.push((
+                at,
+                "'translucent' needs mid= on the same line: it draws the portal's middle image at 50 %; add mid=SPRITE, or remove translucent".to_string(),
+            ));
+        }
+    }
+}
+
+/// A portal's middle as one side's line gives it: the set's name, `blocks`, `translucent`.
+fn middle_words(wall: &SourceWall) -> Option<(&str, bool, bool)> {
+    wall.middle.as_ref().map(|name| {
+        (
+            name.value.as_str(),
+            wall.blocks.is_some(),
+            wall.translucent.is_some(),
+        )
+    })
+}
+
+/// The middle of each portal, shared by its two sides: per sector (outline order), per wall, the
+/// source wall whose line describes it, if either does. A portal's middle is one object seen
+/// from both sides, so a side that gives no `mid=` takes the other side's `mid=`, `blocks` and
+/// `translucent`; two sides that both give `mid=` must give the same three (else an error at
+/// the later line). Runs once the portals pair up ([`check_portals`]).
+fn pair_middles<'s>(
+    source: &SourceMap,
+    outlines: &[Outline<'s>],
+    errors: &mut Vec<Located>,
+) -> Vec<Vec<Option<&'s SourceWall>>> {
+    let mut by_edge: HashMap<(usize, usize), &'s SourceWall> = HashMap::new();
+    for wall in outlines.iter().flat_map(|o| &o.walls) {
+        by_edge.insert((wall.start, wall.end), wall.source);
+    }
+    let label = |vertex: usize| source.vertices[vertex].label.as_str();
+    outlines
+        .iter()
+        .map(|outline| {
+            outline
+                .walls
+                .iter()
+                .map(|wall| {
+                    wall.source.portal.as_ref()?;
+                    let back = by_edge.get(&(wall.end, wall.start)).copied();
+                    let here = middle_words(wall.source);
+                    let there = back.and_then(middle_words);
+                    match (here, there, back) {
+                        (Some(a), Some(b), Some(back)) if a != b => {
+                            // Reported once, at the later of the two lines.
+                            if back.loc.line < wall.source.loc.line {
+                                let describe = |(name, blocks, translucent): (&str, bool, bool)| {
+                                    let mut words = format!("mid={name}");
+                                    if blocks {
+                                        words.push_str(" blocks");
+                                    }
+                                    if translucent {
+                                        words.push_str(" translucent");
+                                    }
+                                    words
+                                };
+                                let at = wall.source.middle.as_ref().map_or(wall.source.loc, |m| m.loc);
+                                errors.push((
+                                    at,
+                                    format!(
+                                        "this side of the portal from {} to {} gives `{}`, the other side (line {}) `{}`; a portal's middle is one image seen from both sides: give it on one side only (the other side gets it), or the same on both",
+                                        label(wall.start),
+                                        label(wall.end),
+                                        describe(a),
+                                        back.loc.line,
+                                        describe(b)
+                                    ),
+                                ));
+                            }
+                            Some(wall.source)
+                        }
+                        (Some(_), _, _) => Some(wall.source),
+                        (None, Some(_), back) => back,
+                        (None, None, _) => None,
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// Every floor and ceiling texture of the map with the place that names it (a grid's sectors of
 /// one kind share their legend line's place; the caller's sorted diagnostics drop repeats).
 fn flat_uses(source: &SourceMap, catalog: &Catalog) -> Vec<FlatUse> {
@@ -671,6 +838,7 @@ fn check_sector_values(
         {
             catalog.texture(texture, errors);
         }
+        check_middle_words(wall, catalog, errors);
         match &wall.portal {
             Some(portal) => {
                 if portal.value == index {
@@ -1344,11 +1512,13 @@ fn locate(
     NO_PORTAL
 }
 
+#[allow(clippy::too_many_arguments)]
 fn tables(
     name: &str,
     source: &SourceMap,
     catalog: &Catalog,
     outlines: &[Outline<'_>],
+    middles: &[Vec<Option<&SourceWall>>],
     player_sector: u16,
     thing_sectors: &[u16],
     fits: Vec<ThingFit>,
@@ -1377,9 +1547,24 @@ fn tables(
     }
     let mut walls = Vec::new();
     let mut sectors = Vec::new();
-    for (sector, outline) in source.sectors.iter().zip(outlines) {
+    for ((sector, outline), middles) in source.sectors.iter().zip(outlines).zip(middles) {
         let first_wall = walls.len() as u16;
-        for wall in &outline.walls {
+        for (wall, middle) in outline.walls.iter().zip(middles) {
+            let (middle, flags) = match middle.and_then(|m| Some((m, m.middle.as_ref()?))) {
+                Some((words, name)) => (
+                    catalog.sprite(name, &mut Vec::new()),
+                    if words.blocks.is_some() {
+                        WALL_MIDDLE_BLOCKS
+                    } else {
+                        0
+                    } | if words.translucent.is_some() {
+                        WALL_MIDDLE_TRANSLUCENT
+                    } else {
+                        0
+                    },
+                ),
+                None => (NO_TEXTURE, 0),
+            };
             walls.push(Wall {
                 start: new_index[wall.start],
                 end: new_index[wall.end],
@@ -1397,6 +1582,8 @@ fn tables(
                     vertices[usize::from(new_index[wall.start])],
                     vertices[usize::from(new_index[wall.end])],
                 ),
+                middle,
+                flags,
             });
         }
         sectors.push(Sector {
@@ -1432,7 +1619,12 @@ fn tables(
                     THING_HANGING
                 } else {
                     0
-                } | if thing.options.solid { THING_SOLID } else { 0 },
+                } | if thing.options.solid { THING_SOLID } else { 0 }
+                    | if thing.options.translucent {
+                        THING_TRANSLUCENT
+                    } else {
+                        0
+                    },
                 frame_ticks: thing.options.frame_ticks,
             }
         })

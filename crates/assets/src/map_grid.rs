@@ -352,6 +352,9 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 lower: None,
                 x_offset: Spanned::new(0, loc),
                 y_offset: Spanned::new(0, loc),
+                middle: None,
+                blocks: None,
+                translucent: None,
             };
             match across {
                 Across::Solid(solid) => wall.texture = Some(solids[solid].1.clone()),

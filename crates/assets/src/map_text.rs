@@ -15,7 +15,7 @@ use crate::source::{
 const DEFAULT_LIGHT: u8 = portalcast_format::LIGHT_NEUTRAL;
 
 const SECTOR_KEYS: &[&str] = &["floor", "ceil", "floor_tex", "ceil_tex", "light"];
-const WALL_KEYS: &[&str] = &["tex", "portal", "upper", "lower", "xoff", "yoff"];
+const WALL_KEYS: &[&str] = &["tex", "portal", "upper", "lower", "mid", "xoff", "yoff"];
 const PLACE_KEYS: &[&str] = &["angle"];
 const THING_KEYS: &[&str] = &["angle", "z", "radius", "anim"];
 
@@ -30,6 +30,9 @@ struct WrittenWall<'t> {
     lower: Option<Spanned<String>>,
     x_offset: Spanned<i64>,
     y_offset: Spanned<i64>,
+    middle: Option<Spanned<String>>,
+    blocks: Option<Loc>,
+    translucent: Option<Loc>,
 }
 
 struct WrittenSector<'t> {
@@ -55,10 +58,12 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
         let Some((&directive, rest)) = words.split_first() else {
             continue;
         };
-        let (rest, flags) = if directive.text == "thing" {
-            lex::split_flags(rest, 3, lex::THING_FLAGS, "thing", THING_KEYS, &mut errors)
-        } else {
-            (rest.to_vec(), Vec::new())
+        let (rest, flags) = match directive.text {
+            "thing" => {
+                lex::split_flags(rest, 3, lex::THING_FLAGS, "thing", THING_KEYS, &mut errors)
+            }
+            "wall" => lex::split_flags(rest, 2, lex::WALL_FLAGS, "wall", WALL_KEYS, &mut errors),
+            _ => (rest.to_vec(), Vec::new()),
         };
         let (positional, mut keys) = KeyValues::split(&rest, &mut errors);
         match directive.text {
@@ -114,7 +119,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 });
             }
             "wall" => {
-                let wall = parse_wall(directive, &positional, &mut keys, &mut errors);
+                let wall = parse_wall(directive, &positional, &flags, &mut keys, &mut errors);
                 keys.report_unknown("wall", WALL_KEYS, &mut errors);
                 match (sectors.last_mut(), wall) {
                     (None, _) => errors.push((
@@ -315,6 +320,7 @@ fn parse_sector_values(
 fn parse_wall<'t>(
     directive: Token<'t>,
     positional: &[Token<'t>],
+    flags: &[Token<'t>],
     keys: &mut KeyValues<'t>,
     errors: &mut Vec<Located>,
 ) -> Option<WrittenWall<'t>> {
@@ -323,6 +329,10 @@ fn parse_wall<'t>(
     let portal = keys.take("portal");
     let upper = keys.take("upper").and_then(|t| texture_name(t, errors));
     let lower = keys.take("lower").and_then(|t| texture_name(t, errors));
+    let middle = keys.take("mid").and_then(|t| {
+        record(lex::name(t, "sprite name"), errors).map(|name| Spanned::new(name, t.loc))
+    });
+    let flag = |word: &str| flags.iter().find(|f| f.text == word).map(|f| f.loc);
     let mut offset = |key: &str| match keys.take(key) {
         Some(t) => {
             record(lex::integer(t, "texture offset"), errors).map(|v| Spanned::new(v, t.loc))
@@ -342,6 +352,9 @@ fn parse_wall<'t>(
         lower,
         x_offset: x_offset?,
         y_offset: y_offset?,
+        middle,
+        blocks: flag("blocks"),
+        translucent: flag("translucent"),
     })
 }
 
@@ -417,6 +430,9 @@ fn resolve_walls(
                 lower: wall.lower,
                 x_offset: wall.x_offset,
                 y_offset: wall.y_offset,
+                middle: wall.middle,
+                blocks: wall.blocks,
+                translucent: wall.translucent,
             });
         }
         resolved.push(sector);

@@ -1,9 +1,11 @@
-//! The shared palette (NeuQuant over every used image), nearest-colour mapping onto it, and the
-//! light colormap.
+//! The shared palette (NeuQuant over every used image), nearest-colour mapping onto it, the
+//! light colormap and the 50 % blend table.
 
 use std::collections::HashMap;
 
-use portalcast_format::{bgr555, Colormap, Palette, LIGHT_LEVELS, LIGHT_NEUTRAL, TRANSPARENT};
+use portalcast_format::{
+    bgr555, BlendTable, Colormap, Palette, LIGHT_LEVELS, LIGHT_NEUTRAL, TRANSPARENT,
+};
 
 /// Colours NeuQuant chooses: every palette entry except the transparent index 0.
 const QUANTISED_COLOURS: usize = 255;
@@ -107,5 +109,26 @@ impl Quantiser {
             }
         }
         map
+    }
+
+    /// The 50 % blend table: `blend[behind][front]` is the opaque index nearest (as
+    /// [`Quantiser::nearest`]) to the average of the two entries' shown colours, each channel
+    /// rounded half up, entry 0 counting as black (what the GBA shows for it). Symmetric;
+    /// `blend[0][0]` is 0 and `blend[a][a]` is `a` (the average of a colour with itself is
+    /// itself, and `a` is at distance 0 even where another entry shows the same colour).
+    pub fn blend(&mut self) -> Box<BlendTable> {
+        let mut table = Box::new([[0u8; 256]; 256]);
+        for behind in 0..256 {
+            table[behind][behind] = behind as u8;
+            for front in behind + 1..256 {
+                let (a, b) = (self.shown[behind], self.shown[front]);
+                let average =
+                    [0, 1, 2].map(|k| (u16::from(a[k]) + u16::from(b[k])).div_ceil(2) as u8);
+                let index = self.nearest(average);
+                table[behind][front] = index;
+                table[front][behind] = index;
+            }
+        }
+        table
     }
 }

@@ -62,6 +62,13 @@ pub(crate) struct SourceWall {
     pub lower: Option<Spanned<String>>,
     pub x_offset: Spanned<i64>,
     pub y_offset: Spanned<i64>,
+    /// Portal only (`.map`): the sprite set drawn in the opening (`mid=`), as written on this
+    /// side; the twin wall of the neighbour shares it (`map_build::pair_middles`).
+    pub middle: Option<Spanned<String>>,
+    /// Where the word `blocks` is written, if it is.
+    pub blocks: Option<Loc>,
+    /// Where the word `translucent` is written, if it is.
+    pub translucent: Option<Loc>,
 }
 
 #[derive(Clone, Debug)]
@@ -79,13 +86,16 @@ pub(crate) struct SourceThing {
     pub options: ThingOptions,
 }
 
-/// The optional words of a `thing` line: `z=H`, `hang`, `solid`, `radius=R`, `anim=TICKS`.
+/// The optional words of a `thing` line: `z=H`, `hang`, `solid`, `translucent`, `radius=R`,
+/// `anim=TICKS`.
 #[derive(Clone, Debug)]
 pub(crate) struct ThingOptions {
     /// Units above the floor of the sprite's bottom (hanging: below the ceiling of its top).
     pub z: i64,
     pub hanging: bool,
     pub solid: bool,
+    /// Drawn at 50 % over what is behind it.
+    pub translucent: bool,
     /// The footprint radius written, if any (else half the sprite's width, rounded up).
     pub radius: Option<Spanned<i64>>,
     /// Game ticks each animation frame shows (`anim=`, else [`DEFAULT_FRAME_TICKS`]).
@@ -101,6 +111,7 @@ impl Default for ThingOptions {
             z: 0,
             hanging: false,
             solid: false,
+            translucent: false,
             radius: None,
             frame_ticks: DEFAULT_FRAME_TICKS,
         }

@@ -11,7 +11,7 @@ use portalcast_assets::{compile_map_str, Catalog};
 const TEXTURES: &[&str] = &[
     "brick", "ceiling", "grass", "metal", "step", "stone", "tiles", "trim", "water", "wood",
 ];
-const SPRITES: &[&str] = &["torch"];
+const SPRITES: &[&str] = &["flame", "grate", "statue", "torch"];
 /// The torch's size, as the shipped `sprites/torch.png` has it (the things' checks use it).
 const TORCH_SIZE: (u16, u16) = (16, 48);
 
@@ -66,7 +66,10 @@ fn every_bad_map_reports_its_error_at_its_place() {
             .nth(1)
             .is_some_and(|l| l.trim() == "# catalog: no-sky");
         let catalog = Catalog::new(TEXTURES.iter().copied(), SPRITES.iter().copied(), has_sky)
-            .with_sprite_size("torch", TORCH_SIZE.0, TORCH_SIZE.1);
+            .with_sprite_size("torch", TORCH_SIZE.0, TORCH_SIZE.1)
+            .with_sprite_frames("flame", 4, 1)
+            .with_sprite_frames("statue", 1, 8)
+            .with_sprite_frames("grate", 1, 1);
         let file_name = path
             .file_name()
             .and_then(|n| n.to_str())

@@ -8,7 +8,10 @@ use std::collections::{BTreeMap, HashMap, VecDeque};
 
 use common::{shipped_assets, Scratch};
 use portalcast_assets::{compile_dir, Compiled};
-use portalcast_format::{MapTables, Sector, NO_TEXTURE, SKY, THING_HANGING};
+use portalcast_format::{
+    MapTables, Sector, NO_TEXTURE, SKY, THING_HANGING, THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS,
+    WALL_MIDDLE_TRANSLUCENT,
+};
 
 fn compiled() -> Compiled {
     compile_dir(&shipped_assets()).unwrap_or_else(|e| panic!("shipped assets must compile:\n{e}"))
@@ -68,6 +71,11 @@ fn check_invariants(map: &MapTables<'_>, texture_count: usize, compiled: &Compil
                         (wall.upper_texture, wall.lower_texture),
                         (NO_TEXTURE, NO_TEXTURE)
                     );
+                    assert_eq!(
+                        (wall.middle, wall.flags),
+                        (NO_TEXTURE, 0),
+                        "{name}: no middle on a solid wall"
+                    );
                 }
                 Some(other) => {
                     assert_eq!(wall.texture, NO_TEXTURE);
@@ -84,6 +92,21 @@ fn check_invariants(map: &MapTables<'_>, texture_count: usize, compiled: &Compil
                         index,
                         "{name}: portals point both ways"
                     );
+                    assert_eq!(
+                        (back.middle, back.flags),
+                        (wall.middle, wall.flags),
+                        "{name}: both sides of a portal share its middle"
+                    );
+                    if wall.middle == NO_TEXTURE {
+                        assert_eq!(wall.flags, 0, "{name}: middle flags need a middle");
+                    } else {
+                        let set = &compiled.sprite_sets()[usize::from(wall.middle)];
+                        assert_eq!(
+                            (set.frames, set.rotations),
+                            (1, 1),
+                            "{name}: a still middle"
+                        );
+                    }
                     let both_sky = sector.ceil_texture == SKY && there.ceil_texture == SKY;
                     if there.ceil_z < sector.ceil_z && !both_sky {
                         assert!(usize::from(wall.upper_texture) < texture_count);
@@ -161,13 +184,10 @@ fn shipped_maps_satisfy_the_table_invariants() {
     for map in compiled.maps() {
         check_invariants(&map.tables(), compiled.textures().len(), &compiled);
     }
-    // The flame and the statue are shipped for maps to place; no shipped map does yet.
-    let mut unused = vec!["sprites/flame.strip4.png".to_string()];
-    unused.extend((0..8).map(|r| format!("sprites/statue.r{r}.png")));
     assert_eq!(
         compiled.left_out(),
-        unused,
-        "every other shipped asset is used"
+        [] as [String; 0],
+        "every shipped asset is used"
     );
     let sets = compiled.sprite_sets();
     let torch = sets
@@ -356,8 +376,55 @@ fn bench_map_meets_its_design() {
         "light and dark"
     );
 
-    // Walk from the start with the player's rules: step up at most 16. Every sector reached
-    // must leave 64 units of headroom, and the walk must climb a staircase of 4+ steps.
+    // Portal middles (issue 17): a grate bars the passage north from the hall, on both sides;
+    // the gallery's windows hold translucent leaded glass; one of the hall's lamps is
+    // translucent, so the ROM ships the blend table.
+    let sector_named = |name: &str| {
+        let text = std::fs::read_to_string(shipped_assets().join("maps/bench.map")).expect("bench");
+        text.lines()
+            .filter_map(|l| l.strip_prefix("sector "))
+            .position(|l| l.split_whitespace().next() == Some(name))
+            .expect("a bench sector")
+    };
+    let portal = |from: &str, to: &str| {
+        let (from, to) = (sector_named(from), sector_named(to));
+        *map.sector_walls(&map.sectors[from])
+            .iter()
+            .find(|w| w.neighbour().map(usize::from) == Some(to))
+            .expect("a portal")
+    };
+    let set = |name: &str| {
+        compiled
+            .sprite_sets()
+            .iter()
+            .position(|s| s.name == name)
+            .expect("a used set") as u16
+    };
+    for (from, to) in [("hall_n", "passage"), ("passage", "hall_n")] {
+        let wall = portal(from, to);
+        assert_eq!((wall.middle, wall.flags), (set("grate"), 0));
+    }
+    for k in 1..=3 {
+        let window = format!("window_{k}");
+        for wall in [portal("gallery", &window), portal(&window, "gallery")] {
+            assert_eq!(
+                (wall.middle, wall.flags),
+                (set("window"), WALL_MIDDLE_TRANSLUCENT | WALL_MIDDLE_BLOCKS)
+            );
+        }
+    }
+    let middles = map.walls.iter().filter(|w| w.middle != NO_TEXTURE).count();
+    assert_eq!(middles, 8, "the grate's and the three windows' two sides");
+    let translucent = map
+        .things
+        .iter()
+        .filter(|t| t.flags & THING_TRANSLUCENT != 0);
+    assert_eq!(translucent.count(), 1, "one translucent lamp");
+    assert!(compiled.blend().is_some(), "something is translucent");
+
+    // Walk from the start with the player's rules: step up at most 16, and not through a
+    // portal that blocks. Every sector reached must leave 64 units of headroom, and the walk
+    // must climb a staircase of 4+ steps.
     let mut reached = vec![false; map.sectors.len()];
     let mut queue = VecDeque::from([usize::from(map.player_start.sector)]);
     reached[usize::from(map.player_start.sector)] = true;
@@ -372,6 +439,9 @@ fn bench_map_meets_its_design() {
             let Some(next) = wall.neighbour().map(usize::from) else {
                 continue;
             };
+            if wall.flags & WALL_MIDDLE_BLOCKS != 0 {
+                continue;
+            }
             let there = map.sectors[next];
             let rise = there.floor_z - here.floor_z;
             if rise > 16 || there.ceil_z - there.floor_z < 64 {
@@ -386,10 +456,10 @@ fn bench_map_meets_its_design() {
             }
         }
     }
-    assert!(
-        reached.iter().filter(|&&r| r).count() >= 30,
-        "most of the map is walkable"
-    );
+    // The windows (closed by their glass), the crawlway's den and the ledge are off the walk's
+    // rules; the rest is walkable.
+    let walkable = reached.iter().filter(|&&r| r).count();
+    assert!(walkable >= 30, "most of the map is walkable: {walkable}");
     assert!(
         longest_climb.iter().any(|&c| c >= 4),
         "a staircase of 16-unit steps"

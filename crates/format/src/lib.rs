@@ -20,11 +20,11 @@ mod texture;
 
 pub use map::{
     MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING,
-    THING_SOLID,
+    THING_SOLID, THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
 };
 pub use texture::{
-    bgr555, colormap_row, Colormap, Palette, Post, Sky, Sprite, SpriteSet, Texture, LIGHT_LEVELS,
-    LIGHT_NEUTRAL, POST_HEADER_BYTES, TRANSPARENT,
+    bgr555, colormap_row, BlendTable, Colormap, Palette, Post, Sky, Sprite, SpriteSet, Texture,
+    LIGHT_LEVELS, LIGHT_NEUTRAL, POST_HEADER_BYTES, TRANSPARENT,
 };
 
 /// Forces 4-byte alignment on its contents, so the ROM can read blobs pulled in with

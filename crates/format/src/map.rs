@@ -57,7 +57,21 @@ pub struct Wall {
     /// The wall's length in 24.8 world units, `floor(256·√(Δx² + Δy²))`: computed by the map
     /// compiler, so the renderer takes no square root per wall.
     pub length_fx8: i32,
+    /// Portal only: a colour-keyed image drawn in the opening (grates, bars, railings, a window
+    /// frame), index into the sprite sets table (a still image); [`NO_TEXTURE`] for none. Its
+    /// top is at the opening's top (the lower of the two ceilings) plus `y_offset`, its column
+    /// `floor(u) mod width`; it does not repeat vertically.
+    pub middle: u16,
+    /// [`WALL_MIDDLE_BLOCKS`], [`WALL_MIDDLE_TRANSLUCENT`].
+    pub flags: u16,
 }
+
+/// [`Wall::flags`]: the player cannot pass the portal (its middle image is a barrier).
+pub const WALL_MIDDLE_BLOCKS: u16 = 1;
+/// [`Wall::flags`]: the middle image is drawn at 50 % over what is behind it.
+pub const WALL_MIDDLE_TRANSLUCENT: u16 = 2;
+/// [`Thing::flags`]: the sprite is drawn at 50 % over what is behind it.
+pub const THING_TRANSLUCENT: u16 = 4;
 
 impl Wall {
     /// The sector on the other side, or `None` for a solid wall.

@@ -35,6 +35,11 @@ pub const fn bgr555(r: u8, g: u8, b: u8) -> u16 {
     five(r) | (five(g) << 5) | (five(b) << 10)
 }
 
+/// The 50 % blend of two palette colours: `blend[behind][front]` is the palette index nearest
+/// the average of the two colours (never [`TRANSPARENT`] unless both are). Built by the asset
+/// compiler, shipped only when a map draws something translucent.
+pub type BlendTable = [[u8; 256]; 256];
+
 /// A power-of-two texture of palette indices with its mip chain, in up to two layouts.
 ///
 /// Level `m` is `max(width >> m, 1)` × `max(height >> m, 1)` texels; the chain runs down to 1×1,

@@ -307,7 +307,8 @@ fn chebyshev_distances(
 /// A stable false colour for a surface: black for [`Surface::None`], sky blue for the sky,
 /// and for the others a colour hashed from the kind and index, tinted by kind (walls reddish,
 /// upper strips yellowish, lower strips purplish, floors greenish, ceilings bluish, things
-/// bright: every channel at least 160) so neighbouring walls still differ.
+/// bright: every channel at least 160, middles cyan: green and blue at least 160, red below 96)
+/// so neighbouring walls still differ.
 pub fn surface_colour(surface: Surface) -> [u8; 3] {
     let (kind, index, tint): (u64, u16, [u8; 3]) = match surface {
         Surface::None => return [0, 0, 0],
@@ -318,10 +319,11 @@ pub fn surface_colour(surface: Surface) -> [u8; 3] {
         Surface::Floor(s) => (4, s, [0, 96, 0]),
         Surface::Ceiling(s) => (5, s, [0, 0, 96]),
         Surface::Thing(t) => (6, t, [160, 160, 160]),
+        Surface::Middle(w) => (7, w, [0, 160, 160]),
     };
     let hash = splitmix64((kind << 16) | u64::from(index));
-    // Things span 96 shades above their tint, the others 160.
-    let spread = if kind == 6 { 96 } else { 160 };
+    // Things and middles span 96 shades above their tint, the others 160.
+    let spread = if kind >= 6 { 96 } else { 160 };
     let channel = |i: usize| tint[i] + (hash >> (8 * i)) as u8 % spread;
     [channel(0), channel(1), channel(2)]
 }

@@ -93,7 +93,7 @@ impl Canvas for RecordingCanvas {
             for (offset, index) in column.indices(run).enumerate() {
                 let at = (run.row + offset) * self.resolution.width() + x;
                 self.surfaces[at] = self.current;
-                self.indices[at] = index;
+                self.indices[at] = column.over(self.indices[at], index);
             }
         }
         HostCanvas {
@@ -174,6 +174,7 @@ pub fn compare_with_engine(
         colormap: assets.colormap,
         sprites: assets.sprites,
         sprite_sets: assets.sprite_sets,
+        blend: assets.blend,
     };
     let oracle_view = crate::View {
         tick,

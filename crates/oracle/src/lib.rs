@@ -43,6 +43,27 @@
 //! texel is opaque the nearest such thing (ties to the later in the map's table) replaces the
 //! pixel's surface with [`Surface::Thing`], lit by its sector's light at depth `z'`.
 //!
+//! # Middles and translucency
+//!
+//! Where a pixel's ray passes a portal (the exit wall `w` of a segment whose sector did not stop
+//! it, so it goes on into the neighbour `N`) and `w` has a middle image (the first image of its
+//! sprite set `w.middle`), the crossing at `t_out`, height `h = h(t_out)`, meets the image at
+//! column `floor(s·length + x_offset) mod width` and row
+//! `v = floor(min(S.ceil_z, N.ceil_z) + y_offset − h)`; where `0 ≤ v < height` and the texel is
+//! opaque it is a candidate [`Surface::Middle`] at depth `t_out`, lit by the near sector `S` at
+//! that depth.
+//!
+//! The pixel shows the nearest (by depth) of its things, its middles and the surface that
+//! stopped the ray; at equal depth a thing of the portal's near sector (or one before it on the
+//! path) is in front of the middle, one behind it is covered, two things are in path order then
+//! the later in the map's table first. The surface and depth are the nearest one's. A
+//! translucent front (a thing with [`THING_TRANSLUCENT`](portalcast_format::THING_TRANSLUCENT)
+//! or a middle of a wall with
+//! [`WALL_MIDDLE_TRANSLUCENT`](portalcast_format::WALL_MIDDLE_TRANSLUCENT)) shows
+//! `blend[behind][front]`, `behind` being the index the pixel would have without it (the next
+//! front, itself possibly translucent, or the surface hit). Without a blend table
+//! ([`Assets::blend`] `None`) translucent fronts are drawn opaque.
+//!
 //! The strict and non-strict comparisons settle exact ties (a pixel centre exactly on the
 //! projection of an edge) the way the engine's row rule does: a vertical span `[y0, y1)` owns
 //! the rows with `y0 ≤ y + ½ < y1`, so a tied pixel belongs to the surface *below* the edge on
@@ -195,8 +216,12 @@ pub struct Assets<'a> {
     pub colormap: &'a Colormap,
     /// Sprite images, indexed by the sets.
     pub sprites: &'a [Sprite<'a>],
-    /// Sprite sets, indexed by [`Thing::sprite`](portalcast_format::Thing::sprite).
+    /// Sprite sets, indexed by [`Thing::sprite`](portalcast_format::Thing::sprite) and
+    /// [`Wall::middle`](portalcast_format::Wall::middle).
     pub sprite_sets: &'a [portalcast_format::SpriteSet<'a>],
+    /// The 50 % blend of translucent things and middles (`blend[behind][front]`); `None` draws
+    /// them opaque.
+    pub blend: Option<&'a portalcast_format::BlendTable>,
 }
 
 /// A rendered frame, row-major (`y * width + x`).
@@ -239,12 +264,12 @@ impl Frame {
     }
 
     /// The sector a surface belongs to: its own for floors and ceilings, the owner of the wall
-    /// for walls and strips, the thing's for things; `None` for the sky, [`Surface::None`] and
-    /// unknown walls and things.
+    /// for walls, strips and middles, the thing's for things; `None` for the sky,
+    /// [`Surface::None`] and unknown walls and things.
     pub fn sector_of(&self, surface: Surface) -> Option<u16> {
         match surface {
             Surface::Floor(s) | Surface::Ceiling(s) => Some(s),
-            Surface::Wall(w) | Surface::Upper(w) | Surface::Lower(w) => {
+            Surface::Wall(w) | Surface::Upper(w) | Surface::Lower(w) | Surface::Middle(w) => {
                 let owner = self.wall_sectors.get(usize::from(w)).copied();
                 owner.filter(|&s| s != u16::MAX)
             }

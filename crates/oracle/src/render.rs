@@ -3,7 +3,8 @@
 use portalcast::render::light::light_row;
 use portalcast::render::surface::{Surface, THING_DEPTH_MIN};
 use portalcast_format::{
-    MapTables, Sector, Sprite, Texture, Wall, NO_TEXTURE, SKY, THING_HANGING, TRANSPARENT,
+    MapTables, Sector, Sprite, Texture, Wall, NO_TEXTURE, SKY, THING_HANGING, THING_TRANSLUCENT,
+    TRANSPARENT, WALL_MIDDLE_TRANSLUCENT,
 };
 
 use crate::geometry::{exit_wall, find_sector, vertex, Vec2};
@@ -57,6 +58,8 @@ struct ThingView<'a> {
     /// Height of the rectangle's top edge, `b + height`.
     top: f64,
     sprite: &'a Sprite<'a>,
+    /// Drawn over what is behind it through the blend table.
+    translucent: bool,
     /// The columns whose ray may meet the rectangle (a superset: `u` decides).
     first_column: usize,
     end_column: usize,
@@ -69,6 +72,38 @@ struct Candidate<'a> {
     thing: ThingView<'a>,
     position: usize,
     u: usize,
+}
+
+/// The middle image of a portal a column's ray crosses: the exit wall of the segment at
+/// `position` of the path, with everything but the row worked out.
+#[derive(Clone, Copy, Debug)]
+struct MiddleView<'a> {
+    position: usize,
+    wall: u16,
+    /// The wall's own sector (the near side), whose light it takes.
+    sector: u16,
+    /// The crossing's depth, the segment's `t_out`.
+    depth: f64,
+    /// The image's top edge: the lower of the two ceilings plus the wall's y offset.
+    top: f64,
+    /// The image column, `floor(u) mod width`.
+    u: usize,
+    sprite: &'a Sprite<'a>,
+    translucent: bool,
+}
+
+/// Something a pixel's ray meets in front of the surface that stops it: a thing or a middle,
+/// at an opaque texel, lit.
+#[derive(Clone, Copy, Debug)]
+struct Front {
+    depth: f64,
+    /// Order of equal depths, nearest first: a thing in the sector at path position `p` is
+    /// `2p`, the middle crossed out of it `2p + 1` (a thing on the near side covers the middle,
+    /// one on the far side is covered), then the later thing in the map's table first.
+    rank: (usize, u16),
+    surface: Surface,
+    index: u8,
+    translucent: bool,
 }
 
 /// Where a pixel centre lies exactly on an edge (an axis-aligned view of integer geometry puts
@@ -112,20 +147,22 @@ pub fn engine_direction(camera: &Camera) -> (f64, f64) {
 /// - a texture slot of [`NO_TEXTURE`] (or [`SKY`] anywhere but a ceiling) where a surface is
 ///   drawn gives texel 0, as the engine's blank column does;
 /// - things: the crate documentation's "Things" (the pixel's ray meets each thing of a sector it
-///   reaches at `u`, `v` of the rule; the nearest at an opaque texel shows).
+///   reaches at `u`, `v` of the rule; the nearest at an opaque texel shows);
+/// - middles and translucency: the crate documentation's "Middles and translucency".
 ///
 /// Light: the final index is `colormap[row][texel]` with
 /// `row = light_row(light, floor(depth), lighting)` when that is `Some`, else the texel; the
-/// light is the near sector's for walls and strips, the plane's sector for flats, the thing's
-/// sector for things, with `depth` the hit's `t` (a thing's `z'`). The sky is never lit.
+/// light is the near sector's for walls, strips and middles, the plane's sector for flats, the
+/// thing's sector for things, with `depth` the hit's `t` (a thing's `z'`, a middle's crossing
+/// `t_out`). The sky is never lit.
 ///
 /// If `camera.sector` is `None` and no sector strictly contains the eye, every pixel is
 /// [`Surface::None`] (index 0, depth infinite): a camera on a wall line is an input error the
 /// comparison should see, not a panic.
 ///
 /// Panics if a texture slot other than [`NO_TEXTURE`] is out of range of `assets.textures`
-/// or lacks the chain (columns or rows) it is drawn with, or if a thing's sprite is out of range
-/// of `assets.sprites`.
+/// or lacks the chain (columns or rows) it is drawn with, or if a thing's or a middle's sprite
+/// set is out of range of `assets.sprite_sets` or its image of `assets.sprites`.
 ///
 /// Rays go through the pixel centres moved by [`TIE_NUDGE`].
 pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) -> Frame {
@@ -151,23 +188,30 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
     let mut path = Vec::with_capacity(max_steps);
     let things = thing_views(map, assets, camera, view, &frame.thing_sectors);
     let mut candidates = Vec::new();
+    let mut middles = Vec::new();
+    let mut fronts = Vec::new();
     for column in 0..width {
         let m = (column as f64 - width as f64 / 2.0 + 0.5 + COLUMN_TIE_NUDGE) / view.focal_x;
         let d = Vec2::new(cos - m * sin, sin + m * cos);
         trace_column(map, start, eye, d, max_steps, &mut path);
         column_candidates(&things, &path, column, m, &mut candidates);
+        column_middles(map, assets, &path, &mut middles);
         let sky_column = sky_column(assets, d);
         for row in 0..height {
             let k = (row as f64 + 0.5 + TIE_NUDGE - view.horizon_y) / view.focal_y;
             let (hit, reached) = shade_ray(map, &path, camera.eye_z, k);
-            let pixel = row * width + column;
-            if let Some((thing, texel)) = thing_hit(&candidates, reached, camera.eye_z, k) {
-                frame.surfaces[pixel] = Surface::Thing(thing.index);
-                frame.indices[pixel] = lit(map, assets, view, thing.sector, thing.depth, texel);
-                frame.depths[pixel] = thing.depth;
-                continue;
-            }
-            let (surface, index, depth) = match hit {
+            pixel_fronts(
+                map,
+                assets,
+                view,
+                &candidates,
+                &middles,
+                reached,
+                camera.eye_z,
+                k,
+                &mut fronts,
+            );
+            let shade_hit = || match hit {
                 Hit::None => (Surface::None, 0, f64::INFINITY),
                 Hit::Sky => (
                     Surface::Sky,
@@ -197,6 +241,28 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
                     (surface, lit(map, assets, view, sector, t, texel), t)
                 }
             };
+            let (surface, index, depth) = match fronts.first() {
+                None => shade_hit(),
+                Some(nearest) => {
+                    // The nearest front that hides what is behind it (an opaque one, or any
+                    // when there is no blend table), or the hit; then each translucent front
+                    // before it, back to front, over that.
+                    let covering = fronts
+                        .iter()
+                        .position(|front| !front.translucent || assets.blend.is_none());
+                    let (mut index, over) = match covering {
+                        Some(at) => (fronts[at].index, &fronts[..at]),
+                        None => (shade_hit().1, &fronts[..]),
+                    };
+                    if let Some(blend) = assets.blend {
+                        for front in over.iter().rev() {
+                            index = blend[usize::from(index)][usize::from(front.index)];
+                        }
+                    }
+                    (nearest.surface, index, nearest.depth)
+                }
+            };
+            let pixel = row * width + column;
             frame.surfaces[pixel] = surface;
             frame.indices[pixel] = index;
             frame.depths[pixel] = depth;
@@ -316,6 +382,7 @@ fn thing_views<'a>(
                 left,
                 top,
                 sprite,
+                translucent: thing.flags & THING_TRANSLUCENT != 0,
                 first_column: first as usize,
                 end_column: end as usize,
             })
@@ -354,27 +421,117 @@ fn column_candidates<'a>(
     }
 }
 
-/// The thing the ray of slope `k` shows, and its texel: the first of `candidates` (nearest
-/// first) in a sector among the first `reached` of the path whose rectangle the ray meets at an
-/// opaque texel.
-fn thing_hit<'a>(
-    candidates: &[Candidate<'a>],
+/// The middle images of the portals the column's `path` crosses (the exit walls of its
+/// segments that have one), in the path's order.
+fn column_middles<'a>(
+    map: &MapTables,
+    assets: &Assets<'a>,
+    path: &[Segment],
+    middles: &mut Vec<MiddleView<'a>>,
+) {
+    middles.clear();
+    for (position, segment) in path.iter().enumerate() {
+        let wall = &map.walls[usize::from(segment.wall)];
+        if wall.middle == NO_TEXTURE {
+            continue;
+        }
+        let Some(next) = wall.neighbour() else {
+            continue;
+        };
+        let sprite = middle_image(assets, wall.middle).unwrap_or_else(|| {
+            panic!(
+                "wall {}: middle sprite set {} out of range ({} sets, {} images)",
+                segment.wall,
+                wall.middle,
+                assets.sprite_sets.len(),
+                assets.sprites.len()
+            )
+        });
+        let sector = &map.sectors[usize::from(segment.sector)];
+        let neighbour = &map.sectors[usize::from(next)];
+        // The wall's `u`, as `segment_hit` computes it for the strips.
+        let u = segment.s * wall_length(map, wall) + f64::from(wall.x_offset);
+        middles.push(MiddleView {
+            position,
+            wall: segment.wall,
+            sector: segment.sector,
+            depth: segment.t_out,
+            top: f64::from(sector.ceil_z.min(neighbour.ceil_z)) + f64::from(wall.y_offset),
+            u: (u.floor() as i64).rem_euclid(i64::from(sprite.width)) as usize,
+            sprite,
+            translucent: wall.flags & WALL_MIDDLE_TRANSLUCENT != 0,
+        });
+    }
+}
+
+/// The image of the middle sprite set `set`: its first (a middle is a still image).
+fn middle_image<'a>(assets: &Assets<'a>, set: u16) -> Option<&'a Sprite<'a>> {
+    let set = assets.sprite_sets.get(usize::from(set))?;
+    assets.sprites.get(usize::from(set.first))
+}
+
+/// What the ray of slope `k` meets in front of the surface that stops it, nearest first: the
+/// things of `candidates` in a sector among the first `reached` of the path, and the middles
+/// of the portals it passes (out of the first `reached − 1` segments), where it meets them at
+/// an opaque texel.
+#[allow(clippy::too_many_arguments)]
+fn pixel_fronts(
+    map: &MapTables,
+    assets: &Assets,
+    view: &View,
+    candidates: &[Candidate],
+    middles: &[MiddleView],
     reached: usize,
     eye_z: f64,
     k: f64,
-) -> Option<(ThingView<'a>, u8)> {
-    candidates.iter().find_map(|candidate| {
+    fronts: &mut Vec<Front>,
+) {
+    fronts.clear();
+    for candidate in candidates {
         if candidate.position >= reached {
-            return None;
+            continue;
         }
         let thing = &candidate.thing;
         let v = (thing.top - (eye_z - k * thing.depth)).floor();
         if v < 0.0 || v >= f64::from(thing.sprite.height) {
-            return None;
+            continue;
         }
         let texel = thing.sprite.texel(candidate.u, v as usize);
-        (texel != TRANSPARENT).then_some((*thing, texel))
-    })
+        if texel == TRANSPARENT {
+            continue;
+        }
+        fronts.push(Front {
+            depth: thing.depth,
+            rank: (2 * candidate.position, u16::MAX - thing.index),
+            surface: Surface::Thing(thing.index),
+            index: lit(map, assets, view, thing.sector, thing.depth, texel),
+            translucent: thing.translucent,
+        });
+    }
+    for middle in middles {
+        // The ray passes the portal only if the segment's sector did not stop it.
+        if middle.position + 1 >= reached {
+            break;
+        }
+        let v = (middle.top - (eye_z - k * middle.depth)).floor();
+        if v < 0.0 || v >= f64::from(middle.sprite.height) {
+            continue;
+        }
+        let texel = middle.sprite.texel(middle.u, v as usize);
+        if texel == TRANSPARENT {
+            continue;
+        }
+        fronts.push(Front {
+            depth: middle.depth,
+            rank: (2 * middle.position + 1, 0),
+            surface: Surface::Middle(middle.wall),
+            index: lit(map, assets, view, middle.sector, middle.depth, texel),
+            translucent: middle.translucent,
+        });
+    }
+    if fronts.len() > 1 {
+        fronts.sort_by(|a, b| a.depth.total_cmp(&b.depth).then(a.rank.cmp(&b.rank)));
+    }
 }
 
 /// The sectors the 2D ray `eye + t·d` crosses from `start`, up to its solid wall or

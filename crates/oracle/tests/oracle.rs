@@ -12,8 +12,9 @@ use std::collections::BTreeSet;
 use portalcast::render::light::light_row;
 use portalcast::render::surface::THING_DEPTH_MIN;
 use portalcast_format::{
-    Colormap, MapTables, PlayerStart, Sector, Sky, Sprite, SpriteSet, Texture, Thing, Vertex, Wall,
-    NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING, TRANSPARENT,
+    BlendTable, Colormap, MapTables, PlayerStart, Sector, Sky, Sprite, SpriteSet, Texture, Thing,
+    Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING, THING_TRANSLUCENT, TRANSPARENT,
+    WALL_MIDDLE_TRANSLUCENT,
 };
 use portalcast_oracle::{
     angle_from_bits, angle_to_bits, compare, compare_with_row_tolerance, find_sector, render,
@@ -144,9 +145,32 @@ impl OwnedSprite {
 }
 
 /// Sprite slots of the fixtures: an 8×16 image with holes (column 0 empty, and every texel with
-/// `(u + v) mod 4 = 3`), and an 8×16 opaque one.
+/// `(u + v) mod 4 = 3`), an 8×16 opaque one, and an 8×24 grate for portal middles (columns 3
+/// and 7 and rows 7, 15 and 23 transparent).
 const HOLED_SPRITE: u16 = 0;
 const SOLID_SPRITE: u16 = 1;
+const GRATE_SPRITE: u16 = 2;
+
+/// Texel `(u, v)` of the grate: distinct for every opaque `(u, v)`.
+fn grate(u: usize, v: usize) -> Option<u8> {
+    (u % 4 != 3 && v % 8 != 7).then_some((40 + 24 * u + v) as u8)
+}
+
+/// The fixtures' blend table: `blend[b][f] = (7b + 3f) mod 255 + 1`, never 0, and different
+/// with the arguments swapped, so a blend the wrong way round shows.
+fn blended(behind: u8, front: u8) -> u8 {
+    ((7 * usize::from(behind) + 3 * usize::from(front)) % 255 + 1) as u8
+}
+
+fn blend_table() -> Box<BlendTable> {
+    let mut table: Box<BlendTable> = vec![[0u8; 256]; 256].into_boxed_slice().try_into().unwrap();
+    for (behind, row) in table.iter_mut().enumerate() {
+        for (front, entry) in row.iter_mut().enumerate() {
+            *entry = blended(behind as u8, front as u8);
+        }
+    }
+    table
+}
 
 /// Texel `(u, v)` of the holed sprite.
 fn holed(u: usize, v: usize) -> Option<u8> {
@@ -164,6 +188,7 @@ struct Fixture {
     sky_height: u16,
     colormap: Box<Colormap>,
     sprites: Vec<OwnedSprite>,
+    blend: Option<Box<BlendTable>>,
 }
 
 impl Fixture {
@@ -182,7 +207,9 @@ impl Fixture {
             sprites: vec![
                 OwnedSprite::new(8, 16, holed),
                 OwnedSprite::new(8, 16, |u, v| Some(solid(u, v))),
+                OwnedSprite::new(8, 24, grate),
             ],
+            blend: None,
         }
     }
 
@@ -219,6 +246,7 @@ impl Fixture {
             colormap: &self.colormap,
             sprites: &sprites,
             sprite_sets,
+            blend: self.blend.as_deref(),
         };
         render(map, &assets, camera, view)
     }
@@ -282,6 +310,8 @@ fn wall(start: u16, end: u16, portal: u16) -> Wall {
         // Only the engine reads it; these maps are drawn by the oracle, which measures each
         // wall itself.
         length_fx8: 0,
+        middle: NO_TEXTURE,
+        flags: 0,
     }
 }
 
@@ -1043,6 +1073,397 @@ fn a_set_shows_the_frame_of_the_tick_and_the_rotation_of_the_eye() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Portal middles and translucency
+//
+// Rooms A and B with B's floor 0 and ceiling 48 (light 200): A's wall 1 is the portal, with the
+// grate as its middle, x offset 5, y offset 2. Columns 60..=179 see the portal (`|m| < ½`), at
+// `t = 64` exactly, `y = 64·m`, so `u = floor(32 + 64·m + 5) = floor((8c − 401)/15) mod 8`. The
+// image's top is the lower ceiling plus the offset, 50: row `y` (`h(64) = 32 − (8y − 636)/15`)
+// meets it at `v = floor(50 − h) = floor((8y − 366)/15)`, rows 46..=90 of the image, but the
+// upper strip (`h(64) > 48`) covers rows ..=49: in column 120, `u = 5`, rows 50..=90 are
+// `v = 2..=23`.
+
+/// The middles' two rooms, with the grate on wall 1 (with `flags`).
+fn grated_rooms(flags: u16) -> OwnedMap {
+    let mut map = two_rooms(0, 48, CEIL_TEX, CEIL_TEX, 200);
+    map.walls[1].middle = GRATE_SPRITE;
+    map.walls[1].x_offset = 5;
+    map.walls[1].y_offset = 2;
+    map.walls[1].flags = flags;
+    map
+}
+
+/// The two rooms without the grate (wall 1 keeps its offsets: they only move its strips).
+fn bare_rooms() -> OwnedMap {
+    let mut map = grated_rooms(0);
+    map.walls[1].middle = NO_TEXTURE;
+    map
+}
+
+/// The grate's texel at pixel `(x, y)` of the centre camera's view, if the pixel's ray meets
+/// the grate's image at an opaque texel (whether it reaches the portal or not).
+fn grate_at(x: i32, y: i32) -> Option<u8> {
+    let (u, v) = ((8 * x - 401).div_euclid(15), (8 * y - 366).div_euclid(15));
+    ((60..180).contains(&x) && (0..24).contains(&v))
+        .then(|| grate(u.rem_euclid(8) as usize, v as usize))
+        .flatten()
+}
+
+/// Every pixel whose ray passes the portal (the frame without the grate shows room B there) and
+/// meets an opaque texel of the grate shows `Middle(1)` at that texel, lit by room A's light at
+/// depth 64, at depth 64; the grate's holes, and every pixel whose ray stops in A, are as
+/// without it.
+#[test]
+fn a_middle_shows_its_opaque_texels_in_the_opening_and_the_room_behind_through_its_holes() {
+    let fixture = Fixture::new(200);
+    let lighting = Lighting::SectorDepth;
+    let behind = fixture.render(&bare_rooms().tables(), &centre_camera(), &view(lighting));
+    let frame = fixture.render(&grated_rooms(0).tables(), &centre_camera(), &view(lighting));
+    let row = light_row(128, 64, lighting).unwrap();
+
+    let (mut shown, mut holes, mut cut) = (0, 0, 0);
+    for y in 0..160i32 {
+        for x in 0..240i32 {
+            let (xs, ys) = (x as usize, y as usize);
+            let reached = behind.sector_of(behind.surface(xs, ys)) == Some(1);
+            let got = (
+                frame.surface(xs, ys),
+                frame.index(xs, ys),
+                frame.depth(xs, ys),
+            );
+            match grate_at(x, y) {
+                Some(texel) if reached => {
+                    shown += 1;
+                    let index = fixture.colormap[row][usize::from(texel)];
+                    assert_eq!(got, (Surface::Middle(1), index, 64.0), "({x}, {y})");
+                    continue;
+                }
+                Some(_) => cut += 1,
+                None => {
+                    let v = (8 * y - 366).div_euclid(15);
+                    holes += usize::from(reached && (0..24).contains(&v));
+                }
+            }
+            let expected = (
+                behind.surface(xs, ys),
+                behind.index(xs, ys),
+                behind.depth(xs, ys),
+            );
+            assert_eq!(got, expected, "({x}, {y})");
+        }
+    }
+    assert!(
+        shown > 2000 && holes > 500 && cut > 200,
+        "{shown} shown, {holes} holes, {cut} cut"
+    );
+    // Column 120: the upper strip down to row 49 (the image's rows 0 and 1 behind it), the grate
+    // from row 50 (`v = 2`) to row 90 (rows 89 and 90 are `v = 23`, a transparent row: B's
+    // wall 5 shows).
+    assert_eq!(frame.surface(120, 49), Surface::Upper(1));
+    assert_eq!(
+        frame.index(120, 50),
+        fixture.colormap[row][usize::from(grate(5, 2).unwrap())]
+    );
+    assert_eq!(frame.surface(120, 88), Surface::Middle(1));
+    assert_eq!(frame.surface(120, 89), Surface::Wall(5));
+    assert_eq!(frame.surface(120, 90), Surface::Wall(5));
+    assert_eq!(frame.surface(120, 91), Surface::Wall(5));
+    // Column 116: `u = floor(527/15) = 35` → 3, a transparent column.
+    assert_eq!(frame.surface(116, 70), behind.surface(116, 70));
+    assert_eq!(frame.sector_of(Surface::Middle(1)), Some(0));
+}
+
+/// A solid sprite in room A at (48, −8), `z = 24` (depth 48, heights `[24, 40]`): columns
+/// 90..=109 (`u = floor((2c − 179)/5)`), rows 60..=99 (`v = floor((2y − 119)/5)`), in front of
+/// the grate, covers it. A solid sprite in room B at (128, 0), `z = 16` (depth 128, heights
+/// `[16, 32]`): columns 116..=123 (`u = floor((16c − 1852)/15)`), rows 80..=94
+/// (`v = floor((16y − 1272)/15)`), behind it, shows only through its holes (columns 116 and 117
+/// are `u = 3`, rows 89 and 90 `v = 23`) and below it. Lighting off.
+#[test]
+fn a_thing_before_the_portal_covers_the_middle_and_one_beyond_is_covered_by_it() {
+    let fixture = Fixture::new(200);
+    let near = thing(48.0, -8.0, 0, SOLID_SPRITE, 24, 0);
+    let far = thing(128.0, 0.0, 1, SOLID_SPRITE, 16, 0);
+    let lighting = Lighting::Off;
+    let behind = fixture.render(&bare_rooms().tables(), &centre_camera(), &view(lighting));
+    let map = grated_rooms(0).with_things(vec![near, far]);
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(lighting));
+
+    let (mut near_over, mut far_under, mut far_through) = (0, 0, 0);
+    for y in 0..160i32 {
+        for x in 0..240i32 {
+            let (xs, ys) = (x as usize, y as usize);
+            let reached = behind.sector_of(behind.surface(xs, ys)) == Some(1);
+            let (near_u, near_v) = ((2 * x - 179).div_euclid(5), (2 * y - 119).div_euclid(5));
+            let (far_u, far_v) = (
+                (16 * x - 1852).div_euclid(15),
+                (16 * y - 1272).div_euclid(15),
+            );
+            let near_covers = (0..8).contains(&near_u) && (0..16).contains(&near_v);
+            let far_covers = reached && (0..8).contains(&far_u) && (0..16).contains(&far_v);
+            let middle = grate_at(x, y).filter(|_| reached);
+            let expected = if near_covers {
+                near_over += usize::from(middle.is_some());
+                let texel = solid(near_u as usize, near_v as usize);
+                (Surface::Thing(0), texel, 48.0)
+            } else if let Some(texel) = middle {
+                far_under += usize::from(far_covers);
+                (Surface::Middle(1), texel, 64.0)
+            } else if far_covers {
+                far_through += usize::from((0..24).contains(&(8 * y - 366).div_euclid(15)));
+                let texel = solid(far_u as usize, far_v as usize);
+                (Surface::Thing(1), texel, 128.0)
+            } else {
+                (
+                    behind.surface(xs, ys),
+                    behind.index(xs, ys),
+                    behind.depth(xs, ys),
+                )
+            };
+            let got = (
+                frame.surface(xs, ys),
+                frame.index(xs, ys),
+                frame.depth(xs, ys),
+            );
+            assert_eq!(got, expected, "({x}, {y})");
+        }
+    }
+    assert!(
+        near_over > 250 && far_under > 40 && far_through > 15,
+        "{near_over} over, {far_under} under, {far_through} through"
+    );
+    assert_eq!(frame.surface(100, 70), Surface::Thing(0));
+    assert_eq!(frame.surface(120, 85), Surface::Middle(1));
+    assert_eq!(frame.surface(116, 85), Surface::Thing(1));
+    assert_eq!(frame.surface(120, 88), Surface::Middle(1));
+    assert_eq!(frame.surface(120, 89), Surface::Thing(1));
+    assert_eq!(frame.surface(120, 91), Surface::Thing(1));
+}
+
+/// At equal depth a thing of the portal's own sector covers the middle and one of the sector
+/// behind is covered (the engine draws a sector's middles before its things, after those of
+/// the sectors behind). A solid sprite at (64, −8), `z = 24`, depth 64 as the portal: at
+/// (105, 70) it is texel `(floor(−14.5·64/120 + 12), floor(8 − 9.5·64/120)) = (4, 2)`, over the
+/// grate's `(floor(439/15) mod 8, floor(194/15)) = (5, 12)`, opaque.
+#[test]
+fn at_equal_depth_a_middle_is_behind_its_sectors_things_and_before_the_next() {
+    let fixture = Fixture::new(200);
+    let shown = |sector: u16| {
+        let map = grated_rooms(0).with_things(vec![thing(64.0, -8.0, sector, SOLID_SPRITE, 24, 0)]);
+        let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
+        (
+            frame.surface(105, 70),
+            frame.index(105, 70),
+            frame.depth(105, 70),
+        )
+    };
+    assert_eq!(shown(0), (Surface::Thing(0), solid(4, 2), 64.0));
+    assert_eq!(shown(1), (Surface::Middle(1), grate(5, 12).unwrap(), 64.0));
+}
+
+/// A translucent grate shows `blend[behind][front]` with `front` its lit texel and `behind` the
+/// pixel without it; a translucent solid sprite in front of it (at (48, −8), `z = 24`, as above)
+/// blends over that in turn: `blend[blend[behind][grate]][sprite]`. The surface and the depth
+/// are the nearest's. Without a blend table both are drawn opaque.
+#[test]
+fn a_translucent_middle_blends_over_the_room_behind_and_under_a_translucent_thing() {
+    let mut fixture = Fixture::new(200);
+    let lighting = Lighting::SectorDepth;
+    let near = thing(48.0, -8.0, 0, SOLID_SPRITE, 24, THING_TRANSLUCENT);
+    let translucent = grated_rooms(WALL_MIDDLE_TRANSLUCENT).with_things(vec![near]);
+    let opaque = grated_rooms(0).with_things(vec![Thing { flags: 0, ..near }]);
+    let unblended = fixture.render(&translucent.tables(), &centre_camera(), &view(lighting));
+    let drawn_opaque = fixture.render(&opaque.tables(), &centre_camera(), &view(lighting));
+    assert_eq!(unblended, drawn_opaque);
+
+    fixture.blend = Some(blend_table());
+    let behind = fixture.render(&bare_rooms().tables(), &centre_camera(), &view(lighting));
+    let frame = fixture.render(&translucent.tables(), &centre_camera(), &view(lighting));
+    let (grate_row, thing_row) = (
+        light_row(128, 64, lighting).unwrap(),
+        light_row(128, 48, lighting).unwrap(),
+    );
+    let cm = &fixture.colormap;
+    let (mut middles, mut both, mut things) = (0, 0, 0);
+    for y in 0..160i32 {
+        for x in 0..240i32 {
+            let (xs, ys) = (x as usize, y as usize);
+            let reached = behind.sector_of(behind.surface(xs, ys)) == Some(1);
+            let mut expected = (
+                behind.surface(xs, ys),
+                behind.index(xs, ys),
+                behind.depth(xs, ys),
+            );
+            let middle = grate_at(x, y).filter(|_| reached);
+            if let Some(texel) = middle {
+                middles += 1;
+                let front = cm[grate_row][usize::from(texel)];
+                expected = (Surface::Middle(1), blended(expected.1, front), 64.0);
+            }
+            let (u, v) = ((2 * x - 179).div_euclid(5), (2 * y - 119).div_euclid(5));
+            if (0..8).contains(&u) && (0..16).contains(&v) {
+                things += 1;
+                both += usize::from(middle.is_some());
+                let front = cm[thing_row][usize::from(solid(u as usize, v as usize))];
+                expected = (Surface::Thing(0), blended(expected.1, front), 48.0);
+            }
+            let got = (
+                frame.surface(xs, ys),
+                frame.index(xs, ys),
+                frame.depth(xs, ys),
+            );
+            assert_eq!(got, expected, "({x}, {y})");
+        }
+    }
+    assert!(
+        middles > 2000 && both > 250 && things > both + 300,
+        "{middles} middles, {both} both, {things} things"
+    );
+    // (120, 50): the grate's (5, 2) over B's ceiling.
+    assert_eq!(behind.surface(120, 50), Surface::Ceiling(1));
+    assert_eq!(
+        frame.index(120, 50),
+        blended(
+            behind.index(120, 50),
+            cm[grate_row][usize::from(grate(5, 2).unwrap())]
+        )
+    );
+}
+
+/// A translucent holed sprite over room A's wall 1 (the set-up of
+/// `a_thing_shows_its_opaque_texels_and_the_wall_through_its_holes`): its opaque texels show
+/// `blend[wall][sprite]`, its holes the wall; without a blend table it is drawn opaque.
+#[test]
+fn a_translucent_thing_blends_over_the_wall() {
+    let mut fixture = Fixture::new(200);
+    let lighting = Lighting::SectorDepth;
+    let placed = thing(48.0, 0.0, 0, HOLED_SPRITE, 8, THING_TRANSLUCENT);
+    let bare = room(64, NO_PORTAL);
+    let map = room(64, NO_PORTAL).with_things(vec![placed]);
+    let opaque = room(64, NO_PORTAL).with_things(vec![Thing { flags: 0, ..placed }]);
+    let drawn_opaque = fixture.render(&opaque.tables(), &centre_camera(), &view(lighting));
+    assert_eq!(
+        fixture.render(&map.tables(), &centre_camera(), &view(lighting)),
+        drawn_opaque
+    );
+
+    fixture.blend = Some(blend_table());
+    let behind = fixture.render(&bare.tables(), &centre_camera(), &view(lighting));
+    let frame = fixture.render(&map.tables(), &centre_camera(), &view(lighting));
+    let row = light_row(128, 48, lighting).unwrap();
+    let mut shown = 0;
+    for y in 0..160usize {
+        for x in 0..240usize {
+            let expected = if drawn_opaque.surface(x, y) == Surface::Thing(0) {
+                shown += 1;
+                let (u, v) = (
+                    (2 * x as i32 - 219).div_euclid(5),
+                    (2 * y as i32 - 199).div_euclid(5),
+                );
+                let texel = holed(u as usize, v as usize).unwrap();
+                let front = fixture.colormap[row][usize::from(texel)];
+                assert_eq!(drawn_opaque.index(x, y), front, "({x}, {y})");
+                (Surface::Thing(0), blended(behind.index(x, y), front), 48.0)
+            } else {
+                (behind.surface(x, y), behind.index(x, y), behind.depth(x, y))
+            };
+            let got = (frame.surface(x, y), frame.index(x, y), frame.depth(x, y));
+            assert_eq!(got, expected, "({x}, {y})");
+        }
+    }
+    assert!(shown > 300, "{shown} shown");
+    assert_eq!(behind.surface(120, 120), Surface::Wall(1));
+}
+
+/// A middle is drawn only where a ray passes its portal. The layout of
+/// `a_thing_whose_portal_is_out_of_view_is_not_drawn` with the grate on A's wall 1 (the portal is
+/// out of view), and the two rooms with B closed (floor and ceiling 40, a shut door: every ray
+/// at the portal meets a strip, while the grate's rows are in view): both frames are as without
+/// the grate.
+#[test]
+fn a_middle_whose_portal_no_ray_passes_is_not_drawn() {
+    let fixture = Fixture::new(200);
+    let out_of_view = |middle: u16| {
+        let mut map = room(64, 1);
+        map.walls[1].middle = middle;
+        map.vertices.extend([
+            Vertex { x: 64, y: -96 },
+            Vertex { x: 192, y: -96 },
+            Vertex { x: 192, y: 32 },
+        ]);
+        map.walls.extend([
+            wall(4, 5, NO_PORTAL),
+            wall(5, 6, NO_PORTAL),
+            wall(6, 2, NO_PORTAL),
+            wall(2, 1, 0),
+            wall(1, 4, NO_PORTAL),
+        ]);
+        map.sectors.push(Sector {
+            wall_count: 5,
+            ..sector(4, 0, 64, CEIL_TEX, 200)
+        });
+        map
+    };
+    let camera = Camera {
+        x: 60.0,
+        y: -28.0,
+        angle: angle_from_bits(47332),
+        ..centre_camera()
+    };
+    let frame = fixture.render(
+        &out_of_view(GRATE_SPRITE).tables(),
+        &camera,
+        &view(Lighting::Off),
+    );
+    let behind = fixture.render(
+        &out_of_view(NO_TEXTURE).tables(),
+        &camera,
+        &view(Lighting::Off),
+    );
+    assert_eq!(frame, behind);
+
+    let closed = |middle: u16| {
+        let mut map = two_rooms(40, 40, CEIL_TEX, CEIL_TEX, 200);
+        map.walls[1].middle = middle;
+        map
+    };
+    let frame = fixture.render(
+        &closed(GRATE_SPRITE).tables(),
+        &centre_camera(),
+        &view(Lighting::Off),
+    );
+    let behind = fixture.render(
+        &closed(NO_TEXTURE).tables(),
+        &centre_camera(),
+        &view(Lighting::Off),
+    );
+    assert_eq!(frame, behind);
+    assert!(!frame.surfaces.contains(&Surface::Middle(1)));
+    // The grate's rows `h ∈ (16, 40]` at the portal are on screen, on the lower strip.
+    assert_eq!(frame.surface(120, 90), Surface::Lower(1));
+}
+
+/// Middles are the only surfaces drawn cyan in the diff picture: red below 96, green and blue at
+/// least 160.
+#[test]
+fn middles_have_their_own_colours() {
+    use Surface::*;
+    let cyan = |s: Surface| {
+        let [r, g, b] = surface_colour(s);
+        r < 96 && g >= 160 && b >= 160
+    };
+    for i in 0..200 {
+        assert!(cyan(Middle(i)), "middle {i}");
+        for other in [Wall(i), Upper(i), Lower(i), Floor(i), Ceiling(i), Thing(i)] {
+            assert!(!cyan(other), "{other:?}");
+        }
+    }
+    assert!(!cyan(Sky) && !cyan(None));
+    assert_ne!(surface_colour(Middle(0)), surface_colour(Middle(1)));
+    assert_ne!(surface_colour(Middle(1)), surface_colour(Wall(1)));
+}
+
+// ---------------------------------------------------------------------------------------------
 // Sectors and poses
 
 #[test]
@@ -1298,7 +1719,7 @@ fn things_have_their_own_colours() {
     let bright = |s: Surface| surface_colour(s).iter().all(|&c| c >= 160);
     for i in 0..200 {
         assert!(bright(Thing(i)), "thing {i}");
-        for other in [Wall(i), Upper(i), Lower(i), Floor(i), Ceiling(i)] {
+        for other in [Wall(i), Upper(i), Lower(i), Floor(i), Ceiling(i), Middle(i)] {
             assert!(!bright(other), "{other:?}");
         }
     }

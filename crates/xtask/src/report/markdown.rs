@@ -24,7 +24,7 @@ fn target(resolution: &str) -> Option<(u64, u64)> {
 }
 
 /// What each measured kernel is, and its target in cycles per pixel where the brief sets one.
-const KERNELS: [(&str, &str, Option<f64>); 9] = [
+const KERNELS: [(&str, &str, Option<f64>); 10] = [
     (
         "col_dbl_unlit",
         "column, 120-wide (STRB mirrored), unlit",
@@ -48,6 +48,11 @@ const KERNELS: [(&str, &str, Option<f64>); 9] = [
     (
         "sprite_native",
         "sprite post, 240-wide (read-modify-write), lit",
+        None,
+    ),
+    (
+        "sprite_blend_dbl",
+        "sprite post, 120-wide, lit, translucent (blend table in ROM)",
         None,
     ),
 ];

@@ -291,6 +291,20 @@ fn areas() -> Vec<Area> {
     areas
 }
 
+/// Images drawn in portal openings (issue 17): (sector, neighbour, the words on that sector's
+/// portal wall). Written on one side only: the neighbour's twin wall gets the same middle
+/// (docs/MAP_FORMAT.md, "Middles").
+const MIDDLES: &[(&str, &str, &str)] = &[
+    // A raised portcullis's grate in the passage north from the hall: seen through, and the
+    // player ducks under it (the passage is the only way to the courtyard).
+    ("hall_n", "passage", "mid=grate"),
+    // Leaded glass in the gallery's windows onto the courtyard, drawn at 50 %: it stops the
+    // player too.
+    ("gallery", "window_1", "mid=window translucent blocks"),
+    ("gallery", "window_2", "mid=window translucent blocks"),
+    ("gallery", "window_3", "mid=window translucent blocks"),
+];
+
 /// Whether `p` lies strictly inside segment `a b`.
 fn strictly_inside(a: Point, b: Point, p: Point) -> bool {
     let cross =
@@ -351,8 +365,9 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
          #\n\
          # A great hall (3x3 sectors, chamfered corners, a raised dais) opens north through a low\n\
          # passage onto a courtyard under the sky (sunken pool), and east into a long corridor\n\
-         # of light and dark bands. The corridor ends at a staircase of eight 16-unit steps up to\n\
-         # an upper corridor and a dim gallery whose three windows overlook the courtyard. North\n\
+         # of light and dark bands. A grate hangs in the passage (seen through, passable). The\n\
+         # corridor ends at a staircase of eight 16-unit steps up to an upper corridor and a dim\n\
+         # gallery whose three leaded windows (translucent, closed) overlook the courtyard. North\n\
          # of the courtyard, an antechamber leads into a dark octagonal shrine. South of the\n\
          # hall, a crawlway (40 high: crouch) leads to a den, next to a ledge 24 up (jump).\n"
     );
@@ -383,6 +398,13 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
                     if there.floor > look.floor {
                         let _ = write!(text, " lower={}", look.lower);
                     }
+                    let neighbour = areas[other].name.as_str();
+                    for (_, _, words) in MIDDLES
+                        .iter()
+                        .filter(|(from, to, _)| *from == area.name && *to == neighbour)
+                    {
+                        let _ = write!(text, " {words}");
+                    }
                 }
                 None => {
                     let _ = write!(text, " tex={}", look.wall);
@@ -410,8 +432,8 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
 /// walls, lamps hanging over the aisles, a statue seen from eight sides on the dais and four
 /// flickering braziers round it. Each footprint lies inside its sector.
 const HALL_THINGS: &str = "\
-# The hall's furnishings: pillars, torches, hanging lamps, a statue (8 rotations) on the dais
-# and four braziers (animated) round it.
+# The hall's furnishings: pillars, torches, hanging lamps (one translucent, by the grate), a
+# statue (8 rotations) on the dais and four braziers (animated) round it.
 thing pillar 176 176 solid
 thing pillar 592 176 solid
 thing pillar 176 592 solid
@@ -432,7 +454,7 @@ thing lamp 128 320 hang
 thing lamp 640 320 hang
 thing lamp 320 600 hang
 thing lamp 448 600 hang
-thing lamp 384 200 hang
+thing lamp 384 200 hang translucent
 thing lamp 384 560 hang
 thing lamp 200 448 hang
 thing lamp 568 448 hang

@@ -1,5 +1,6 @@
 //! Draws the shipped assets: textures, the sky panorama, the sprites (torch, pillar, lamp, the
-//! animated brazier flame as a strip, the statue in eight rotations), and the benchmark map. Deterministic (fixed seeds), so re-running it reproduces the committed files.
+//! animated brazier flame as a strip, the statue in eight rotations, and the portal middles:
+//! an iron grate and a leaded-glass window), and the benchmark map. Deterministic (fixed seeds), so re-running it reproduces the committed files.
 //!
 //! Usage: `cargo run -p portalcast-assets --bin gen-assets -- assets/`
 
@@ -35,6 +36,8 @@ fn run(dir: &Path) -> Result<(), String> {
         ("torch".to_string(), paint::torch()),
         ("pillar".to_string(), paint::pillar()),
         ("lamp".to_string(), paint::lamp()),
+        ("grate".to_string(), paint::grate()),
+        ("window".to_string(), paint::window()),
         (
             format!("flame.strip{}", sets::FLAME_FRAMES),
             sets::flame_strip(),

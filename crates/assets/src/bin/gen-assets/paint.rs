@@ -547,3 +547,100 @@ pub fn lamp() -> RgbaImage {
         }
     })
 }
+
+/// A grate for a portal's opening, 32×64: four upright iron bars 3 texels wide, 8 apart, so the
+/// image tiles across a wide opening; a frame across the top and the bottom and a crossbar at
+/// mid-height, riveted where the bars cross them; transparent between the bars.
+pub fn grate() -> RgbaImage {
+    const WIDTH: u32 = 32;
+    const HEIGHT: u32 = 64;
+    let clear = Rgba([0, 0, 0, 0]);
+    let iron = |light: f32| {
+        let Rgb([r, g, b]) = shade([78.0, 72.0, 68.0], light);
+        Rgba([r, g, b, 255])
+    };
+    RgbaImage::from_fn(WIDTH, HEIGHT, |x, y| {
+        // Texel across a bar: 0, 1, 2 in the bar (lit from the left), else between bars.
+        let across = (x + 6) % 8;
+        let bar = across < 3;
+        let rail = |top: u32, rows: u32| (top..top + rows).contains(&y);
+        let (frame_top, frame_bottom, crossbar) = (rail(0, 4), rail(HEIGHT - 4, 4), rail(30, 3));
+        if frame_top || frame_bottom || crossbar {
+            // Flat strap: lit on its upper edge, shadowed on its lower one; a rivet on each bar.
+            let (first, last) = if frame_top {
+                (0, 3)
+            } else if frame_bottom {
+                (HEIGHT - 4, HEIGHT - 1)
+            } else {
+                (30, 32)
+            };
+            if bar && across == 1 && y == (first + last) / 2 {
+                return iron(1.7);
+            }
+            let light = if y == first {
+                1.35
+            } else if y == last {
+                0.6
+            } else {
+                1.0
+            };
+            return iron(light);
+        }
+        if !bar {
+            return clear;
+        }
+        // A round bar: bright on its left, dark on its right, a little rust lower down.
+        let light = [1.45, 1.0, 0.6][across as usize];
+        let rust = (y as f32 / HEIGHT as f32) * 0.25;
+        let Rgb([r, g, b]) = shade(mix([78.0, 72.0, 68.0], [120.0, 62.0, 34.0], rust), light);
+        Rgba([r, g, b, 255])
+    })
+}
+
+/// Leaded glass for a window's opening, 64×64, meant to be drawn translucent: diamond panes in
+/// deep blue, ruby, amber, green and pale glass between lead cames, inside a lead frame; every
+/// texel opaque. Each pane is one colour, brighter toward its upper left, with faint streaks.
+pub fn window() -> RgbaImage {
+    const SIDE: u32 = 64;
+    /// Texels between the cames, along each diagonal.
+    const PANE: i32 = 16;
+    const GLASS: [[f32; 3]; 5] = [
+        [40.0, 70.0, 190.0],
+        [180.0, 30.0, 45.0],
+        [225.0, 165.0, 40.0],
+        [50.0, 150.0, 70.0],
+        [190.0, 205.0, 215.0],
+    ];
+    let lead = |light: f32| {
+        let Rgb([r, g, b]) = shade([58.0, 58.0, 66.0], light);
+        Rgba([r, g, b, 255])
+    };
+    let mut rng = Lcg::new(0x5eed_0017);
+    let streaks = Fractal::new(4, 3, SIDE, &mut rng);
+    // A colour per pane, by its diagonal coordinates (at most 9 × 9 of them).
+    let colours: Vec<usize> = (0..81)
+        .map(|_| (rng.next_u32() % GLASS.len() as u32) as usize)
+        .collect();
+    RgbaImage::from_fn(SIDE, SIDE, |x, y| {
+        let border = x.min(y).min(SIDE - 1 - x).min(SIDE - 1 - y);
+        if border < 3 {
+            return lead([1.3, 1.0, 0.7][border as usize]);
+        }
+        let (x, y) = (x as i32, y as i32);
+        let (d1, d2) = (x + y, x - y + SIDE as i32);
+        if d1 % PANE < 2 || d2 % PANE < 2 {
+            return lead(if d1 % PANE == 0 || d2 % PANE == 0 {
+                1.15
+            } else {
+                0.8
+            });
+        }
+        let pane = (d1 / PANE) as usize * 9 + (d2 / PANE) as usize;
+        // Within the pane: 0 at its upper-left came, 1 at its lower-right one.
+        let inside =
+            ((d1 % PANE) as f32 / PANE as f32 + 1.0 - (d2 % PANE) as f32 / PANE as f32) / 2.0;
+        let light = 1.2 - 0.35 * inside + 0.25 * (streaks.at(x as f32 * 0.5, y as f32 * 2.0) - 0.5);
+        let Rgb([r, g, b]) = shade(GLASS[colours[pane % colours.len()]], light);
+        Rgba([r, g, b, 255])
+    })
+}
