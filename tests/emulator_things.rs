@@ -4,7 +4,8 @@
 //! include one where a thing is drawn, one where a thing in front of the eye and on screen is
 //! hidden entirely behind a wall, and one where a sprite is cut exactly at a wall's edge: a
 //! pixel the sprite would cover shows the nearer wall, and its neighbour on the row shows the
-//! sprite.
+//! sprite. On the bench map, the walk north across the hall (its things, the translucent lamp,
+//! the grate in the passage's opening) is compared frame by frame the same way.
 
 mod common;
 
@@ -14,7 +15,7 @@ use portalcast::frame::PAGE_ROW_HALFWORDS;
 use portalcast::render::surface::{Surface, THING_DEPTH_MIN};
 use portalcast::render::view::View;
 use portalcast::render::walk::Renderer;
-use portalcast_format::{MapTables, THING_HANGING};
+use portalcast_format::{MapTables, THING_HANGING, THING_TRANSLUCENT};
 use portalcast_harness::Keys;
 use portalcast_oracle::RecordingCanvas;
 
@@ -82,14 +83,14 @@ fn sprite_covers(
     Some(covers)
 }
 
-/// Compares the frame of `render_line` (posed by `player`) with the host's, and says what it
-/// showed of the things.
-fn compare_frame(
+/// The host's render of the ROM's frame of `render_line` (posed by `player`), recording each
+/// pixel's surface; panics unless the ROM's VRAM page is identical.
+fn host_frame_matching(
     emulator: &portalcast_harness::Emulator,
     renderer: &mut Renderer,
     player: &PlayerLine,
     render_line: &str,
-) -> Seen {
+) -> (MapTables<'static>, View, RecordingCanvas) {
     let (map, settings) = render_line_settings(render_line);
     let camera = player.camera();
     let view = View::new(&camera, &settings).at_tick(player.tick);
@@ -111,7 +112,19 @@ fn compare_frame(
         differing, 0,
         "{render_line}: halfwords differ from the host"
     );
+    (map, view, canvas)
+}
 
+/// Compares the frame of `render_line` (posed by `player`) with the host's, and says what it
+/// showed of the things.
+fn compare_frame(
+    emulator: &portalcast_harness::Emulator,
+    renderer: &mut Renderer,
+    player: &PlayerLine,
+    render_line: &str,
+) -> Seen {
+    let (map, view, canvas) = host_frame_matching(emulator, renderer, player, render_line);
+    let columns = view.viewport.width as usize;
     let oracle_camera = portalcast_oracle::Camera::from_fixed(
         player.x,
         player.y,
@@ -119,7 +132,6 @@ fn compare_frame(
         player.angle,
         Some(player.sector),
     );
-    let columns = settings.resolution.width();
     let mut seen = Seen::default();
     for index in 0..map.things.len() {
         let shown = |at: usize| canvas.surfaces[at] == Surface::Thing(index as u16);
@@ -166,8 +178,9 @@ fn compare_frame(
     seen
 }
 
-#[test]
-fn things_are_drawn_hidden_and_cut_as_the_host_draws_them() {
+/// The ROM booted with its per-frame lines on, run until the game draws its first frame (keys
+/// before it are not seen).
+fn boot_until_playing() -> portalcast_harness::Emulator {
     let mut emulator = boot();
     for _ in FRAME_LINES_HOLD {
         emulator.set_keys(FRAME_LINES_KEY);
@@ -176,7 +189,6 @@ fn things_are_drawn_hidden_and_cut_as_the_host_draws_them() {
             .unwrap_or_else(|error| panic!("{error}"));
     }
     emulator.set_keys(Keys::NONE);
-    // The game starts some frames after power-on: keys before its first frame are not seen.
     let started = (0..120).any(|_| {
         emulator
             .run_frame()
@@ -187,6 +199,78 @@ fn things_are_drawn_hidden_and_cut_as_the_host_draws_them() {
             .any(|line| line.is_debug_print() && line.text.starts_with("render "))
     });
     assert!(started, "the ROM drew no frame");
+    emulator
+}
+
+/// Key presses through the Start menu: each held 3 frames, then 3 frames of nothing.
+fn presses(keys: &[Keys]) -> Vec<Keys> {
+    keys.iter()
+        .flat_map(|&key| [key, key, key, Keys::NONE, Keys::NONE, Keys::NONE])
+        .collect()
+}
+
+/// On the bench map at 240×160, a step right past the statue and north across the hall to the
+/// passage: the ROM's frames, with the hall's things, the translucent lamp and the grate in the
+/// passage's opening, are the host's; the first frame where the grate fills much of the view is
+/// saved for the README.
+#[test]
+fn the_bench_hall_s_things_grate_and_translucent_lamp_match_the_host() {
+    let mut emulator = boot_until_playing();
+    let mut renderer = Renderer::new();
+    let mut player = None;
+    let mut keys = presses(&[Keys::START, Keys::RIGHT, Keys::RIGHT, Keys::START]);
+    keys.extend([Keys::R; 12]);
+    keys.extend([Keys::UP; 400]);
+    let (mut things, mut middle, mut translucent, mut saved) = (false, false, false, false);
+    for &held in &keys {
+        emulator.set_keys(held);
+        emulator
+            .run_frame()
+            .unwrap_or_else(|error| panic!("{error}"));
+        for line in emulator.drain_log() {
+            if !line.is_debug_print() {
+                continue;
+            }
+            if line.text.starts_with("player ") {
+                player = Some(PlayerLine::parse(&line.text));
+            } else if line.text.starts_with("render ") {
+                // The first frame's player line may have gone with the boot's log.
+                let Some(player) = player.as_ref() else {
+                    continue;
+                };
+                if player.menu >= 0 {
+                    continue;
+                }
+                let (map, _, canvas) =
+                    host_frame_matching(&emulator, &mut renderer, player, &line.text);
+                let count = |keep: &dyn Fn(Surface) -> bool| {
+                    canvas.surfaces.iter().filter(|&&s| keep(s)).count()
+                };
+                let middles = count(&|s| matches!(s, Surface::Middle(_)));
+                things |= count(&|s| matches!(s, Surface::Thing(_))) > 0;
+                middle |= middles > 0;
+                translucent |= count(&|s| match s {
+                    Surface::Thing(t) => map.things[usize::from(t)].flags & THING_TRANSLUCENT != 0,
+                    _ => false,
+                }) > 0;
+                if middles > 2_000 && !saved && field(&line.text, "res") == Some("240x160") {
+                    emulator
+                        .save_frame_png(&screenshot_dir().join("things-bench-grate.png"))
+                        .unwrap_or_else(|error| panic!("{error}"));
+                    saved = true;
+                }
+            }
+        }
+    }
+    assert!(things, "no frame drew a thing");
+    assert!(middle, "no frame drew the grate");
+    assert!(translucent, "no frame drew the translucent lamp");
+    assert!(saved, "the grate never filled the view at 240x160");
+}
+
+#[test]
+fn things_are_drawn_hidden_and_cut_as_the_host_draws_them() {
+    let mut emulator = boot_until_playing();
     let mut renderer = Renderer::new();
     let mut player = None;
     let mut total = Seen::default();
@@ -194,21 +278,14 @@ fn things_are_drawn_hidden_and_cut_as_the_host_draws_them() {
     // To the tiny map through the Start menu (the cursor starts on the resolution, the map is
     // two rows down; bench, grid, tiny), then strafe left along the room, walk to its east wall
     // and turn: the yard's things pass the portal's edges.
-    let mut keys: Vec<Keys> = Vec::new();
-    let press = |keys: &mut Vec<Keys>, key: Keys| {
-        keys.extend([key; 3]);
-        keys.extend([Keys::NONE; 3]);
-    };
-    for key in [
+    let mut keys = presses(&[
         Keys::START,
         Keys::DOWN,
         Keys::DOWN,
         Keys::RIGHT,
         Keys::RIGHT,
         Keys::START,
-    ] {
-        press(&mut keys, key);
-    }
+    ]);
     keys.extend([Keys::L; 90]);
     keys.extend([Keys::UP; 90]);
     keys.extend([Keys::RIGHT; 60]);

@@ -90,14 +90,21 @@ impl<'a> SpriteColumn<'a> {
     }
 
     /// Whether the kernel reads only inside [`SpriteColumn::posts`]: every post header, texel
-    /// and pad lies inside it, and no run's last row steps past its post's pad texel. The GBA's
-    /// canvas checks this before it runs the kernel.
+    /// and pad lies inside it, and no row steps past its post. The GBA's canvas checks this
+    /// before it runs the kernel.
+    ///
+    /// The rows: a post's rows end at `end = (y1 + 0x7fff) >> 16`, so every row `r` has
+    /// `(r << 16) + 0x8000 − y0 < y1 − y0 = len·scale`, and its texel position is at most that
+    /// times `iscale`, over 2^16: below `len` texels where `scale·iscale ≤ 2^32` (a row of the
+    /// post never steps beyond a texel per row's worth of rows), with no wrap-around where
+    /// `y_top` and `256·scale` stay far inside i32. Those are the checks; the posts' layout
+    /// is walked (a few bytes a post).
     pub fn reads_inside(&self) -> bool {
-        self.posts_fit()
-            && self.runs().all(|run| {
-                let last = u64::from(run.v) + (run.count as u64 - 1) * u64::from(self.iscale);
-                ((last >> 16) as usize) < run.texels.len()
-            })
+        let steps_fit = self.scale >= 0
+            && (self.scale as u64) * u64::from(self.iscale) <= 1 << 32
+            && self.scale < 1 << 22
+            && self.y_top.unsigned_abs() < 1 << 30;
+        steps_fit && self.posts_fit()
     }
 
     fn posts_fit(&self) -> bool {

@@ -367,15 +367,35 @@ impl Things {
             let q = i64::from(2 * x + 1 - viewport.width);
             let numerator = q * za - twice_focal * xa;
             let denominator = twice_focal * dx - q * dz;
+            // A column the wall owns sees its front: the denominator is positive (and below
+            // 2^32: the module `limits`' world). `t = n/d` through the reciprocal: with
+            // `2^p ≤ d < 2^(p+1)`, `2^(30+p)/d` lies in (2^29, 2^30].
+            let Ok(denominator) = u32::try_from(denominator) else {
+                continue;
+            };
             if denominator == 0 {
                 continue;
             }
-            let t = ((numerator << 30) / denominator).clamp(0, 1 << 30);
+            let p = 31 - denominator.leading_zeros();
+            let reciprocal = i64::from(crate::math::recip_pow2(denominator, 30 + p));
+            // The reciprocal is within a unit or two of the quotient: made the exact floor of
+            // `n·2^30 / d` (a column's ray exactly on a texel edge takes the texel right of it,
+            // the oracle's tie rule).
+            let (scaled, d) = (numerator << 30, i64::from(denominator));
+            let mut t = (numerator * reciprocal) >> p;
+            while t * d > scaled {
+                t -= 1;
+            }
+            while (t + 1) * d <= scaled {
+                t += 1;
+            }
+            let t = t.clamp(0, 1 << 30);
             let depth = (za + ((t * dz) >> 30)).max(i64::from(THING_DEPTH_MIN) << 8);
             let u_fx8 = i64::from(wall.x_offset) * 256 + ((t * i64::from(wall.length_fx8)) >> 30);
             let inverse_depth = i64::from(Fx24_8::from_bits(depth as i32).recip_fx2_30().to_bits());
             let y_top = (i64::from(viewport.horizon_y) << 16)
                 + ((above_eye * inverse_depth * i64::from(viewport.focal_y)) >> 22);
+            let rows_per_texel = (inverse_depth * i64::from(viewport.focal_y)) >> 14;
             let light = light_row(sector.light, (depth >> 8) as i32, view.lighting);
             self.middle_columns[used] = MiddleColumn {
                 x: x as u8,
@@ -383,8 +403,8 @@ impl Things {
                 light_row: light.map_or(u8::MAX, |row| row as u8),
                 clip: window,
                 y_top: y_top.clamp(-(1 << 30), 1 << 30) as i32,
-                scale: ((inverse_depth * i64::from(viewport.focal_y)) >> 14) as i32,
-                iscale: ((depth * frame.inverse_focal_y) >> 22) as u32,
+                scale: rows_per_texel as i32,
+                iscale: texels_per_row(depth as i32, rows_per_texel, frame.inverse_focal_y),
             };
             used += 1;
         }
@@ -506,6 +526,23 @@ fn colormap_row<'a>(assets: &RenderAssets<'a>, row: u8) -> &'a [u8; 256] {
     }
 }
 
+/// Texels per row at eye depth `depth` (24.8 bits), `z'/d_y` in 16.16, one less where its
+/// product with `rows_per_texel` would pass 2^32: the sprite kernel's bound on its steps
+/// (`SpriteColumn::reads_inside`). Both are rounded quotients of reciprocals good to 1e-9, so
+/// the product passes 2^32 by a few units at most, less than one step of `rows_per_texel`
+/// (at least `d_y / EYE_DEPTH_MAX`, about 170 in 16.16).
+fn texels_per_row(depth: i32, rows_per_texel: i64, inverse_focal_y: i64) -> u32 {
+    let iscale = ((i64::from(depth) * inverse_focal_y) >> 22) as u64;
+    let rows = rows_per_texel.max(0) as u64;
+    let iscale = if rows * iscale > 1 << 32 {
+        iscale - 1
+    } else {
+        iscale
+    };
+    debug_assert!(rows * iscale <= 1 << 32, "rows {rows} iscale {iscale}");
+    iscale as u32
+}
+
 /// The image of `wall`'s middle (a still sprite set's), if it has one.
 fn middle_image(assets: &RenderAssets, wall: &Wall) -> Option<usize> {
     if wall.middle == NO_TEXTURE {
@@ -596,9 +633,10 @@ fn project(
     if y_bottom <= 0 || y_top >= i64::from(viewport.height) << 16 {
         return None;
     }
-    // Texels per column and per row: z'/d in 16.16 (24.8 by 2.30 bits, shifted by 22).
+    // Texels per column and per row: z'/d in 16.16 (24.8 by 2.30 bits, shifted by 22); per
+    // row at most 2^32 / rows per texel, the sprite kernel's bound on its steps.
     let iscale_x = ((i64::from(depth) * frame.inverse_focal_x) >> 22) as u32;
-    let iscale = ((i64::from(depth) * frame.inverse_focal_y) >> 22) as u32;
+    let iscale = texels_per_row(depth, rows_per_texel, frame.inverse_focal_y);
     // The first column whose centre is right of the left edge, and its texture column.
     let first = ((x_left + 0x7fff) >> 16).max(0);
     let end = ((x_right + 0x7fff) >> 16).min(i64::from(viewport.width));

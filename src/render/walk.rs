@@ -751,7 +751,7 @@ impl<W: WindowStore> Renderer<W> {
             );
         }
         self.draw_walls(scene, canvas, stats, sector, first, end);
-        if self.has_middles(sector_index) {
+        if scene.view.things == ThingsShown::On && self.has_middles(sector_index) {
             self.collect_middles(scene, stats.sector_visits as u16, sector_index, first, end);
         }
         debug_assert!(

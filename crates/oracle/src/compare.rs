@@ -8,6 +8,13 @@ use portalcast::render::surface::Surface;
 
 use crate::Frame;
 
+/// Pixels of a thing the oracle must show for the engine to have missed it when it shows none.
+/// A sprite's surface, unlike a wall's, follows its texels' transparency, so a thing the oracle
+/// sees in a single pixel is a sub-texel detail (a torch's pole at a distance) whose one pixel
+/// flips with a texel edge within rounding of the pixel centre, as texels do on walls (the
+/// texel mismatch); two pixels are a thing in view.
+pub const MISSED_THING_MIN_PIXELS: usize = 2;
+
 /// How an engine frame differs from the oracle's.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Comparison {
@@ -34,8 +41,9 @@ pub struct Comparison {
     pub missed_sectors: Vec<u16>,
     /// Sectors the engine frame shows and the oracle's does not, ascending.
     pub extra_sectors: Vec<u16>,
-    /// Things (by index in the map's table) the oracle frame shows in a pixel at least and the
-    /// engine's in none, ascending: as [`Comparison::missed_sectors`], for sprites.
+    /// Things (by index in the map's table) the oracle frame shows in at least
+    /// [`MISSED_THING_MIN_PIXELS`] pixels and the engine's in none, ascending: as
+    /// [`Comparison::missed_sectors`], for sprites.
     pub missed_things: Vec<u16>,
     /// Things the engine frame shows and the oracle's does not, ascending.
     pub extra_things: Vec<u16>,
@@ -155,7 +163,17 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
         .difference(&oracle_sectors)
         .copied()
         .collect();
-    result.missed_things = oracle_things.difference(&engine_things).copied().collect();
+    result.missed_things = oracle_things
+        .difference(&engine_things)
+        .copied()
+        .filter(|&thing| {
+            let shown = oracle
+                .surfaces
+                .iter()
+                .filter(|&&s| thing_of(s) == Some(thing));
+            shown.count() >= MISSED_THING_MIN_PIXELS
+        })
+        .collect();
     result.extra_things = engine_things.difference(&oracle_things).copied().collect();
     result
 }
