@@ -243,8 +243,9 @@ fn slide_step(
     // Only a step near things looks for solid ones (a list of them is large: it is filled
     // only then, and stays out of `Obstacles`, which every step copies).
     if obstacles.things_near(map) {
-        let discs = Discs::near(map, &obstacles, bounds);
-        return try_moves(map, sector, from, step, body, &obstacles, discs.as_ref());
+        if let Some(discs) = Discs::near(map, &obstacles, bounds) {
+            return try_moves(map, sector, from, step, body, &obstacles, Some(&discs));
+        }
     }
     // Nothing to push against and the step ends strictly inside its sector: what try_moves'
     // first try finds (no push, then track's first test), without a second pass over the
@@ -876,7 +877,10 @@ impl<'a, 'm> NearbyThings<'a, 'm> {
             .iter()
             .copied()
             .chain(behind)
-            .flat_map(move |sector| map.things_in(sector))
+            .flat_map(move |sector| {
+                let things = map.things_in(sector).iter();
+                things.take_while(|thing| thing.flags & THING_SOLID != 0)
+            })
             .filter_map(move |thing| Disc::solid_near(thing, &bounds))
     }
 }
@@ -903,9 +907,11 @@ impl<'a, 'm> Discs<'a, 'm> {
         bounds: Bounds,
     ) -> Option<Discs<'a, 'm>> {
         // Whether there is any, in plain loops: most steps near things find none solid.
+        // A sector's solid things come first in the map's table.
         let solid_near = |sector: u16| {
             map.things_in(sector)
                 .iter()
+                .take_while(|thing| thing.flags & THING_SOLID != 0)
                 .any(|thing| Disc::solid_near(thing, &bounds).is_some())
         };
         let behind = obstacles.ends.iter().filter_map(|wall| wall.neighbour());

@@ -1666,7 +1666,9 @@ fn group_things_by_sector<T>(
     if things.is_empty() {
         return (Vec::new(), Vec::new(), Vec::new());
     }
-    things.sort_by_key(|(thing, _)| thing.sector);
+    // Each sector's solid things first: the collision reads a sector's things only while they
+    // are solid.
+    things.sort_by_key(|(thing, _)| (thing.sector, thing.flags & THING_SOLID == 0));
     let starts = (0..=sector_count)
         .map(|sector| {
             things.partition_point(|(thing, _)| usize::from(thing.sector) < sector) as u16

@@ -168,7 +168,8 @@ pub struct MapTables<'a> {
     pub sectors: &'a [Sector],
     /// The player's start.
     pub player_start: PlayerStart,
-    /// Placed objects, grouped by sector in sector order.
+    /// Placed objects, grouped by sector in sector order, each sector's solid ones
+    /// ([`THING_SOLID`]) first.
     pub things: &'a [Thing],
     /// Where each sector's things start in [`MapTables::things`], and one past the last: one
     /// entry more than there are sectors, or none when the map has no things.

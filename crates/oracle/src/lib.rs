@@ -84,7 +84,7 @@ mod render;
 
 pub use compare::{
     compare, compare_with_row_tolerance, mismatch_regions, surface_colour, write_diff_png,
-    Comparison, ROW_TOLERANCE_PX,
+    Comparison, MISSED_THING_MIN_PIXELS, ROW_TOLERANCE_PX,
 };
 pub use engine::{
     bench_run_accuracy, compare_with_engine, EngineComparison, RecordingCanvas, RunAccuracy,

@@ -155,13 +155,14 @@ fn stage_cells(summary: &Summary, names: &[String]) -> String {
 fn accuracy_cells(measurements: &Measurements, run: &Run) -> String {
     match measurements.accuracy_of(run) {
         Some(accuracy) => format!(
-            " {:.3} | {:.2} | {} | {} |",
+            " {:.3} | {:.2} | {} | {} | {} |",
             accuracy.percent_of_pixels("surface_mismatches"),
             accuracy.percent_of_pixels("texel_mismatches"),
             accuracy.counter("wall_edge_px"),
             accuracy.counter("missed_sectors"),
+            accuracy.counter("missed_things"),
         ),
-        None => " — | — | — | — |".to_string(),
+        None => " — | — | — | — | — |".to_string(),
     }
 }
 
@@ -410,8 +411,8 @@ fn knob_table(doc: &mut String, measurements: &Measurements, base: &Run) {
     let (stage_header, stage_rule) = stage_headers(&names);
     let _ = writeln!(
         doc,
-        "| setting | mean | p50 | p95 | max | fps (mean) |{stage_header} surface % | texel % | wall edge (px) | missed sectors |\n\
-         |---|---|---|---|---|---|{stage_rule}---|---|---|---|"
+        "| setting | mean | p50 | p95 | max | fps (mean) |{stage_header} surface % | texel % | wall edge (px) | missed sectors | missed things |\n\
+         |---|---|---|---|---|---|{stage_rule}---|---|---|---|---|"
     );
     for run in runs {
         let changed = differences(base, run);
@@ -589,8 +590,8 @@ fn maps(doc: &mut String, measurements: &Measurements) {
         doc,
         "## Every shipped map\n\n\
          Each map's own fly-through at the default settings.\n\n\
-         | map | resolution | mean | p50 | p95 | max | fps (mean) |{stage_header} surface % | texel % | wall edge (px) | missed sectors |\n\
-         |---|---|---|---|---|---|---|{stage_rule}---|---|---|---|"
+         | map | resolution | mean | p50 | p95 | max | fps (mean) |{stage_header} surface % | texel % | wall edge (px) | missed sectors | missed things |\n\
+         |---|---|---|---|---|---|---|{stage_rule}---|---|---|---|---|"
     );
     for run in runs {
         let summary = run.summary();
@@ -898,7 +899,11 @@ fn accuracy(doc: &mut String, measurements: &Measurements) {
          top pixels and between the rows of their bottom pixels; the maximum over every column \
          of every compared frame;\n\
          - **missed sectors**: sectors the oracle's frame shows and the engine's does not, added \
-         up over the compared frames (the thesis' 24.8 projection lost portals this way).\n\n\
+         up over the compared frames (the thesis' 24.8 projection lost portals this way);\n\
+         - **missed things**: things the oracle's frame shows in two pixels or more and the \
+         engine's in none (`portalcast_oracle::MISSED_THING_MIN_PIXELS`), added up likewise. \
+         With `things=off` the engine draws none, and the surface % counts their pixels: what \
+         the knob gives up.\n\n\
          `cargo test --test render_oracle` bounds the same measures on sampled poses of every \
          map, and `cargo test --test render_host` checks that every pixel of every frame is \
          written exactly once.\n\n"
