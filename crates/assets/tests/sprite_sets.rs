@@ -525,8 +525,9 @@ fn anim_sets_the_frame_ticks_in_text_and_grid_maps() {
         "thing flame 32 32 anim=1\nthing torch 96 96\nthing flame 64 96 anim=255 solid",
     );
     let map = compile_map_str("room.map", &text, &catalog).unwrap_or_else(|e| panic!("{e}"));
+    // The solid flame first (a sector's solid things lead its list), then the others in order.
     let ticks: Vec<u16> = map.things.iter().map(|t| t.frame_ticks).collect();
-    assert_eq!(ticks, [1, 8, 255]);
+    assert_eq!(ticks, [255, 1, 8]);
     let grid = "cell 64\nsolid # tex=brick\n\
                 open . floor=0 ceil=128 floor_tex=stone ceil_tex=stone\n\
                 player @ on=.\nthing f flame anim=5 on=.\nthing t torch on=.\n\
