@@ -45,7 +45,8 @@ fn thing_words_compile_to_its_fields() {
              thing lamp 96 96 hang solid radius=9\n",
         ),
     );
-    // Grouped by sector: the west room's three in file order, then the east room's one.
+    // Grouped by sector: the west room's three, its solid one first and the others in file
+    // order, then the east room's one.
     let fields: Vec<(i32, u16, i16, u16, u16)> = found
         .iter()
         .map(|t| (t.x_fx8 / 256, t.sector, t.z, t.radius, t.flags))
@@ -53,14 +54,14 @@ fn thing_words_compile_to_its_fields() {
     assert_eq!(
         fields,
         [
+            (96, 0, 0, 9, THING_HANGING | THING_SOLID),
             // Lamp: 15 wide, so the radius is 8 (half the width, rounded up).
             (64, 0, 8, 8, THING_HANGING),
             (32, 0, 4, 12, 0),
-            (96, 0, 0, 9, THING_HANGING | THING_SOLID),
             (200, 1, 0, 8, THING_SOLID),
         ]
     );
-    assert_eq!(found[0].angle, 16384);
+    assert_eq!(found[1].angle, 16384);
 }
 
 #[test]
