@@ -225,7 +225,7 @@ mod tests {
         assert_eq!(distinct.len(), labels.len(), "{labels:?}");
         assert_eq!(
             labels[0],
-            "map=bench res=120x80 lighting=depth tex=ewram prep=off floors=full"
+            "map=bench res=120x80 lighting=depth tex=ewram prep=off floors=full things=on"
         );
         assert_eq!(guard_runs().count(), Resolution::ALL.len());
     }
