@@ -121,6 +121,18 @@ pc_sprite_run_dbl:
     bx      lr
     .size pc_sprite_run_dbl, . - pc_sprite_run_dbl
 
+    @ 240 wide: puts r10 into the byte `\odd` of the halfword in r9 and stores it, a row on.
+    .macro STORE_NATIVE odd
+    .if \odd
+    and     r9, r9, #0xff
+    orr     r9, r9, r10, lsl #8
+    .else
+    and     r9, r9, #0xff00
+    orr     r9, r9, r10
+    .endif
+    strh    r9, [r0], #240
+    .endm
+
     @ 240 wide: the byte `\odd` of each halfword.
     .macro RUN_NATIVE name, odd
     .global \name
@@ -130,14 +142,7 @@ pc_sprite_run_dbl:
 1:
     LIT_TEXEL
     ldrh    r9, [r0]
-    .if \odd
-    and     r9, r9, #0xff
-    orr     r9, r9, r10, lsl #8
-    .else
-    and     r9, r9, #0xff00
-    orr     r9, r9, r10
-    .endif
-    strh    r9, [r0], #240
+    STORE_NATIVE \odd
     subs    r11, r11, #1
     bne     1b
     bx      lr
@@ -177,14 +182,7 @@ pc_sprite_run_blend_dbl:
     .endif
     add     r3, r10, r3, lsl #8
     ldrb    r10, [r1, r3]
-    .if \odd
-    and     r9, r9, #0xff
-    orr     r9, r9, r10, lsl #8
-    .else
-    and     r9, r9, #0xff00
-    orr     r9, r9, r10
-    .endif
-    strh    r9, [r0], #240
+    STORE_NATIVE \odd
     subs    r11, r11, #1
     bne     1b
     bx      lr

@@ -8,44 +8,12 @@
 mod common;
 
 use common::player::*;
-use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::player::collide::RADIUS;
 use portalcast::player::input::Intent;
 use portalcast::player::Player;
-use portalcast_format::MapTables;
-
-// Binary angles: 0 along +x (east), growing toward +y (south on the top-down view).
-const EAST: u16 = 0;
-const SOUTH_EAST: u16 = 8192;
-const SOUTH: u16 = 2 * 8192;
-const SOUTH_WEST: u16 = 3 * 8192;
-const WEST: u16 = 4 * 8192;
-const NORTH: u16 = 6 * 8192;
-
-fn at(map: &MapTables, sector: u16, x: f64, y: f64, angle: u16) -> Player {
-    let p = WorldPoint::new(
-        Fx24_8::from_bits((x * 256.0) as i32),
-        Fx24_8::from_bits((y * 256.0) as i32),
-    );
-    Player::standing_at(map, sector, p, Angle::from_bits(angle))
-}
-
-fn run_intent(forward: i8, strafe: i8) -> Intent {
-    Intent {
-        run: true,
-        ..walk(forward, strafe, 0)
-    }
-}
 
 fn bits(player: &Player) -> (i32, i32) {
     (player.position.x.to_bits(), player.position.y.to_bits())
-}
-
-fn position(player: &Player) -> (f64, f64) {
-    (
-        units(player.position.x.to_bits()),
-        units(player.position.y.to_bits()),
-    )
 }
 
 /// The distance from the player's centre to (x, y), in units.

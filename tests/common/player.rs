@@ -2,7 +2,8 @@
 //! tick must keep, checked with exact geometry independent of the player's own code.
 
 use portalcast::math::{
-    point_in_convex_polygon, segment_contact, Containment, SegmentContact, WorldPoint,
+    point_in_convex_polygon, segment_contact, Angle, Containment, Fx24_8, SegmentContact,
+    WorldPoint,
 };
 use portalcast::player::collide::{Body, RADIUS};
 use portalcast::player::input::Intent;
@@ -296,3 +297,38 @@ thing torch 110 120 solid
 thing torch 120 120 solid
 thing torch 130 120 solid
 ";
+
+// Binary angles: 0 along +x (east), growing toward +y (south on the top-down view).
+pub const EAST: u16 = 0;
+pub const SOUTH_EAST: u16 = 8192;
+pub const SOUTH: u16 = 2 * 8192;
+pub const SOUTH_WEST: u16 = 3 * 8192;
+pub const WEST: u16 = 4 * 8192;
+pub const NORTH_WEST: u16 = 5 * 8192;
+pub const NORTH: u16 = 6 * 8192;
+pub const NORTH_EAST: u16 = 7 * 8192;
+
+/// The player standing at `(x, y)` (units) in `sector`, facing `angle` (binary).
+pub fn at(map: &MapTables, sector: u16, x: f64, y: f64, angle: u16) -> Player {
+    let p = WorldPoint::new(
+        Fx24_8::from_bits((x * 256.0) as i32),
+        Fx24_8::from_bits((y * 256.0) as i32),
+    );
+    Player::standing_at(map, sector, p, Angle::from_bits(angle))
+}
+
+/// [`walk`] with run on.
+pub fn run_intent(forward: i8, strafe: i8) -> Intent {
+    Intent {
+        run: true,
+        ..walk(forward, strafe, 0)
+    }
+}
+
+/// The player's position in units.
+pub fn position(player: &Player) -> (f64, f64) {
+    (
+        units(player.position.x.to_bits()),
+        units(player.position.y.to_bits()),
+    )
+}

@@ -500,35 +500,39 @@ fn check_footprint(fit: &ThingFit, radius: i64, least: i64, errors: &mut Vec<Loc
 fn check_thing_height(fit: &ThingFit, height: i64, errors: &mut Vec<Located>) {
     let room = fit.ceil - fit.floor;
     let (z, label) = (fit.z, &fit.label);
-    let message = if fit.hanging {
+    // How far the sprite passes the floor (hanging) or the ceiling (standing), and the words
+    // that say where it is.
+    let (over, placed) = if fit.hanging {
         let bottom = fit.ceil - z - height;
-        let over = fit.floor - bottom;
-        (over > 0).then(|| {
-            let fix = if z >= over {
-                format!("lower z= by {over} (to {})", z - over)
-            } else {
-                format!("its sector is only {room} tall: raise the ceiling or use a shorter sprite")
-            };
+        (
+            fit.floor - bottom,
             format!(
-                "{label}: the sprite is {height} tall and hangs {z} below the ceiling ({}), so its bottom ({bottom}) is {over} below the floor ({}); {fix}",
-                fit.ceil, fit.floor
-            )
-        })
+                "hangs {z} below the ceiling ({}), so its bottom ({bottom}) is {} below the floor ({})",
+                fit.ceil,
+                fit.floor - bottom,
+                fit.floor
+            ),
+        )
     } else {
         let top = fit.floor + z + height;
-        let over = top - fit.ceil;
-        (over > 0).then(|| {
-            let fix = if z >= over {
-                format!("lower z= by {over} (to {})", z - over)
-            } else {
-                format!("its sector is only {room} tall: raise the ceiling or use a shorter sprite")
-            };
+        (
+            top - fit.ceil,
             format!(
-                "{label}: the sprite is {height} tall and stands {z} above the floor ({}), so its top ({top}) is {over} above the ceiling ({}); {fix}",
-                fit.floor, fit.ceil
-            )
-        })
+                "stands {z} above the floor ({}), so its top ({top}) is {} above the ceiling ({})",
+                fit.floor,
+                top - fit.ceil,
+                fit.ceil
+            ),
+        )
     };
+    let message = (over > 0).then(|| {
+        let fix = if z >= over {
+            format!("lower z= by {over} (to {})", z - over)
+        } else {
+            format!("its sector is only {room} tall: raise the ceiling or use a shorter sprite")
+        };
+        format!("{label}: the sprite is {height} tall and {placed}; {fix}")
+    });
     errors.extend(message.map(|m| (fit.loc, m)));
 }
 
