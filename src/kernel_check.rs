@@ -106,16 +106,6 @@ static CHECK_BLEND: portalcast_format::BlendTable = {
     table
 };
 
-/// The identity light row: sprites drawn unlit go through it.
-static IDENTITY: [u8; 256] = {
-    let mut row = [0u8; 256];
-    let mut i = 0;
-    while i < 256 {
-        row[i] = i as u8;
-        i += 1;
-    }
-    row
-};
 static COLORMAP: [u8; 256] = check_colormap();
 
 /// A small deterministic generator (Numerical Recipes' LCG), so both sides draw the same jobs.
@@ -228,7 +218,11 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             scale,
             iscale: ((1u64 << 32) / scale as u64) as u32,
             clip: crate::raster::Window { top, bottom },
-            colormap: if job % 3 == 0 { &IDENTITY } else { &COLORMAP },
+            colormap: if job % 3 == 0 {
+                &crate::raster::IDENTITY_ROW
+            } else {
+                &COLORMAP
+            },
             // One job in four translucent, over whatever the earlier jobs drew.
             blend: (job % 4 == 1).then_some(&CHECK_BLEND),
         };

@@ -133,7 +133,7 @@ use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
 use crate::raster::flat::{FlatTexture, FLAT_LOG2_SIDES};
 use crate::raster::sprite::SpriteColumn;
 use crate::raster::wall_run::{StripRun, WallRun, WallRunEnd};
-use crate::raster::Canvas;
+use crate::raster::{Canvas, IDENTITY_ROW};
 
 extern "C" {
     fn pc_wall_run(run: *mut WallRun) -> u32;
@@ -374,17 +374,6 @@ impl KernelBank {
         }
     }
 }
-
-/// The colormap row that changes nothing, for unlit draws through lit kernels.
-static IDENTITY_ROW: [u8; 256] = {
-    let mut row = [0u8; 256];
-    let mut index = 0;
-    while index < 256 {
-        row[index] = index as u8;
-        index += 1;
-    }
-    row
-};
 
 /// The back page in VRAM as a [`Canvas`]: columns and spans go to the asm kernels.
 pub struct VramCanvas {

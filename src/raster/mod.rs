@@ -11,6 +11,18 @@ pub mod span;
 pub mod sprite;
 pub mod wall_run;
 
+/// The light row that changes nothing: what draws unlit through a lit kernel (a sprite, or an
+/// unlit column in a lit frame).
+pub static IDENTITY_ROW: [u8; 256] = {
+    let mut row = [0u8; 256];
+    let mut index = 0;
+    while index < 256 {
+        row[index] = index as u8;
+        index += 1;
+    }
+    row
+};
+
 /// A column window: rows `top..bottom` (half-open). `top >= bottom` means empty. `repr(C)`,
 /// word aligned: the ARM wall loop reads and writes one as a word, `top` in its low half, and
 /// `make_spans` compares two with one word compare.

@@ -147,16 +147,6 @@ impl<'a> SpriteColumn<'a> {
 mod tests {
     use super::*;
 
-    const IDENTITY: [u8; 256] = {
-        let mut row = [0u8; 256];
-        let mut i = 0;
-        while i < 256 {
-            row[i] = i as u8;
-            i += 1;
-        }
-        row
-    };
-
     /// Two posts: rows 1..3 (texels 10, 11) and row 5 (texel 20), with their pads.
     const POSTS: [u8; 10] = [2, 1, 2, 10, 11, 11, 5, 1, 20, 20];
 
@@ -167,7 +157,7 @@ mod tests {
             scale,
             iscale: ((1u64 << 32) / scale as u64) as u32,
             clip,
-            colormap: &IDENTITY,
+            colormap: &crate::raster::IDENTITY_ROW,
             blend: None,
         }
     }

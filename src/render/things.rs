@@ -22,7 +22,7 @@ use super::view::View;
 use super::RenderAssets;
 use crate::math::{EyePoint, Fx24_8, WorldPoint};
 use crate::raster::sprite::SpriteColumn;
-use crate::raster::{Canvas, Window};
+use crate::raster::{Canvas, Window, IDENTITY_ROW};
 use portalcast_format::MapTables;
 
 /// Things a frame draws at most (a thing seen through two portals counts twice); more are left
@@ -38,17 +38,6 @@ pub const VISIBLE_MIDDLES_MAX: usize = 32;
 
 /// Columns of portal middles a frame keeps at most.
 pub const MIDDLE_COLUMNS_MAX: usize = 240;
-
-/// The colormap row that changes nothing: unlit sprites draw through it.
-static IDENTITY_ROW: [u8; 256] = {
-    let mut row = [0u8; 256];
-    let mut index = 0;
-    while index < 256 {
-        row[index] = index as u8;
-        index += 1;
-    }
-    row
-};
 
 /// A thing as one visit sees it: where its sprite lies on screen (16.16 columns and rows) and
 /// which columns of the visit it covers.
