@@ -218,13 +218,7 @@ impl Viewport {
     pub const fn side_of_column_ray(&self, p: EyePoint, column: i32) -> Side {
         let ray_x = (2 * (column - self.centre_x()) + 1) * p.z.to_bits();
         let point_x = 2 * self.focal_x * p.x.to_bits();
-        if point_x < ray_x {
-            Side::Left
-        } else if point_x > ray_x {
-            Side::Right
-        } else {
-            Side::On
-        }
+        Side::from_cross(point_x as i64 - ray_x as i64)
     }
 
     /// [`side_of_column_ray`](Self::side_of_column_ray) of the exact point `q`: compares
@@ -235,13 +229,7 @@ impl Viewport {
     pub const fn side_of_exact_column_ray(&self, q: ExactEyePoint, column: i32) -> Side {
         let ray_x = (2 * (column - self.centre_x()) + 1) as i64 * q.z;
         let point_x = 2 * self.focal_x as i64 * q.x;
-        if point_x < ray_x {
-            Side::Left
-        } else if point_x > ray_x {
-            Side::Right
-        } else {
-            Side::On
-        }
+        Side::from_cross(point_x - ray_x)
     }
 
     /// [`first_column_at_or_after`](Self::first_column_at_or_after) of the exact point `q`
