@@ -171,6 +171,9 @@ pub struct Renderer<W: WindowStore = ColumnWindows> {
     /// middle image, for the map whose walls start at [`Renderer::middles_of`].
     middle_sectors: [u32; VISITS_TRACKED / 32],
     middles_of: usize,
+    /// Whether the map may have a middle image: [`Renderer::middle_sectors`] marks a sector, or
+    /// some sectors are past the tracked ones.
+    any_middles: bool,
 }
 
 /// Vertices (by index) whose eye-space position a frame keeps once computed; higher ones are
@@ -381,6 +384,7 @@ impl<W: WindowStore> Renderer<W> {
             things: Things::new(),
             middle_sectors: [0; VISITS_TRACKED / 32],
             middles_of: 0,
+            any_middles: false,
         }
     }
 
@@ -433,7 +437,7 @@ impl<W: WindowStore> Renderer<W> {
             stats.plan_overflows = u32::from(view.preprocessing == Preprocessing::On);
             self.walk(&scene, canvas, &mut stats, view.sector, 0, width as i32);
         }
-        if !map.things.is_empty() || self.middles_of_map() {
+        if !map.things.is_empty() || self.any_middles {
             let things_started = (self.clock)();
             let things = self.things.draw(assets, canvas);
             stats.things_drawn = things.drawn;
@@ -476,12 +480,9 @@ impl<W: WindowStore> Renderer<W> {
             }
         }
         self.middles_of = map.walls.as_ptr() as usize;
-    }
-
-    /// Whether the map has a portal with a middle image (among its first [`VISITS_TRACKED`]
-    /// sectors; the others are looked at one by one).
-    fn middles_of_map(&self) -> bool {
-        self.middle_sectors.iter().any(|&word| word != 0)
+        // Sectors past the tracked ones are looked at one by one ([`Renderer::has_middles`]).
+        self.any_middles = self.middle_sectors.iter().any(|&word| word != 0)
+            || map.sectors.len() > VISITS_TRACKED;
     }
 
     /// Whether sector `index` may have a portal with a middle image (sectors past
