@@ -209,20 +209,15 @@ fn presses(keys: &[Keys]) -> Vec<Keys> {
         .collect()
 }
 
-/// On the bench map at 240×160, a step right past the statue and north across the hall to the
-/// passage: the ROM's frames, with the hall's things, the translucent lamp and the grate in the
-/// passage's opening, are the host's; the first frame where the grate fills much of the view is
-/// saved for the README.
-#[test]
-fn the_bench_hall_s_things_grate_and_translucent_lamp_match_the_host() {
-    let mut emulator = boot_until_playing();
-    let mut renderer = Renderer::new();
+/// Plays `keys` a frame each and calls `frame` with every frame the ROM draws outside the Start
+/// menu: the emulator, the pose its `player` line logged, and its `render` line.
+fn play_frames(
+    emulator: &mut portalcast_harness::Emulator,
+    keys: &[Keys],
+    mut frame: impl FnMut(&portalcast_harness::Emulator, &PlayerLine, &str),
+) {
     let mut player = None;
-    let mut keys = presses(&[Keys::START, Keys::RIGHT, Keys::RIGHT, Keys::START]);
-    keys.extend([Keys::R; 12]);
-    keys.extend([Keys::UP; 400]);
-    let (mut things, mut middle, mut translucent, mut saved) = (false, false, false, false);
-    for &held in &keys {
+    for &held in keys {
         emulator.set_keys(held);
         emulator
             .run_frame()
@@ -231,37 +226,52 @@ fn the_bench_hall_s_things_grate_and_translucent_lamp_match_the_host() {
             if !line.is_debug_print() {
                 continue;
             }
+            if std::env::var_os("THINGS_DEBUG").is_some() {
+                println!("{}", line.text);
+            }
             if line.text.starts_with("player ") {
                 player = Some(PlayerLine::parse(&line.text));
             } else if line.text.starts_with("render ") {
                 // The first frame's player line may have gone with the boot's log.
-                let Some(player) = player.as_ref() else {
-                    continue;
-                };
-                if player.menu >= 0 {
-                    continue;
-                }
-                let (map, _, canvas) =
-                    host_frame_matching(&emulator, &mut renderer, player, &line.text);
-                let count = |keep: &dyn Fn(Surface) -> bool| {
-                    canvas.surfaces.iter().filter(|&&s| keep(s)).count()
-                };
-                let middles = count(&|s| matches!(s, Surface::Middle(_)));
-                things |= count(&|s| matches!(s, Surface::Thing(_))) > 0;
-                middle |= middles > 0;
-                translucent |= count(&|s| match s {
-                    Surface::Thing(t) => map.things[usize::from(t)].flags & THING_TRANSLUCENT != 0,
-                    _ => false,
-                }) > 0;
-                if middles > 2_000 && !saved && field(&line.text, "res") == Some("240x160") {
-                    emulator
-                        .save_frame_png(&screenshot_dir().join("things-bench-grate.png"))
-                        .unwrap_or_else(|error| panic!("{error}"));
-                    saved = true;
+                match &player {
+                    Some(player) if player.menu < 0 => frame(emulator, player, &line.text),
+                    _ => {}
                 }
             }
         }
     }
+}
+
+/// On the bench map at 240×160, a step right past the statue and north across the hall to the
+/// passage: the ROM's frames, with the hall's things, the translucent lamp and the grate in the
+/// passage's opening, are the host's; the first frame where the grate fills much of the view is
+/// saved for the README.
+#[test]
+fn the_bench_hall_s_things_grate_and_translucent_lamp_match_the_host() {
+    let mut emulator = boot_until_playing();
+    let mut renderer = Renderer::new();
+    let mut keys = presses(&[Keys::START, Keys::RIGHT, Keys::RIGHT, Keys::START]);
+    keys.extend([Keys::R; 12]);
+    keys.extend([Keys::UP; 400]);
+    let (mut things, mut middle, mut translucent, mut saved) = (false, false, false, false);
+    play_frames(&mut emulator, &keys, |emulator, player, render_line| {
+        let (map, _, canvas) = host_frame_matching(emulator, &mut renderer, player, render_line);
+        let count =
+            |keep: &dyn Fn(Surface) -> bool| canvas.surfaces.iter().filter(|&&s| keep(s)).count();
+        let middles = count(&|s| matches!(s, Surface::Middle(_)));
+        things |= count(&|s| matches!(s, Surface::Thing(_))) > 0;
+        middle |= middles > 0;
+        translucent |= count(&|s| match s {
+            Surface::Thing(t) => map.things[usize::from(t)].flags & THING_TRANSLUCENT != 0,
+            _ => false,
+        }) > 0;
+        if middles > 2_000 && !saved && field(render_line, "res") == Some("240x160") {
+            emulator
+                .save_frame_png(&screenshot_dir().join("things-bench-grate.png"))
+                .unwrap_or_else(|error| panic!("{error}"));
+            saved = true;
+        }
+    });
     assert!(things, "no frame drew a thing");
     assert!(middle, "no frame drew the grate");
     assert!(translucent, "no frame drew the translucent lamp");
@@ -272,7 +282,6 @@ fn the_bench_hall_s_things_grate_and_translucent_lamp_match_the_host() {
 fn things_are_drawn_hidden_and_cut_as_the_host_draws_them() {
     let mut emulator = boot_until_playing();
     let mut renderer = Renderer::new();
-    let mut player = None;
     let mut total = Seen::default();
     let mut compared = 0;
     // To the tiny map through the Start menu (the cursor starts on the resolution, the map is
@@ -290,45 +299,28 @@ fn things_are_drawn_hidden_and_cut_as_the_host_draws_them() {
     keys.extend([Keys::UP; 90]);
     keys.extend([Keys::RIGHT; 60]);
     keys.extend([Keys::R; 120]);
-    for &held in &keys {
-        emulator.set_keys(held);
-        emulator
-            .run_frame()
-            .unwrap_or_else(|error| panic!("{error}"));
-        for line in emulator.drain_log() {
-            if !line.is_debug_print() {
-                continue;
-            }
-            if std::env::var_os("THINGS_DEBUG").is_some() {
-                println!("{}", line.text);
-            }
-            if line.text.starts_with("player ") {
-                player = Some(PlayerLine::parse(&line.text));
-            } else if line.text.starts_with("render ") && field(&line.text, "map") == Some("tiny") {
-                let player = player.as_ref().expect("a player line precedes every frame");
-                if player.menu >= 0 {
-                    continue;
-                }
-                let seen = compare_frame(&emulator, &mut renderer, player, &line.text);
-                compared += 1;
-                // The first frame of each kind, for the README and for a look.
-                for (kind, now, before) in [
-                    ("drawn", seen.drawn, total.drawn),
-                    ("hidden", seen.hidden, total.hidden),
-                    ("cut", seen.cut, total.cut),
-                ] {
-                    if now && !before {
-                        emulator
-                            .save_frame_png(&screenshot_dir().join(format!("things-{kind}.png")))
-                            .unwrap_or_else(|error| panic!("{error}"));
-                    }
-                }
-                total.drawn |= seen.drawn;
-                total.hidden |= seen.hidden;
-                total.cut |= seen.cut;
+    play_frames(&mut emulator, &keys, |emulator, player, render_line| {
+        if field(render_line, "map") != Some("tiny") {
+            return;
+        }
+        let seen = compare_frame(emulator, &mut renderer, player, render_line);
+        compared += 1;
+        // The first frame of each kind, for the README and for a look.
+        for (kind, now, before) in [
+            ("drawn", seen.drawn, total.drawn),
+            ("hidden", seen.hidden, total.hidden),
+            ("cut", seen.cut, total.cut),
+        ] {
+            if now && !before {
+                emulator
+                    .save_frame_png(&screenshot_dir().join(format!("things-{kind}.png")))
+                    .unwrap_or_else(|error| panic!("{error}"));
             }
         }
-    }
+        total.drawn |= seen.drawn;
+        total.hidden |= seen.hidden;
+        total.cut |= seen.cut;
+    });
     println!("{compared} frames of tiny compared: {total:?}");
     assert!(
         compared > 10,

@@ -481,8 +481,8 @@ impl<W: WindowStore> Renderer<W> {
         }
         self.middles_of = map.walls.as_ptr() as usize;
         // Sectors past the tracked ones are looked at one by one ([`Renderer::has_middles`]).
-        self.any_middles = self.middle_sectors.iter().any(|&word| word != 0)
-            || map.sectors.len() > VISITS_TRACKED;
+        self.any_middles =
+            self.middle_sectors.iter().any(|&word| word != 0) || map.sectors.len() > VISITS_TRACKED;
     }
 
     /// Whether sector `index` may have a portal with a middle image (sectors past
