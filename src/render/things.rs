@@ -20,7 +20,7 @@ use super::light::light_row;
 use super::surface::{Surface, THING_DEPTH_MIN};
 use super::view::View;
 use super::RenderAssets;
-use crate::math::{EyePoint, Fx24_8, WorldPoint};
+use crate::math::{EyePoint, Fx16_16, Fx24_8, WorldPoint};
 use crate::raster::sprite::SpriteColumn;
 use crate::raster::{Canvas, Window, IDENTITY_ROW};
 use portalcast_format::MapTables;
@@ -631,8 +631,10 @@ fn project(
     let iscale_x = ((i64::from(depth) * frame.inverse_focal_x) >> 22) as u32;
     let iscale = texels_per_row(depth, rows_per_texel, frame.inverse_focal_y);
     // The first column whose centre is right of the left edge, and its texture column.
-    let first = ((x_left + 0x7fff) >> 16).max(0);
-    let end = ((x_right + 0x7fff) >> 16).min(i64::from(viewport.width));
+    // On screen, both edges are within the sprite's width (at most 256 texels of 30 columns)
+    // of it: 16.16 holds them.
+    let column_of = |x: i64| viewport.first_column_at_or_after_x(Fx16_16::from_bits(x as i32));
+    let (first, end) = (i64::from(column_of(x_left)), i64::from(column_of(x_right)));
     let offset = ((first << 16) + 0x8000 - x_left) as u64;
     let u_first = ((offset * u64::from(iscale_x)) >> 16) as u32;
     let light = light_row(sector.light, depth >> 8, view.lighting);
