@@ -13,7 +13,8 @@
 //! things wherever they overlap.
 
 use portalcast_format::{
-    Sprite, Thing, Wall, NO_TEXTURE, THING_HANGING, THING_TRANSLUCENT, WALL_MIDDLE_TRANSLUCENT,
+    Sprite, SpriteSet, Thing, Wall, NO_TEXTURE, THING_HANGING, THING_TRANSLUCENT,
+    WALL_MIDDLE_TRANSLUCENT,
 };
 
 use super::light::light_row;
@@ -264,18 +265,26 @@ impl Things {
         let range = map.things_range(sector_index);
         let sector = &map.sectors[usize::from(sector_index)];
         for (index, thing) in range.clone().zip(&map.things[range]) {
-            let Some(image) = image_of(frame, thing) else {
+            // Every image of a set has one size (the asset compiler's rule), so the set's first
+            // places the sprite; which image it shows (the rotation, the animation frame: a
+            // sine, products and two divides) is found only for the things in the visit's
+            // columns.
+            let Some(set) = assets.sprite_sets.get(usize::from(thing.sprite)) else {
                 continue;
             };
-            let Some(sprite) = assets.sprites.get(image) else {
+            let Some(shape) = assets.sprites.get(usize::from(set.first)) else {
                 continue;
             };
-            let Some(mut seen) = project(frame, sector, thing, sprite) else {
+            let Some(mut seen) = project(frame, sector, thing, shape) else {
                 continue;
             };
             let columns_first = (seen.first as i32).max(first);
             let columns_end = (seen.end as i32).min(end);
             if columns_first >= columns_end {
+                continue;
+            }
+            let image = image_of(frame, thing, set);
+            if assets.sprites.get(image).is_none() {
                 continue;
             }
             let columns = (columns_end - columns_first) as usize;
@@ -545,10 +554,9 @@ fn middle_image(assets: &RenderAssets, wall: &Wall) -> Option<usize> {
     Some(usize::from(set.first)).filter(|&image| image < assets.sprites.len())
 }
 
-/// The image of `thing`'s sprite set the frame shows: its animation frame at the view's tick,
-/// seen from the eye's side of it.
-fn image_of(frame: &ThingView, thing: &Thing) -> Option<usize> {
-    let set = frame.assets.sprite_sets.get(usize::from(thing.sprite))?;
+/// The image of `thing`'s sprite set `set` the frame shows: its animation frame at the view's
+/// tick, seen from the eye's side of it.
+fn image_of(frame: &ThingView, thing: &Thing, set: &SpriteSet) -> usize {
     let eye = frame.view.eye.position;
     let (sin, cos) = crate::math::Angle::from_bits(thing.angle).sin_cos();
     let rotation = set.rotation(
@@ -557,7 +565,7 @@ fn image_of(frame: &ThingView, thing: &Thing) -> Option<usize> {
         sin.to_bits(),
         cos.to_bits(),
     );
-    Some(set.image(frame.view.tick, thing.frame_ticks.max(1), rotation))
+    set.image(frame.view.tick, thing.frame_ticks.max(1), rotation)
 }
 
 /// Whether `a` is drawn before `b`: of a later visit (behind), or of the same visit a middle

@@ -193,7 +193,12 @@ impl SpriteSet<'_> {
     /// [`SpriteSet::rotations`]).
     #[inline]
     pub const fn image(&self, tick: u32, frame_ticks: u16, rotation: u8) -> usize {
-        let frame = (tick / frame_ticks as u32) % self.frames as u32;
+        // A still set (most are) needs no divide: the ARM7TDMI has none.
+        let frame = if self.frames <= 1 {
+            0
+        } else {
+            (tick / frame_ticks as u32) % self.frames as u32
+        };
         self.first as usize + frame as usize * self.rotations as usize + rotation as usize
     }
 
