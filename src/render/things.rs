@@ -352,7 +352,7 @@ impl Things {
         let (xa, za) = (i64::from(a.x.to_bits()), i64::from(a.z.to_bits()));
         let (dx, dz) = (i64::from(b.x.to_bits()) - xa, i64::from(b.z.to_bits()) - za);
         let above_eye = i64::from(view.eye_z.to_bits()) - i64::from(top << 8);
-        let width = i64::from(sprite.width);
+        let width = u32::from(sprite.width);
         let start = self.middle_columns_used;
         let mut used = start;
         for x in columns {
@@ -383,13 +383,18 @@ impl Things {
             // The reciprocal is within a unit or two of the quotient: made the exact floor of
             // `n·2^30 / d` (a column's ray exactly on a texel edge takes the texel right of it,
             // the oracle's tie rule).
-            let (scaled, d) = (numerator << 30, i64::from(denominator));
+            // The estimate's remainder is brought into `0..d` a unit at a time: one product
+            // instead of two per test.
+            let d = i64::from(denominator);
             let mut t = (numerator * reciprocal) >> p;
-            while t * d > scaled {
+            let mut remainder = (numerator << 30) - t * d;
+            while remainder < 0 {
                 t -= 1;
+                remainder += d;
             }
-            while (t + 1) * d <= scaled {
+            while remainder >= d {
                 t += 1;
+                remainder -= d;
             }
             let t = t.clamp(0, 1 << 30);
             let depth = (za + ((t * dz) >> 30)).max(i64::from(THING_DEPTH_MIN) << 8);
@@ -401,7 +406,7 @@ impl Things {
             let light = light_row(sector.light, (depth >> 8) as i32, view.lighting);
             self.middle_columns[used] = MiddleColumn {
                 x: x as u8,
-                u: ((u_fx8 >> 8).rem_euclid(width)) as u8,
+                u: wrap_column(u_fx8, width),
                 light_row: light.map_or(u8::MAX, |row| row as u8),
                 clip: window,
                 y_top: y_top.clamp(-(1 << 30), 1 << 30) as i32,
@@ -517,6 +522,19 @@ impl Things {
                 },
             );
         }
+    }
+}
+
+/// The image column of texture coordinate `u_fx8` (24.8 texels) on an image `width` columns
+/// wide, which repeats: a mask for the usual power-of-two widths, a 32-bit remainder otherwise
+/// (the ARM7TDMI divides in software).
+#[inline(always)]
+fn wrap_column(u_fx8: i64, width: u32) -> u8 {
+    let column = (u_fx8 >> 8) as i32;
+    if width.is_power_of_two() {
+        (column as u32 & (width - 1)) as u8
+    } else {
+        column.rem_euclid(width as i32) as u8
     }
 }
 
