@@ -86,33 +86,6 @@ fn nearest(rgb: [i32; 3]) -> usize {
         .unwrap_or(0)
 }
 
-/// Compiles `scratch` and returns its errors as `file:line:col: message` lines, the file
-/// relative to the scratch directory.
-fn errors(scratch: &Scratch) -> Vec<String> {
-    let errors = compile_dir(&scratch.dir).expect_err("an error");
-    errors
-        .0
-        .iter()
-        .map(|error| {
-            let file = error.path.strip_prefix(&scratch.dir).unwrap_or(&error.path);
-            format!(
-                "{}:{}:{}: {}",
-                file.display(),
-                error.loc.line,
-                error.loc.col,
-                error.message
-            )
-        })
-        .collect()
-}
-
-/// Compiles `scratch` and returns its single error.
-fn only_error(scratch: &Scratch) -> String {
-    let found = errors(scratch);
-    assert_eq!(found.len(), 1, "{found:#?}");
-    found[0].clone()
-}
-
 #[test]
 fn a_still_image_is_a_set_of_one() {
     let compiled = compile(&valid_assets("still", "stone"));
@@ -326,7 +299,7 @@ fn a_file_name_that_follows_no_scheme_is_refused() {
     scratch.png("sprites/flame.x.png", &sprite());
     // Hidden files are ignored.
     scratch.png("sprites/._torch.png", &sprite());
-    let error = only_error(&scratch);
+    let error = scratch.only_error();
     assert!(
         error.starts_with(
             "sprites/flame.x.png:1:1: the file name follows none of the sprite file schemes; name a sprite set's images NAME.png (still), NAME.1.png, NAME.2.png, ..."
@@ -341,7 +314,7 @@ fn mixed_schemes_are_refused() {
     scratch.png("sprites/torch.1.png", &sprite());
     scratch.png("sprites/torch.2.png", &sprite());
     assert_eq!(
-        errors(&scratch),
+        scratch.errors(),
         [1, 2].map(|k| format!(
             "sprites/torch.{k}.png:1:1: sprite set 'torch' mixes file schemes: this file is an animation frame (NAME.K.png) but sprites/torch.png is a still image (NAME.png); give a set one scheme: remove or rename the files of the other"
         ))
@@ -355,7 +328,7 @@ fn a_gap_in_the_frame_numbers_is_refused() {
         scratch.png(&format!("sprites/flame.{k}.png"), &sprite());
     }
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/flame.4.png:1:1: sprite set 'flame' has no frames 3, 5 (sprites/flame.3.png, sprites/flame.5.png); number the frames from 1 without gaps: add the missing frames or renumber this one and those after it"
     );
 }
@@ -366,7 +339,7 @@ fn frames_from_zero_or_with_leading_zeros_are_refused() {
     scratch.png("sprites/flame.0.png", &sprite());
     scratch.png("sprites/flame.01.png", &sprite());
     assert_eq!(
-        errors(&scratch),
+        scratch.errors(),
         [
             "sprites/flame.0.png:1:1: frame 0: animation frames are numbered from 1; renumber the frames of 'flame' from 1",
             "sprites/flame.01.png:1:1: frame number '01' has a leading zero; write it flame.1.png",
@@ -379,7 +352,7 @@ fn a_single_numbered_frame_is_refused() {
     let scratch = valid_assets("one_frame", "stone");
     scratch.png("sprites/flame.1.png", &sprite());
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/flame.1.png:1:1: sprite set 'flame' has only frame 1; an animation needs 2 frames or more: add sprites/flame.2.png, or rename this file flame.png for a still set"
     );
 }
@@ -389,7 +362,7 @@ fn a_strip_of_fewer_than_two_frames_is_refused() {
     let scratch = valid_assets("strip1", "stone");
     scratch.png("sprites/flame.strip1.png", &sprite());
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/flame.strip1.png:1:1: a strip holds at least 2 frames side by side (flame.stripK.png, K 2 or more); name a single image flame.png"
     );
 }
@@ -400,7 +373,7 @@ fn two_strips_for_one_set_are_refused() {
     scratch.png("sprites/flame.strip2.png", &RgbaImage::new(8, 4));
     scratch.png("sprites/flame.strip4.png", &RgbaImage::new(8, 4));
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/flame.strip4.png:1:1: sprite set 'flame' already has the strip sprites/flame.strip2.png; give a set one strip: remove one of them"
     );
 }
@@ -412,12 +385,12 @@ fn missing_rotations_are_refused() {
         scratch.png(&format!("sprites/statue.r{r}.png"), &sprite());
     }
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/statue.r0.png:1:1: sprite set 'statue' has no rotation r3, r6 (sprites/statue.r3.png, sprites/statue.r6.png); a set with rotations needs all eight, r0 to r7: add the missing ones, or keep a single image for a set that looks the same from every side"
     );
     // A rotation beyond r7.
     scratch.png("sprites/statue.r8.png", &sprite());
-    assert!(errors(&scratch).contains(
+    assert!(scratch.errors().contains(
         &"sprites/statue.r8.png:1:1: rotation r8 does not exist; the eight rotations are r0 to r7 (docs/MAP_FORMAT.md, \"Sprites\")".to_string()
     ));
 }
@@ -431,7 +404,7 @@ fn each_frame_needs_all_its_rotations() {
         }
     }
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/knight.2.r0.png:1:1: frame 2 of sprite set 'knight' has no rotation r6 (sprites/knight.2.r6.png); a set with rotations needs all eight, r0 to r7: add the missing ones, or keep a single image for a set that looks the same from every side"
     );
     // One frame only: it should be a set of rotations.
@@ -440,7 +413,7 @@ fn each_frame_needs_all_its_rotations() {
         scratch.png(&format!("sprites/knight.1.r{r}.png"), &sprite());
     }
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/knight.1.r0.png:1:1: sprite set 'knight' has only frame 1; an animation needs 2 frames or more: add sprites/knight.2.r0.png ... knight.2.r7.png, or rename its rotations knight.r0.png ... knight.r7.png for a still set"
     );
 }
@@ -455,7 +428,7 @@ fn a_strip_whose_width_does_not_divide_is_refused() {
         &RgbaImage::from_pixel(30, 10, Rgba([200, 90, 20, 255])),
     );
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/flame.strip4.png:1:1: the strip is 30 wide, which does not divide into its 4 frames (the name says 4); make it 28 wide (4 frames of 7) or give the right count in the name"
     );
 }
@@ -472,7 +445,7 @@ fn a_fully_transparent_strip_frame_is_refused_where_it_starts() {
     });
     scratch.png("sprites/flame.strip3.png", &strip);
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/flame.strip3.png:1:7: frame 2 of the strip (columns 6 to 11) is fully transparent (alpha below 128), so the thing would vanish on that frame; paint it with opaque pixels (alpha 128 or more)"
     );
 }
@@ -484,7 +457,7 @@ fn images_of_one_set_must_share_their_size() {
     scratch.png("sprites/flame.2.png", &marked(1, COLOURS[1]));
     scratch.png("sprites/flame.3.png", &sprite());
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/flame.3.png:1:1: the image is 8x12 but sprites/flame.1.png is 6x10; all images of sprite set 'flame' must be the same size: resize this one"
     );
 }
@@ -500,7 +473,8 @@ fn each_image_of_a_set_is_checked() {
         };
         scratch.png(&format!("sprites/statue.r{r}.png"), &image);
     }
-    assert!(only_error(&scratch)
+    assert!(scratch
+        .only_error()
         .starts_with("sprites/statue.r5.png:1:1: every pixel is transparent (alpha below 128)"));
 }
 
@@ -510,7 +484,7 @@ fn things_check_their_footprint_against_the_set_size() {
     let scratch = assets_with("set_radius", "flame 32 32 radius=2");
     scratch.png("sprites/flame.1.png", &marked(0, COLOURS[0]));
     scratch.png("sprites/flame.2.png", &marked(1, COLOURS[1]));
-    assert!(only_error(&scratch).starts_with(
+    assert!(scratch.only_error().starts_with(
         "maps/room.map:11:26: radius=2 is less than half the width of the sprite (6); use radius=3"
     ));
 }

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{sprite, valid_assets, Scratch};
+use common::{sprite, valid_assets};
 use image::RgbaImage;
 use portalcast_assets::{compile_dir, compile_map_str, Catalog};
 use portalcast_format::limits::THINGS_MAX;
@@ -130,24 +130,6 @@ fn more_things_than_a_map_holds_is_one_error_at_the_first_beyond() {
     assert_eq!(map.sector_things.last().copied(), Some(THINGS_MAX as u16));
 }
 
-/// Compiles `scratch` and returns its single error's `file:line:col: message`.
-fn only_error(scratch: &Scratch) -> String {
-    let errors = compile_dir(&scratch.dir).expect_err("an error");
-    assert_eq!(errors.0.len(), 1, "{errors}");
-    let error = &errors.0[0];
-    let file = error
-        .path
-        .strip_prefix(&scratch.dir)
-        .expect("inside the scratch directory");
-    format!(
-        "{}:{}:{}: {}",
-        file.display(),
-        error.loc.line,
-        error.loc.col,
-        error.message
-    )
-}
-
 #[test]
 fn an_asset_directory_checks_things_against_the_sprite_images() {
     // The common sprite is 8×12: radius 4 at least.
@@ -155,20 +137,20 @@ fn an_asset_directory_checks_things_against_the_sprite_images() {
     let map = common::room_map("stone").replace("thing torch 32 32", "thing torch 32 32 radius=3");
     scratch.write("maps/room.map", map.as_bytes());
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "maps/room.map:11:26: radius=3 is less than half the width of the sprite (8); use radius=4 or more, or leave radius= out (the default is 4)"
     );
     // 12 tall, 90 above the floor of a room 96 tall.
     let map = common::room_map("stone").replace("thing torch 32 32", "thing torch 32 32 z=90");
     scratch.write("maps/room.map", map.as_bytes());
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "maps/room.map:11:1: thing 'torch' at (32, 32): the sprite is 12 tall and stands 90 above the floor (0), so its top (102) is 6 above the ceiling (96); lower z= by 6 (to 84)"
     );
     // Default radius 4, 3 from the wall along x = 0.
     let map = common::room_map("stone").replace("thing torch 32 32", "thing torch 3 32");
     scratch.write("maps/room.map", map.as_bytes());
-    assert!(only_error(&scratch).starts_with(
+    assert!(scratch.only_error().starts_with(
         "maps/room.map:11:1: thing 'torch' at (3, 32): its footprint (radius 4) crosses the line of the wall from vertex 'd' to vertex 'a' (line 9)"
     ));
     let map = common::room_map("stone").replace("thing torch 32 32", "thing torch 32 32 hang");
@@ -184,7 +166,7 @@ fn an_asset_directory_checks_things_against_the_sprite_images() {
 fn a_sprite_that_is_not_a_png_is_named() {
     let scratch = valid_assets("sprite_garbage", "stone");
     scratch.write("sprites/torch.png", b"GIF89a, not a PNG");
-    let error = only_error(&scratch);
+    let error = scratch.only_error();
     assert!(
         error.starts_with("sprites/torch.png:1:1: cannot decode the PNG"),
         "{error}"
@@ -196,7 +178,7 @@ fn a_sprite_with_no_opaque_pixel_is_refused() {
     let scratch = valid_assets("sprite_clear", "stone");
     scratch.png("sprites/torch.png", &RgbaImage::new(8, 12));
     assert_eq!(
-        only_error(&scratch),
+        scratch.only_error(),
         "sprites/torch.png:1:1: every pixel is transparent (alpha below 128), so the thing would not show; paint the sprite with opaque pixels (alpha 128 or more)"
     );
     // The common sprite has opaque pixels.

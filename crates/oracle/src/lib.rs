@@ -263,6 +263,11 @@ impl Frame {
         self.depths[y * self.width + x]
     }
 
+    /// The surface, palette index and depth at column `x`, row `y`: a pixel as a whole.
+    pub fn pixel(&self, x: usize, y: usize) -> (Surface, u8, f64) {
+        (self.surface(x, y), self.index(x, y), self.depth(x, y))
+    }
+
     /// The sector a surface belongs to: its own for floors and ceilings, the owner of the wall
     /// for walls, strips and middles, the thing's for things; `None` for the sky,
     /// [`Surface::None`] and unknown walls and things.

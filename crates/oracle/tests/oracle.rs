@@ -785,11 +785,7 @@ fn a_thing_shows_its_opaque_texels_and_the_wall_through_its_holes() {
             let texel = ((0..8).contains(&u) && (0..16).contains(&v))
                 .then(|| holed(u as usize, v as usize))
                 .flatten();
-            let got = (
-                frame.surface(xs, ys),
-                frame.index(xs, ys),
-                frame.depth(xs, ys),
-            );
+            let got = frame.pixel(xs, ys);
             if let Some(texel) = texel {
                 shown += 1;
                 let index = fixture.colormap[row][usize::from(texel)];
@@ -1126,11 +1122,7 @@ fn a_middle_shows_its_opaque_texels_in_the_opening_and_the_room_behind_through_i
         for x in 0..240i32 {
             let (xs, ys) = (x as usize, y as usize);
             let reached = behind.sector_of(behind.surface(xs, ys)) == Some(1);
-            let got = (
-                frame.surface(xs, ys),
-                frame.index(xs, ys),
-                frame.depth(xs, ys),
-            );
+            let got = frame.pixel(xs, ys);
             match grate_at(x, y) {
                 Some(texel) if reached => {
                     shown += 1;
@@ -1144,11 +1136,7 @@ fn a_middle_shows_its_opaque_texels_in_the_opening_and_the_room_behind_through_i
                     holes += usize::from(reached && (0..24).contains(&v));
                 }
             }
-            let expected = (
-                behind.surface(xs, ys),
-                behind.index(xs, ys),
-                behind.depth(xs, ys),
-            );
+            let expected = behind.pixel(xs, ys);
             assert_eq!(got, expected, "({x}, {y})");
         }
     }
@@ -1214,17 +1202,9 @@ fn a_thing_before_the_portal_covers_the_middle_and_one_beyond_is_covered_by_it()
                 let texel = solid(far_u as usize, far_v as usize);
                 (Surface::Thing(1), texel, 128.0)
             } else {
-                (
-                    behind.surface(xs, ys),
-                    behind.index(xs, ys),
-                    behind.depth(xs, ys),
-                )
+                behind.pixel(xs, ys)
             };
-            let got = (
-                frame.surface(xs, ys),
-                frame.index(xs, ys),
-                frame.depth(xs, ys),
-            );
+            let got = frame.pixel(xs, ys);
             assert_eq!(got, expected, "({x}, {y})");
         }
     }
@@ -1251,11 +1231,7 @@ fn at_equal_depth_a_middle_is_behind_its_sectors_things_and_before_the_next() {
     let shown = |sector: u16| {
         let map = grated_rooms(0).with_things(vec![thing(64.0, -8.0, sector, SOLID_SPRITE, 24, 0)]);
         let frame = fixture.render(&map.tables(), &centre_camera(), &view(Lighting::Off));
-        (
-            frame.surface(105, 70),
-            frame.index(105, 70),
-            frame.depth(105, 70),
-        )
+        frame.pixel(105, 70)
     };
     assert_eq!(shown(0), (Surface::Thing(0), solid(4, 2), 64.0));
     assert_eq!(shown(1), (Surface::Middle(1), grate(5, 12).unwrap(), 64.0));
@@ -1289,11 +1265,7 @@ fn a_translucent_middle_blends_over_the_room_behind_and_under_a_translucent_thin
         for x in 0..240i32 {
             let (xs, ys) = (x as usize, y as usize);
             let reached = behind.sector_of(behind.surface(xs, ys)) == Some(1);
-            let mut expected = (
-                behind.surface(xs, ys),
-                behind.index(xs, ys),
-                behind.depth(xs, ys),
-            );
+            let mut expected = behind.pixel(xs, ys);
             let middle = grate_at(x, y).filter(|_| reached);
             if let Some(texel) = middle {
                 middles += 1;
@@ -1307,11 +1279,7 @@ fn a_translucent_middle_blends_over_the_room_behind_and_under_a_translucent_thin
                 let front = cm[thing_row][usize::from(solid(u as usize, v as usize))];
                 expected = (Surface::Thing(0), blended(expected.1, front), 48.0);
             }
-            let got = (
-                frame.surface(xs, ys),
-                frame.index(xs, ys),
-                frame.depth(xs, ys),
-            );
+            let got = frame.pixel(xs, ys);
             assert_eq!(got, expected, "({x}, {y})");
         }
     }
@@ -1365,9 +1333,9 @@ fn a_translucent_thing_blends_over_the_wall() {
                 assert_eq!(drawn_opaque.index(x, y), front, "({x}, {y})");
                 (Surface::Thing(0), blended(behind.index(x, y), front), 48.0)
             } else {
-                (behind.surface(x, y), behind.index(x, y), behind.depth(x, y))
+                behind.pixel(x, y)
             };
-            let got = (frame.surface(x, y), frame.index(x, y), frame.depth(x, y));
+            let got = frame.pixel(x, y);
             assert_eq!(got, expected, "({x}, {y})");
         }
     }

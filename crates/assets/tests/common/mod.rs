@@ -36,6 +36,34 @@ impl Scratch {
         path
     }
 
+    /// Compiles the directory, which must fail, and returns its errors as
+    /// `file:line:col: message` lines, the file relative to the directory.
+    pub fn errors(&self) -> Vec<String> {
+        let errors = portalcast_assets::compile_dir(&self.dir).expect_err("an error");
+        errors
+            .0
+            .iter()
+            .map(|error| {
+                let file = error.path.strip_prefix(&self.dir).unwrap_or(&error.path);
+                format!(
+                    "{}:{}:{}: {}",
+                    file.display(),
+                    error.loc.line,
+                    error.loc.col,
+                    error.message
+                )
+            })
+            .collect()
+    }
+
+    /// Compiles the directory, which must fail with exactly one error, and returns it as
+    /// [`Scratch::errors`] does.
+    pub fn only_error(&self) -> String {
+        let found = self.errors();
+        assert_eq!(found.len(), 1, "{found:#?}");
+        found[0].clone()
+    }
+
     pub fn png(&self, relative: &str, image: &RgbaImage) -> PathBuf {
         let path = self.path(relative);
         std::fs::create_dir_all(path.parent().expect("has a parent")).expect("create folder");
