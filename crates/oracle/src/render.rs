@@ -492,14 +492,11 @@ fn pixel_fronts(
             continue;
         }
         let thing = &candidate.thing;
-        let v = (thing.top - (eye_z - k * thing.depth)).floor();
-        if v < 0.0 || v >= f64::from(thing.sprite.height) {
+        let Some(texel) =
+            upright_texel(thing.sprite, candidate.u, thing.top, thing.depth, eye_z, k)
+        else {
             continue;
-        }
-        let texel = thing.sprite.texel(candidate.u, v as usize);
-        if texel == TRANSPARENT {
-            continue;
-        }
+        };
         fronts.push(Front {
             depth: thing.depth,
             rank: (2 * candidate.position, u16::MAX - thing.index),
@@ -513,14 +510,11 @@ fn pixel_fronts(
         if middle.position + 1 >= reached {
             break;
         }
-        let v = (middle.top - (eye_z - k * middle.depth)).floor();
-        if v < 0.0 || v >= f64::from(middle.sprite.height) {
+        let Some(texel) =
+            upright_texel(middle.sprite, middle.u, middle.top, middle.depth, eye_z, k)
+        else {
             continue;
-        }
-        let texel = middle.sprite.texel(middle.u, v as usize);
-        if texel == TRANSPARENT {
-            continue;
-        }
+        };
         fronts.push(Front {
             depth: middle.depth,
             rank: (2 * middle.position + 1, 0),
@@ -686,6 +680,24 @@ fn texture<'a>(assets: &Assets<'a>, slot: u16) -> Option<&'a Texture<'a>> {
             assets.textures.len()
         )
     }))
+}
+
+/// The opaque texel of an upright image (a thing's sprite, a portal's middle), column `u`, whose
+/// top edge is at height `top` and which the ray meets at depth `depth`: the ray's height there
+/// is `eye_z − k·depth`. `None` above or below the image or on a transparent texel.
+fn upright_texel(
+    sprite: &Sprite,
+    u: usize,
+    top: f64,
+    depth: f64,
+    eye_z: f64,
+    k: f64,
+) -> Option<u8> {
+    let v = (top - (eye_z - k * depth)).floor();
+    if v < 0.0 || v >= f64::from(sprite.height) {
+        return None;
+    }
+    Some(sprite.texel(u, v as usize)).filter(|&texel| texel != TRANSPARENT)
 }
 
 fn wall_texel(assets: &Assets, slot: u16, depth: f64, focal_y: f64, u: f64, v: f64) -> u8 {
