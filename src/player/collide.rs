@@ -1400,6 +1400,8 @@ mod tests {
             },
             things: &[],
             sector_things: &[],
+            movers: &[],
+            triggers: &[],
         }
     }
 

@@ -279,7 +279,8 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
             s,
             "    {FORMAT}::MapTables {{ name: {:?}, vertices: &MAP_{index}_VERTICES, walls: &MAP_{index}_WALLS, \
              sectors: &MAP_{index}_SECTORS, player_start: {FORMAT}::PlayerStart {{ x_fx8: {}, y_fx8: {}, angle: {}, sector: {} }}, \
-             things: &MAP_{index}_THINGS, sector_things: &MAP_{index}_SECTOR_THINGS }},",
+             things: &MAP_{index}_THINGS, sector_things: &MAP_{index}_SECTOR_THINGS, \
+             movers: &MAP_{index}_MOVERS, triggers: &MAP_{index}_TRIGGERS }},",
             map.name, p.x_fx8, p.y_fx8, p.angle, p.sector
         );
     }
@@ -343,6 +344,32 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
         map.sector_things.len(),
         map.sector_things
     );
+    let _ = writeln!(
+        s,
+        "static MAP_{index}_MOVERS: [{FORMAT}::Mover; {}] = [",
+        map.movers.len()
+    );
+    for m in &map.movers {
+        let _ = writeln!(
+            s,
+            "    {FORMAT}::Mover {{ sector: {}, kind: {}, flags: {}, low: {}, high: {}, speed: {}, wait: {}, tag: {}, start: {} }},",
+            m.sector, m.kind, m.flags, m.low, m.high, m.speed, m.wait, m.tag, m.start
+        );
+    }
+    let _ = writeln!(s, "];");
+    let _ = writeln!(
+        s,
+        "static MAP_{index}_TRIGGERS: [{FORMAT}::Trigger; {}] = [",
+        map.triggers.len()
+    );
+    for t in &map.triggers {
+        let _ = writeln!(
+            s,
+            "    {FORMAT}::Trigger {{ wall: {}, tag: {}, kind: {}, reserved: 0, used_texture: {} }},",
+            t.wall, t.tag, t.kind, t.used_texture
+        );
+    }
+    let _ = writeln!(s, "];\n");
 }
 
 /// Writes every file under a temporary name, then renames them all into place, so a failure

@@ -11,8 +11,9 @@ use portalcast_format::limits::{
     HEIGHT_MAX, HEIGHT_MIN, PORTAL_DEPTH_MAX, TEXTURE_COORD_MAX, THINGS_MAX, WORLD_COORD_MAX,
 };
 use portalcast_format::{
-    MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING,
-    THING_SOLID, THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
+    MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall, NO_PORTAL, NO_TEXTURE,
+    SKY, THING_HANGING, THING_SOLID, THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS,
+    WALL_MIDDLE_TRANSLUCENT,
 };
 
 use crate::diag::{Loc, Located};
@@ -174,6 +175,10 @@ pub struct CompiledMap {
     pub things: Vec<Thing>,
     /// [`MapTables::sector_things`].
     pub sector_things: Vec<u16>,
+    /// [`MapTables::movers`].
+    pub movers: Vec<Mover>,
+    /// [`MapTables::triggers`].
+    pub triggers: Vec<Trigger>,
     /// Player start.
     pub player_start: PlayerStart,
 }
@@ -189,6 +194,8 @@ impl CompiledMap {
             player_start: self.player_start,
             things: &self.things,
             sector_things: &self.sector_things,
+            movers: &self.movers,
+            triggers: &self.triggers,
         }
     }
 }
@@ -1642,6 +1649,8 @@ fn tables(
         sectors,
         things,
         sector_things,
+        movers: Vec::new(),
+        triggers: Vec::new(),
         player_start: PlayerStart {
             x_fx8,
             y_fx8,

@@ -19,8 +19,10 @@ pub mod memory;
 mod texture;
 
 pub use map::{
-    MapTables, PlayerStart, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING,
-    THING_SOLID, THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
+    MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall, MOVER_CRUSHER, MOVER_DOOR,
+    MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM, NO_PORTAL, NO_TEXTURE, SKY,
+    THING_HANGING, THING_SOLID, THING_TRANSLUCENT, TRIGGER_LINE, TRIGGER_SWITCH,
+    WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
 };
 pub use texture::{
     bgr555, colormap_row, BlendTable, Colormap, Palette, Post, Sky, Sprite, SpriteSet, Texture,

@@ -154,6 +154,75 @@ pub const THING_HANGING: u16 = 1;
 /// [`Thing::flags`]: the player cannot walk into the thing's footprint.
 pub const THING_SOLID: u16 = 2;
 
+/// A sector whose floor or ceiling moves while the game runs: a door, a lift, a platform or a
+/// crusher. The map's [`Sector`] record holds the heights the map maker drew; the game keeps
+/// the live ones (`portalcast::world`), starting from [`Mover::start`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Mover {
+    /// The sector that moves.
+    pub sector: u16,
+    /// [`MOVER_DOOR`], [`MOVER_LIFT`], [`MOVER_PLATFORM`] or [`MOVER_CRUSHER`].
+    pub kind: u8,
+    /// [`MOVER_ON_USE`], [`MOVER_ON_TOUCH`].
+    pub flags: u8,
+    /// The lower of the moving plane's two heights, world units: a door's or a crusher's
+    /// ceiling when closed, a lift's or a platform's floor when lowered.
+    pub low: i32,
+    /// The higher: a door's or a crusher's open ceiling (the sector's `ceil_z`), a lift's
+    /// raised floor (the sector's `floor_z`), a platform's other end.
+    pub high: i32,
+    /// World units the plane moves per tick (60 ticks a second), at least 1.
+    pub speed: u16,
+    /// Ticks the mover waits at its far end before it goes back.
+    pub wait: u16,
+    /// Switches and walk-over lines with this tag ([`Trigger::tag`]) start it; 0: none do.
+    pub tag: u16,
+    /// The height the plane has when the map starts: `low` for a door (closed) and a platform,
+    /// `high` for a lift (raised) and a crusher (open).
+    pub start: i32,
+}
+
+/// [`Mover::kind`]: the ceiling goes up from `low` (the floor) to `high`, waits, and comes down;
+/// it goes back up if it would come down on the player.
+pub const MOVER_DOOR: u8 = 0;
+/// [`Mover::kind`]: the floor goes down from `high` to `low`, waits, and comes back up, carrying
+/// the player; it goes back down if the player's head would meet the ceiling.
+pub const MOVER_LIFT: u8 = 1;
+/// [`Mover::kind`]: the floor moves between `low` and `high` without end, waiting `wait` ticks
+/// at each.
+pub const MOVER_PLATFORM: u8 = 2;
+/// [`Mover::kind`]: the ceiling moves between `high` and `low` without end, waiting `wait` ticks
+/// at each; it goes back up if it would come down on the player.
+pub const MOVER_CRUSHER: u8 = 3;
+/// [`Mover::flags`]: the player starts it with the use button, facing one of its portals.
+pub const MOVER_ON_USE: u8 = 1;
+/// [`Mover::flags`]: the player starts it by walking into one of its portals.
+pub const MOVER_ON_TOUCH: u8 = 2;
+
+/// A wall that starts the movers of its tag: a switch the player uses (its texture changes)
+/// or a portal line the player walks over.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Trigger {
+    /// The wall, index in [`MapTables::walls`].
+    pub wall: u16,
+    /// The movers it starts ([`Mover::tag`]).
+    pub tag: u16,
+    /// [`TRIGGER_SWITCH`] or [`TRIGGER_LINE`].
+    pub kind: u8,
+    /// Padding.
+    pub reserved: u8,
+    /// A switch's texture once used (index into the textures table); [`NO_TEXTURE`] for a
+    /// line.
+    pub used_texture: u16,
+}
+
+/// [`Trigger::kind`]: a solid wall the player uses, facing it.
+pub const TRIGGER_SWITCH: u8 = 0;
+/// [`Trigger::kind`]: a portal wall the player crosses, from its side.
+pub const TRIGGER_LINE: u8 = 1;
+
 /// Everything the engine needs to run one map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C)]
@@ -174,6 +243,10 @@ pub struct MapTables<'a> {
     /// Where each sector's things start in [`MapTables::things`], and one past the last: one
     /// entry more than there are sectors, or none when the map has no things.
     pub sector_things: &'a [u16],
+    /// The sectors that move, at most one mover a sector, in sector order.
+    pub movers: &'a [Mover],
+    /// Switches and walk-over lines, in wall order.
+    pub triggers: &'a [Trigger],
 }
 
 impl<'a> MapTables<'a> {

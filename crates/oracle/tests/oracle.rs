@@ -292,6 +292,8 @@ impl OwnedMap {
             },
             things: &self.things,
             sector_things: &self.sector_things,
+            movers: &[],
+            triggers: &[],
         }
     }
 }
