@@ -271,6 +271,19 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
     for (index, map) in compiled.maps.iter().enumerate() {
         map_source(&mut s, index, map);
     }
+    let live_sectors = compiled
+        .maps
+        .iter()
+        .filter(|map| !map.movers.is_empty())
+        .map(|map| map.sectors.len())
+        .max()
+        .unwrap_or(0);
+    let _ = writeln!(
+        s,
+        "/// Sectors of the largest map with movers: the live copy of its sector table the game\n\
+         /// keeps (0: no map has movers, and the game keeps none).\n\
+         pub const LIVE_SECTORS: usize = {live_sectors};"
+    );
     let _ = writeln!(s, "/// Every map, sorted by name.");
     let _ = writeln!(s, "pub static MAPS: &[{FORMAT}::MapTables<'static>] = &[");
     for (index, map) in compiled.maps.iter().enumerate() {
