@@ -15,6 +15,10 @@ use crate::render::demo::DEMO_MAP;
 use crate::render::light::Lighting;
 use crate::render::view::{Camera, Settings};
 use crate::render::view::{Floors, TexturePlacement};
+use crate::world::World;
+
+/// The live state of the ROM's maps: room for the largest one with movers.
+pub type GameWorld = World<{ crate::assets::LIVE_SECTORS }, { crate::assets::LIVE_MOVERS }>;
 
 /// The state of a game.
 #[derive(Clone, Copy, Debug)]
@@ -31,6 +35,8 @@ pub struct Game<'m> {
     pub settings: Settings,
     /// The heads-up display (frame rate and cycles) is shown.
     pub hud: bool,
+    /// The map's moving sectors.
+    pub world: GameWorld,
     held: Buttons,
     ticks: u32,
 }
@@ -47,6 +53,7 @@ impl<'m> Game<'m> {
             maps,
             map_index,
             player: Player::spawn(&maps[map_index]),
+            world: World::start(&maps[map_index]),
             controls: Controls::new(),
             menu: Menu::default(),
             settings: Settings::DEFAULT,
@@ -56,9 +63,14 @@ impl<'m> Game<'m> {
         }
     }
 
-    /// The map being played.
-    pub fn map(&self) -> &MapTables<'m> {
-        &self.maps[self.map_index]
+    /// The map being played, as it is now (its moving sectors' live heights).
+    pub fn map(&self) -> MapTables<'_> {
+        self.world.map(&self.maps[self.map_index])
+    }
+
+    /// The name of the map being played.
+    pub fn map_name(&self) -> &'m str {
+        self.maps[self.map_index].name
     }
 
     /// Ticks run so far.
@@ -114,7 +126,12 @@ impl<'m> Game<'m> {
             let intent = self.controls.read(held);
             // By reference: a copy of the tables' slices costs every tick.
             let maps = self.maps;
-            self.player.tick(&intent, &maps[self.map_index]);
+            let map = &maps[self.map_index];
+            if map.movers.is_empty() {
+                self.player.tick(&intent, map);
+            } else {
+                self.world.tick_with_player(map, &mut self.player, &intent);
+            }
         }
     }
 
@@ -169,6 +186,7 @@ impl<'m> Game<'m> {
                     (self.map_index + count - 1) % count
                 };
                 self.player = Player::spawn(&self.maps[self.map_index]);
+                self.world = World::start(&self.maps[self.map_index]);
             }
             Entry::Fly => self.player.toggle_fly(),
             Entry::Run => self.controls.always_run = !self.controls.always_run,

@@ -22,6 +22,7 @@ pub mod render;
 pub mod selfcheck;
 pub mod stack;
 pub mod testpic;
+pub mod world;
 
 #[cfg(target_os = "none")]
 pub mod hw;

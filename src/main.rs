@@ -138,7 +138,7 @@ mod rom {
         log::info(format_args!(
             "play start vblank={} map={} timer_cycles={timer_cycles} frame_lines={}",
             sampler.next_index(),
-            game.map().name,
+            game.map_name(),
             u8::from(frame_lines)
         ));
         let mut rate = RateWindow::new(sampler.next_index());
@@ -182,7 +182,7 @@ mod rom {
             let mut canvas = VramCanvas::new(page, settings.resolution);
             let started = meter::now();
             let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-            let stats = renderer.render(game.map(), &render_assets, &view, &mut canvas);
+            let stats = renderer.render(&game.map(), &render_assets, &view, &mut canvas);
             let cycles = meter::cycles_since(started);
             if game.hud {
                 menu::draw_hud(&mut canvas, &menu::hud_line(cycles), colours);
@@ -195,7 +195,7 @@ mod rom {
                 let started = meter::now();
                 log::info(format_args!(
                     "render map={} frame={frame} {} page=0x{address:08x} cycles={cycles} wall_cycles={} plane_cycles={} visits={} columns={} span_px={} column_px={} sprites={}",
-                    game.map().name,
+                    game.map_name(),
                     bench::SettingsLabel(&settings),
                     stats.wall_ticks,
                     stats.plane_ticks,

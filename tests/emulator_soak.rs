@@ -407,10 +407,10 @@ impl Plan {
         for _ in 0..ticks {
             let mut game = *self.game();
             let before = game.player;
-            let map_before = game.map().name;
+            let map_before = game.map_name();
             game.tick(Buttons(held));
-            if !game.menu.open && !self.game().menu.open && game.map().name == map_before {
-                if let Err(problem) = check_tick(game.map(), &before, &game.player) {
+            if !game.menu.open && !self.game().menu.open && game.map_name() == map_before {
+                if let Err(problem) = check_tick(&game.map(), &before, &game.player) {
                     panic!(
                         "the host's game broke an invariant at tick {} on {map_before} (keys 0x{held:03x}): {problem}",
                         game.ticks()
@@ -430,7 +430,7 @@ impl Plan {
 
     /// Opens the menu, puts the cursor on the map entry and steps maps until `map`, closes it.
     fn switch_to(&mut self, map: &str) {
-        if self.game().map().name == map {
+        if self.game().map_name() == map {
             return;
         }
         let entry = ENTRIES
@@ -442,12 +442,12 @@ impl Plan {
             self.press(Buttons::DOWN.0);
         }
         for _ in 0..portalcast::assets::MAPS.len() {
-            if self.game().map().name == map {
+            if self.game().map_name() == map {
                 break;
             }
             self.press(Buttons::RIGHT.0);
         }
-        assert_eq!(self.game().map().name, map, "the menu reaches every map");
+        assert_eq!(self.game().map_name(), map, "the menu reaches every map");
         self.press(Buttons::START.0);
     }
 
@@ -566,7 +566,7 @@ impl Plan {
                 }
             }
         }
-        assert_eq!(self.game().map().name, map, "the soak stays on its map");
+        assert_eq!(self.game().map_name(), map, "the soak stays on its map");
     }
 
     /// The harness script: tick `j` reads the buttons of emulator frame `start + j`.

@@ -47,6 +47,7 @@ fn a_move() -> impl Strategy<Value = Move> {
                     crouch,
                     recentre: rare == 1,
                     toggle_fly: rare == 0,
+                    activate: rare == 2,
                 },
                 ticks,
             },

@@ -104,6 +104,8 @@ pub struct Intent {
     pub recentre: bool,
     /// Switch fly mode on or off.
     pub toggle_fly: bool,
+    /// Use what is in front (a door, a lift, a switch): L and R pressed together.
+    pub activate: bool,
 }
 
 /// Turns the buttons of successive ticks into intents: remembers the last tick's buttons for
@@ -155,6 +157,9 @@ impl Controls {
             intent.jump = held.contains(Buttons::A);
             intent.crouch = held.contains(Buttons::B);
         }
+        // L and R together: their strafes cancel, and the chord's completing press is a use.
+        let shoulders = Buttons(Buttons::L.0 | Buttons::R.0);
+        intent.activate = held.contains(shoulders) && pressed.any(shoulders);
         intent.run = self.always_run;
         intent
     }
@@ -183,6 +188,19 @@ mod tests {
         assert_eq!((look.look, look.forward), (1, 0));
         controls.read(Buttons::SELECT);
         assert!(!controls.read(Buttons::NONE).toggle_fly);
+    }
+
+    #[test]
+    fn l_and_r_together_use_once_per_chord_and_do_not_strafe() {
+        let mut controls = Controls::new();
+        let both = Buttons(Buttons::L.0 | Buttons::R.0);
+        let first = controls.read(Buttons::L);
+        assert!(!first.activate && first.strafe == -1);
+        let chord = controls.read(both);
+        assert!(chord.activate && chord.strafe == 0);
+        assert!(!controls.read(both).activate, "held, it does not repeat");
+        assert!(!controls.read(Buttons::R).activate);
+        assert!(controls.read(both).activate, "a new chord uses again");
     }
 
     #[test]

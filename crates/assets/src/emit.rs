@@ -278,11 +278,19 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
         .map(|map| map.sectors.len())
         .max()
         .unwrap_or(0);
+    let live_movers = compiled
+        .maps
+        .iter()
+        .map(|map| map.movers.len())
+        .max()
+        .unwrap_or(0);
     let _ = writeln!(
         s,
         "/// Sectors of the largest map with movers: the live copy of its sector table the game\n\
          /// keeps (0: no map has movers, and the game keeps none).\n\
-         pub const LIVE_SECTORS: usize = {live_sectors};"
+         pub const LIVE_SECTORS: usize = {live_sectors};\n\
+         /// The most movers a map has: the game keeps a state for each.\n\
+         pub const LIVE_MOVERS: usize = {live_movers};"
     );
     let _ = writeln!(s, "/// Every map, sorted by name.");
     let _ = writeln!(s, "pub static MAPS: &[{FORMAT}::MapTables<'static>] = &[");

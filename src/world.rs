@@ -1,0 +1,482 @@
+//! The world as it moves: the live heights of a map's moving sectors (doors, lifts, platforms,
+//! crushers: [`portalcast_format::Mover`]) and what starts them (the use button, walking into a
+//! door, switches and walk-over lines: [`portalcast_format::Trigger`]).
+//!
+//! A map with movers gets a copy of its sector table, whose moving heights the game's ticks
+//! change; the renderer, the collision code and the oracle read the frame's [`MapTables`] with
+//! that table in place of the cartridge's ([`World::map`]), so each reads heights the one way it
+//! always has. A copy of only the moving sectors would put a lookup on every height read, the
+//! wall set-up's among them. A map without movers keeps no copy.
+//!
+//! Everything is integer and advances once a tick, so the host replays the ROM exactly.
+//!
+//! # The player is never crushed
+//! A mover moves a tick only if the player's body, as the move would leave it, still fits every
+//! sector its disc touches ([`Body::admits`], the rule the collision code keeps the body to): a
+//! door or a crusher that would come down on the player goes back up, a lift that would lift the
+//! player's head into its ceiling (or its floor past a step under a body beside it) goes back
+//! down. A lift's floor carries a player standing on it.
+
+use portalcast_format::{
+    MapTables, Mover, Sector, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
+    MOVER_PLATFORM, TRIGGER_LINE, TRIGGER_SWITCH,
+};
+
+use crate::math::WorldPoint;
+use crate::player::collide::RADIUS;
+use crate::player::input::Intent;
+use crate::player::Player;
+
+/// How far in front of the eye the use button reaches, world units.
+pub const USE_RANGE: i32 = 64;
+
+/// How near (beyond the body's radius) a door that opens on touch opens, world units.
+pub const TOUCH_REACH: i32 = 4;
+
+/// Where a mover is in its cycle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    /// At its start height, until something starts it (doors and lifts).
+    Resting,
+    /// Moving from the start height to the other one.
+    Away,
+    /// At the other height, for the mover's wait.
+    WaitingAway,
+    /// Moving back to the start height.
+    Back,
+    /// At the start height, for the wait, before it goes again (platforms and crushers).
+    WaitingHome,
+}
+
+/// One mover's live state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MoverState {
+    /// The moving plane's height, world units.
+    pub height: i32,
+    /// Where it is in its cycle.
+    pub phase: Phase,
+    /// Ticks left of a wait.
+    pub timer: u16,
+}
+
+impl MoverState {
+    const IDLE: MoverState = MoverState {
+        height: 0,
+        phase: Phase::Resting,
+        timer: 0,
+    };
+}
+
+/// The sector a [`World`] holds where it keeps no copy.
+const NO_SECTOR: Sector = Sector {
+    first_wall: 0,
+    wall_count: 0,
+    floor_z: 0,
+    ceil_z: 0,
+    floor_texture: 0,
+    ceil_texture: 0,
+    light: 0,
+};
+
+/// The live state of one map: room for a sector table of `SECTORS` sectors and `MOVERS`
+/// movers' states (the ROM's: `assets::LIVE_SECTORS` and `assets::LIVE_MOVERS`, its largest
+/// map's with movers; both 0 where no map has any).
+#[derive(Clone, Copy, Debug)]
+pub struct World<const SECTORS: usize, const MOVERS: usize> {
+    sectors: [Sector; SECTORS],
+    /// Sectors of the map in [`World::sectors`]; 0 when the map has no movers.
+    live: usize,
+    movers: [MoverState; MOVERS],
+    /// Movers of the map in [`World::movers`].
+    mover_count: usize,
+}
+
+impl<const SECTORS: usize, const MOVERS: usize> Default for World<SECTORS, MOVERS> {
+    fn default() -> Self {
+        World::new()
+    }
+}
+
+/// The moving plane of `mover`: true for a floor (lifts, platforms), false for a ceiling.
+fn moves_floor(mover: &Mover) -> bool {
+    matches!(mover.kind, MOVER_LIFT | MOVER_PLATFORM)
+}
+
+/// Whether `mover` runs for ever (platforms, crushers) rather than when started.
+fn runs_always(mover: &Mover) -> bool {
+    matches!(mover.kind, MOVER_PLATFORM | MOVER_CRUSHER)
+}
+
+/// The height `mover` goes to from its start.
+fn away_height(mover: &Mover) -> i32 {
+    if mover.start == mover.low {
+        mover.high
+    } else {
+        mover.low
+    }
+}
+
+impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
+    /// A world for a map without movers.
+    pub const fn new() -> World<SECTORS, MOVERS> {
+        World {
+            sectors: [NO_SECTOR; SECTORS],
+            live: 0,
+            movers: [MoverState::IDLE; MOVERS],
+            mover_count: 0,
+        }
+    }
+
+    /// The world of `map` as it starts: every mover at its start height, the ones that run for
+    /// ever already going.
+    ///
+    /// # Panics
+    /// If `map` has more sectors than `SECTORS` and movers, or more movers than `MOVERS`.
+    pub fn start(map: &MapTables) -> World<SECTORS, MOVERS> {
+        let mut world = World::new();
+        if map.movers.is_empty() {
+            return world;
+        }
+        assert!(
+            map.sectors.len() <= SECTORS && map.movers.len() <= MOVERS,
+            "map '{}' has {} sectors and {} movers: the game keeps {SECTORS} and {MOVERS}",
+            map.name,
+            map.sectors.len(),
+            map.movers.len()
+        );
+        world.live = map.sectors.len();
+        world.mover_count = map.movers.len();
+        world.sectors[..world.live].copy_from_slice(map.sectors);
+        for (index, mover) in map.movers.iter().enumerate() {
+            world.movers[index] = MoverState {
+                height: mover.start,
+                phase: if runs_always(mover) {
+                    Phase::Away
+                } else {
+                    Phase::Resting
+                },
+                timer: 0,
+            };
+            world.set_height(mover, mover.start);
+        }
+        world
+    }
+
+    /// `map` as it is now: its tables with the live sector table in place of the cartridge's
+    /// (the same tables where the map has no movers).
+    pub fn map<'s>(&'s self, map: &MapTables<'s>) -> MapTables<'s> {
+        if self.live == 0 {
+            return *map;
+        }
+        MapTables {
+            sectors: &self.sectors[..self.live],
+            ..*map
+        }
+    }
+
+    /// The live state of the map's movers, in the order of `MapTables::movers`.
+    pub fn movers(&self) -> &[MoverState] {
+        &self.movers[..self.mover_count]
+    }
+
+    fn set_height(&mut self, mover: &Mover, height: i32) {
+        let sector = &mut self.sectors[usize::from(mover.sector)];
+        if moves_floor(mover) {
+            sector.floor_z = height;
+        } else {
+            sector.ceil_z = height;
+        }
+    }
+
+    /// One game tick on a map with movers, the player's `intent` included: what the player
+    /// starts starts, the movers move (turning back rather than closing on the player), then the
+    /// player moves on the moved map, and the lines it crossed start their tags.
+    pub fn tick_with_player(&mut self, map: &MapTables, player: &mut Player, intent: &Intent) {
+        if intent.activate {
+            self.use_button(map, player);
+        }
+        self.touch(map, player);
+        self.tick(map, player);
+        let before = player.sector;
+        player.tick(intent, &self.map(map));
+        if player.sector != before {
+            self.crossed(map, before, player.sector);
+        }
+    }
+
+    /// One tick: every mover moves a step (or waits), unless the step would close on `player`,
+    /// in which case it turns back. `map` is the cartridge's tables.
+    pub fn tick(&mut self, map: &MapTables, player: &Player) {
+        for (index, mover) in map.movers.iter().enumerate() {
+            self.advance(map, index, mover, player);
+        }
+    }
+
+    fn advance(&mut self, map: &MapTables, index: usize, mover: &Mover, player: &Player) {
+        let state = self.movers[index];
+        let (target, arriving) = match state.phase {
+            Phase::Resting => return,
+            Phase::WaitingAway | Phase::WaitingHome => {
+                let state = &mut self.movers[index];
+                if state.timer > 0 {
+                    state.timer -= 1;
+                } else {
+                    state.phase = match state.phase {
+                        Phase::WaitingAway => Phase::Back,
+                        _ => Phase::Away,
+                    };
+                }
+                return;
+            }
+            Phase::Away => (away_height(mover), Phase::WaitingAway),
+            Phase::Back => (
+                mover.start,
+                if runs_always(mover) {
+                    Phase::WaitingHome
+                } else {
+                    Phase::Resting
+                },
+            ),
+        };
+        let speed = i32::from(mover.speed.max(1));
+        let height = if target > state.height {
+            (state.height + speed).min(target)
+        } else {
+            (state.height - speed).max(target)
+        };
+        if !self.allows(map, mover, height, player) {
+            self.movers[index].phase = match state.phase {
+                Phase::Away => Phase::Back,
+                _ => Phase::Away,
+            };
+            return;
+        }
+        self.set_height(mover, height);
+        let state = &mut self.movers[index];
+        state.height = height;
+        if height == target {
+            state.phase = arriving;
+            state.timer = mover.wait;
+        }
+    }
+
+    /// Whether `mover`'s plane may move to `height` with `player` where it is: the body, as the
+    /// move leaves it, still fits the moved sector if its disc touches it, and every other
+    /// sector its disc touches if the move carries it.
+    fn allows(&self, map: &MapTables, mover: &Mover, height: i32, player: &Player) -> bool {
+        let live = self.map(map);
+        let index = mover.sector;
+        let sector = &live.sectors[usize::from(index)];
+        if !touches(&live, sector, player.position, RADIUS) {
+            return true;
+        }
+        let mut moved = *sector;
+        if moves_floor(mover) {
+            moved.floor_z = height;
+        } else {
+            moved.ceil_z = height;
+        }
+        let mut body = player.body();
+        let carried = moves_floor(mover)
+            && player.sector == index
+            && !player.fly
+            && (player.on_ground || body.feet.to_bits() < height * 256);
+        if carried {
+            body.feet = crate::math::Fx24_8::from_int(height);
+        }
+        if !body.admits(&moved) {
+            return false;
+        }
+        if !carried {
+            return true;
+        }
+        // Carried: the sectors beyond the moved one's portals that the disc touches must still
+        // take the body at its new height.
+        live.sector_walls(sector)
+            .iter()
+            .all(|wall| match wall.neighbour() {
+                Some(next) => {
+                    let beyond = &live.sectors[usize::from(next)];
+                    !touches(&live, beyond, player.position, RADIUS) || body.admits(beyond)
+                }
+                None => true,
+            })
+    }
+
+    /// The player pressed use: the mover in front of the eye within [`USE_RANGE`] (a door or a
+    /// lift that opens on use, seen through its portal or stood in), or the switch there, starts.
+    pub fn use_button(&mut self, map: &MapTables, player: &Player) {
+        match self.use_target(map, player) {
+            Some(UseTarget::Mover(index)) => self.start_mover(map, index, true),
+            Some(UseTarget::Switch(tag)) => self.start_tag(map, tag),
+            None => {}
+        }
+    }
+
+    fn use_target(&self, map: &MapTables, player: &Player) -> Option<UseTarget> {
+        let live = self.map(map);
+        let (sin, cos) = player.angle.sin_cos();
+        let from = point_bits(player.position);
+        // The reach's end: USE_RANGE units along the view, 16.16 direction by 24.8 units.
+        let to = (
+            from.0 + ((i64::from(cos.to_bits()) * i64::from(USE_RANGE * 256)) >> 16) as i32,
+            from.1 + ((i64::from(sin.to_bits()) * i64::from(USE_RANGE * 256)) >> 16) as i32,
+        );
+        let mut sector = player.sector;
+        // A few portals at most lie within the reach.
+        for _ in 0..4 {
+            let here = self.mover_of(map, sector);
+            let Some(wall_index) = exit_wall(&live, sector, from, to) else {
+                // The reach ends inside this sector.
+                return here
+                    .filter(|&i| opens_on_use(&map.movers[i]))
+                    .map(UseTarget::Mover);
+            };
+            let wall = &live.walls[wall_index];
+            match wall.neighbour() {
+                None => {
+                    if let Some(trigger) = map
+                        .triggers
+                        .iter()
+                        .find(|t| usize::from(t.wall) == wall_index && t.kind == TRIGGER_SWITCH)
+                    {
+                        return Some(UseTarget::Switch(trigger.tag));
+                    }
+                    return here
+                        .filter(|&i| opens_on_use(&map.movers[i]))
+                        .map(UseTarget::Mover);
+                }
+                Some(next) => {
+                    if let Some(index) = self
+                        .mover_of(map, next)
+                        .filter(|&i| opens_on_use(&map.movers[i]))
+                    {
+                        return Some(UseTarget::Mover(index));
+                    }
+                    if let Some(index) = here.filter(|&i| opens_on_use(&map.movers[i])) {
+                        return Some(UseTarget::Mover(index));
+                    }
+                    sector = next;
+                }
+            }
+        }
+        None
+    }
+
+    /// Doors that open on touch within [`TOUCH_REACH`] of the body open.
+    pub fn touch(&mut self, map: &MapTables, player: &Player) {
+        for index in 0..map.movers.len() {
+            let mover = &map.movers[index];
+            if mover.flags & MOVER_ON_TOUCH == 0 || self.movers[index].phase != Phase::Resting {
+                continue;
+            }
+            let live = self.map(map);
+            let sector = &live.sectors[usize::from(mover.sector)];
+            if touches(&live, sector, player.position, RADIUS + TOUCH_REACH) {
+                self.start_mover(map, index, false);
+            }
+        }
+    }
+
+    /// The player's centre went from sector `from` to sector `to`: the walk-over lines of
+    /// `from` facing `to` start their tags.
+    pub fn crossed(&mut self, map: &MapTables, from: u16, to: u16) {
+        let Some(sector) = map.sectors.get(usize::from(from)) else {
+            return;
+        };
+        let walls =
+            usize::from(sector.first_wall)..usize::from(sector.first_wall + sector.wall_count);
+        for trigger in map.triggers {
+            if trigger.kind == TRIGGER_LINE
+                && walls.contains(&usize::from(trigger.wall))
+                && map.walls[usize::from(trigger.wall)].portal == to
+            {
+                self.start_tag(map, trigger.tag);
+            }
+        }
+    }
+
+    /// Every mover tagged `tag` starts.
+    pub fn start_tag(&mut self, map: &MapTables, tag: u16) {
+        for index in 0..map.movers.len() {
+            if tag != 0 && map.movers[index].tag == tag {
+                self.start_mover(map, index, false);
+            }
+        }
+    }
+
+    /// Starts mover `index`: a resting or closing door opens (an open one closes, by use), a
+    /// resting lift goes down. Platforms and crushers run anyway.
+    fn start_mover(&mut self, map: &MapTables, index: usize, by_use: bool) {
+        let mover = &map.movers[index];
+        let state = &mut self.movers[index];
+        state.phase = match (mover.kind, state.phase) {
+            (MOVER_DOOR, Phase::Resting | Phase::Back) => Phase::Away,
+            (MOVER_DOOR, Phase::WaitingAway) if by_use => Phase::Back,
+            (MOVER_LIFT, Phase::Resting) => Phase::Away,
+            (_, phase) => phase,
+        };
+    }
+
+    fn mover_of(&self, map: &MapTables, sector: u16) -> Option<usize> {
+        map.movers.binary_search_by_key(&sector, |m| m.sector).ok()
+    }
+}
+
+/// What the use button reaches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum UseTarget {
+    Mover(usize),
+    Switch(u16),
+}
+
+fn opens_on_use(mover: &Mover) -> bool {
+    mover.flags & MOVER_ON_USE != 0 && matches!(mover.kind, MOVER_DOOR | MOVER_LIFT)
+}
+
+type Bits = (i32, i32);
+
+fn point_bits(p: WorldPoint) -> Bits {
+    (p.x.to_bits(), p.y.to_bits())
+}
+
+fn vertex_bits(map: &MapTables, index: u16) -> Bits {
+    let vertex = map.vertices[usize::from(index)];
+    (vertex.x * 256, vertex.y * 256)
+}
+
+/// `(b − a) × (p − a)`: positive with `p` right of `a → b` (a sector's inside, y down).
+fn cross(a: Bits, b: Bits, p: Bits) -> i64 {
+    let (abx, aby) = (i64::from(b.0 - a.0), i64::from(b.1 - a.1));
+    let (apx, apy) = (i64::from(p.0 - a.0), i64::from(p.1 - a.1));
+    abx * apy - aby * apx
+}
+
+/// Whether a disc of radius `radius` (world units) centred at `p` may touch `sector`: `p` lies
+/// less than `radius` outside every wall's line. Near a corner this takes in a little more than
+/// the disc (a mover turns back a little early there, never late).
+fn touches(map: &MapTables, sector: &Sector, p: WorldPoint, radius: i32) -> bool {
+    let p = point_bits(p);
+    map.sector_walls(sector).iter().all(|wall| {
+        let (a, b) = (vertex_bits(map, wall.start), vertex_bits(map, wall.end));
+        // The wall's length in 24.8 bits, by the radius in 24.8 bits: the cross product's scale.
+        cross(a, b, p) > -(i64::from(radius * 256) * i64::from(wall.length_fx8))
+    })
+}
+
+/// The wall of `sector` through which the segment `from → to` leaves it, if it does.
+fn exit_wall(map: &MapTables, sector: u16, from: Bits, to: Bits) -> Option<usize> {
+    let record = map.sectors.get(usize::from(sector))?;
+    let first = usize::from(record.first_wall);
+    map.sector_walls(record)
+        .iter()
+        .enumerate()
+        .find(|(_, wall)| {
+            let (a, b) = (vertex_bits(map, wall.start), vertex_bits(map, wall.end));
+            // From the inside of the wall's line to the outside, between its ends.
+            cross(a, b, from) > 0
+                && cross(a, b, to) <= 0
+                && (cross(from, to, a) >= 0) != (cross(from, to, b) >= 0)
+        })
+        .map(|(offset, _)| first + offset)
+}

@@ -1,0 +1,243 @@
+//! Moving sectors on the host (issue 18): a door opens on use and lets the body through, closes
+//! after its wait and turns back rather than come down on a body in it; a lift goes down on use,
+//! waits, and carries a body standing on it back up; a platform and a crusher run for ever and
+//! never close on the body. Every tick is checked against the live map with the exact invariants
+//! of the player tests (`common::player::check_tick`), and the live heights stay between the
+//! mover's two.
+
+mod common;
+
+use common::player::*;
+use portalcast::player::collide::HEADROOM;
+use portalcast::player::input::Intent;
+use portalcast::player::Player;
+use portalcast::world::{Phase, World};
+use portalcast_format::{MapTables, Mover, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_USE};
+
+/// West room, a door 16 deep, east room; north of the west room a lift (its floor 64 when
+/// raised) and north of the lift a ledge at 64.
+const MAP: &str = "
+vertex a 0 0
+vertex b 256 0
+vertex c 256 96
+vertex d 256 160
+vertex e 256 256
+vertex f 0 256
+vertex g 272 96
+vertex h 272 160
+vertex i 528 0
+vertex j 528 256
+vertex k 272 0
+vertex l 272 256
+vertex m 0 -128
+vertex n 256 -128
+vertex o 0 -256
+vertex p 256 -256
+sector west floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall a b portal=lift lower=brick
+  wall b c tex=brick
+  wall c d portal=door upper=brick
+  wall d e tex=brick
+  wall e f tex=brick
+  wall f a tex=brick
+sector door floor=0 ceil=112 floor_tex=tiles ceil_tex=ceiling
+  wall c g tex=brick
+  wall g h portal=east upper=brick
+  wall h d tex=brick
+  wall d c portal=west upper=brick
+sector east floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall k i tex=brick
+  wall i j tex=brick
+  wall j l tex=brick
+  wall l h tex=brick
+  wall h g portal=door upper=brick
+  wall g k tex=brick
+sector lift floor=64 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall m n portal=ledge
+  wall n b tex=brick
+  wall b a portal=west lower=brick
+  wall a m tex=brick
+sector ledge floor=64 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall o p tex=brick
+  wall p n tex=brick
+  wall n m portal=lift
+  wall m o tex=brick
+player 200.5 128.5
+";
+
+const DOOR: u16 = 1;
+const LIFT: u16 = 3;
+
+fn mover(sector: u16, kind: u8, low: i32, high: i32, start: i32) -> Mover {
+    Mover {
+        sector,
+        kind,
+        flags: if matches!(kind, MOVER_DOOR | MOVER_LIFT) {
+            MOVER_ON_USE
+        } else {
+            0
+        },
+        low,
+        high,
+        speed: 2,
+        wait: 60,
+        tag: 0,
+        start,
+    }
+}
+
+type TestWorld = World<8, 4>;
+
+/// The map compiled, with `movers` added (in sector order).
+fn compiled(movers: Vec<Mover>) -> portalcast_assets::CompiledMap {
+    let mut map = compile_map("movers.map", MAP);
+    map.movers = movers;
+    map
+}
+
+fn standard_movers() -> Vec<Mover> {
+    vec![
+        mover(DOOR, MOVER_DOOR, 0, 112, 0),
+        mover(LIFT, MOVER_LIFT, 0, 64, 64),
+    ]
+}
+
+fn shoulders() -> Intent {
+    Intent {
+        activate: true,
+        ..Intent::default()
+    }
+}
+
+/// Runs `intent` for `ticks` ticks with the world, checking every tick on the live map and the
+/// movers' heights.
+fn play(world: &mut TestWorld, map: &MapTables, player: &mut Player, intent: Intent, ticks: u32) {
+    for tick in 0..ticks {
+        let before = *player;
+        world.tick_with_player(map, player, &intent);
+        let live = world.map(map);
+        if let Err(problem) = check_tick(&live, &before, player) {
+            panic!("tick {tick} of {intent:?}: {problem}");
+        }
+        for (state, mover) in world.movers().iter().zip(map.movers) {
+            assert!(
+                (mover.low..=mover.high).contains(&state.height),
+                "tick {tick}: {state:?} outside {mover:?}"
+            );
+        }
+        let sector = &live.sectors[usize::from(player.sector)];
+        assert!(
+            player.eye_z().to_bits() + HEADROOM * 256 <= sector.ceil_z * 256,
+            "tick {tick}: the eye {} is within the headroom of the ceiling {}",
+            player.eye_z().to_bits(),
+            sector.ceil_z
+        );
+    }
+}
+
+fn door_height(world: &TestWorld) -> i32 {
+    world.movers()[0].height
+}
+
+#[test]
+fn a_closed_door_blocks_and_opens_on_use_and_lets_the_body_through() {
+    let map = compiled(standard_movers());
+    let map = map.tables();
+    let mut world = TestWorld::start(&map);
+    assert_eq!(world.map(&map).sectors[usize::from(DOOR)].ceil_z, 0);
+    let mut player = at(&map, 0, 200.5, 128.5, EAST);
+    // Closed: walking east stops at the door's line, one radius short of it.
+    play(&mut world, &map, &mut player, walk(1, 0, 0), 120);
+    assert_eq!(player.sector, 0);
+    assert!(units(player.position.x.to_bits()) <= 256.0 - 16.0);
+    // Use within reach: the door goes up 2 a tick to 112.
+    play(&mut world, &map, &mut player, shoulders(), 1);
+    play(&mut world, &map, &mut player, Intent::default(), 60);
+    assert_eq!(door_height(&world), 112);
+    assert_eq!(world.movers()[0].phase, Phase::WaitingAway);
+    // Through the door into the east room.
+    play(&mut world, &map, &mut player, walk(1, 0, 0), 40);
+    assert_eq!(player.sector, 2, "{:?}", position(&player));
+}
+
+#[test]
+fn a_closing_door_turns_back_rather_than_come_down_on_the_body() {
+    let map = compiled(standard_movers());
+    let map = map.tables();
+    let mut world = TestWorld::start(&map);
+    let mut player = at(&map, 0, 230.5, 128.5, EAST);
+    play(&mut world, &map, &mut player, shoulders(), 1);
+    assert_eq!(world.movers()[0].phase, Phase::Away);
+    play(&mut world, &map, &mut player, Intent::default(), 56);
+    assert_eq!(door_height(&world), 112);
+    // Stand in the doorway while the door's wait runs out.
+    let mut player = at(&world.map(&map), DOOR, 264.5, 128.5, EAST);
+    let mut turned_back = false;
+    for _ in 0..200 {
+        let before = world.movers()[0].phase;
+        play(&mut world, &map, &mut player, Intent::default(), 1);
+        turned_back |= before == Phase::Back && world.movers()[0].phase == Phase::Away;
+    }
+    assert!(turned_back, "the door never turned back");
+    // Never lower than the standing body needs: feet 0, eye 32, headroom 16.
+    assert!(door_height(&world) >= 48);
+    // Once the body leaves, the door closes.
+    play(&mut world, &map, &mut player, walk(-1, 0, 0), 40);
+    assert_eq!(player.sector, 0, "{:?}", position(&player));
+    play(&mut world, &map, &mut player, Intent::default(), 200);
+    assert_eq!(door_height(&world), 0);
+}
+
+#[test]
+fn a_lift_goes_down_on_use_and_carries_the_body_up_to_the_ledge_height() {
+    let map = compiled(standard_movers());
+    let map = map.tables();
+    let mut world = TestWorld::start(&map);
+    // In the west room facing north, in front of the lift (its floor 64 up: a wall to the body).
+    let mut player = at(&map, 0, 128.5, 40.5, NORTH);
+    play(&mut world, &map, &mut player, walk(1, 0, 0), 60);
+    assert_eq!(player.sector, 0, "the raised lift is a step too high");
+    play(&mut world, &map, &mut player, shoulders(), 1);
+    play(&mut world, &map, &mut player, Intent::default(), 32);
+    assert_eq!(world.movers()[1].height, 0);
+    // Onto the lowered lift, and wait there: it comes back up with the body on it.
+    play(&mut world, &map, &mut player, walk(1, 0, 0), 20);
+    assert_eq!(player.sector, LIFT, "{:?}", position(&player));
+    play(&mut world, &map, &mut player, Intent::default(), 120);
+    assert_eq!(world.movers()[1].height, 64);
+    assert_eq!(player.feet_z.to_bits(), 64 * 256);
+    assert!(player.on_ground);
+    // And on to the ledge at the same height.
+    play(&mut world, &map, &mut player, walk(1, 0, 0), 60);
+    assert_eq!(player.sector, 4, "{:?}", position(&player));
+}
+
+#[test]
+fn a_crusher_never_closes_on_the_body_and_a_platform_runs_for_ever() {
+    let movers = vec![
+        mover(DOOR, MOVER_CRUSHER, 8, 112, 112),
+        mover(LIFT, portalcast_format::MOVER_PLATFORM, 0, 64, 64),
+    ];
+    let map = compiled(movers);
+    let map = map.tables();
+    let mut world = TestWorld::start(&map);
+    // Stand in the crusher's sector.
+    let mut player = at(&map, DOOR, 264.5, 128.5, NORTH);
+    let (mut lowest, mut platform_low, mut platform_high) = (i32::MAX, false, false);
+    for _ in 0..2000 {
+        play(&mut world, &map, &mut player, Intent::default(), 1);
+        lowest = lowest.min(world.movers()[0].height);
+        platform_low |= world.movers()[1].height == 0;
+        platform_high |= world.movers()[1].height == 64;
+    }
+    assert!(lowest >= 48, "the crusher came down to {lowest}");
+    assert!(platform_low && platform_high);
+    // Out of the way, the crusher closes down to its low height.
+    let mut player = at(&map, 0, 100.5, 128.5, NORTH);
+    let mut reached = false;
+    for _ in 0..2000 {
+        play(&mut world, &map, &mut player, Intent::default(), 1);
+        reached |= world.movers()[0].height == 8;
+    }
+    assert!(reached);
+}
