@@ -127,7 +127,7 @@ mod rom {
     fn play_scene(display: &mut Display, frame_lines: bool) -> ! {
         let renderer = memory::renderer_in_ewram(meter::now);
         let colours = MenuColours::from_palette(&assets::PALETTE);
-        let mut game = Game::new(assets::MAPS);
+        let game = memory::game_in_ewram(assets::MAPS);
         let mut sampler = input::Sampler::new();
         // What the two timer reads around a tick cost with nothing between them: taken off
         // each tick's figure, so `tick_cycles` counts the tick alone.
@@ -169,7 +169,7 @@ mod rom {
                     frame,
                     sampler.next_index(),
                     lost,
-                    &game,
+                    game,
                     game_cycles,
                     &ticks,
                 );

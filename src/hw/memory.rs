@@ -155,6 +155,30 @@ pub fn renderer_in_ewram(clock: fn() -> u32) -> &'static mut GbaRenderer {
     }
 }
 
+use crate::game::Game;
+
+#[link_section = ".ewram_bss"]
+static mut GAME: MaybeUninit<Game<'static>> = MaybeUninit::uninit();
+static mut GAME_TAKEN: bool = false;
+
+/// The game on `maps`, in EWRAM: with a map's live sector table ([`crate::world::World`]) it
+/// is too large for the stack's room in IWRAM. Hands it out once.
+pub fn game_in_ewram(
+    maps: &'static [portalcast_format::MapTables<'static>],
+) -> &'static mut Game<'static> {
+    // SAFETY: single-threaded, and the flag makes this the only reference ever made to the
+    // static; the interrupt handler never touches it. `write` initialises it before the
+    // reference is made.
+    unsafe {
+        let taken = &raw mut GAME_TAKEN;
+        assert!(!*taken, "the game's memory is handed out once");
+        *taken = true;
+        let slot: *mut Game<'static> = (&raw mut GAME).cast();
+        slot.write(Game::new(maps));
+        &mut *slot
+    }
+}
+
 use crate::assets;
 use portalcast_format::{Align4, Texture};
 
@@ -167,8 +191,8 @@ static mut TEXEL_COPY: Align4<[u8; assets::TEXEL_EWRAM_LEN]> = Align4([0; assets
 const _: () = {
     use portalcast_format::memory::{ewram_texel_budget, EWRAM_ENGINE_BYTES, TEXTURE_ENTRY_BYTES};
     assert!(
-        core::mem::size_of::<GbaRenderer>() <= EWRAM_ENGINE_BYTES,
-        "the renderer's EWRAM outgrew EWRAM_ENGINE_BYTES (crates/format/src/memory.rs)"
+        core::mem::size_of::<GbaRenderer>() + core::mem::size_of::<Game>() <= EWRAM_ENGINE_BYTES,
+        "the renderer's and the game's EWRAM outgrew EWRAM_ENGINE_BYTES (crates/format/src/memory.rs)"
     );
     assert!(core::mem::size_of::<Texture<'static>>() <= TEXTURE_ENTRY_BYTES);
     assert!(assets::TEXEL_EWRAM_LEN <= ewram_texel_budget(assets::TEXTURE_COUNT));
