@@ -87,6 +87,18 @@ pub const PORTAL_DEPTH_MAX: u32 = 64;
 /// compiler refuses a map with more.
 pub const THINGS_MAX: u32 = 1024;
 
+/// Most movers (doors, lifts, platforms, crushers: [`crate::Mover`]) one map may have. The game
+/// keeps a live state for each mover and checks every one each tick (what starts it, whether its
+/// move fits the player's body), so the bound caps that work and that RAM; it also keeps mover
+/// indices far inside `u16`. The map compiler refuses a map with more.
+pub const MOVERS_MAX: u32 = 64;
+
+/// Most triggers (switches and walk-over lines: [`crate::Trigger`]) one map may have. The game
+/// scans them when the player uses a wall or crosses a portal, so the bound caps that scan; it
+/// also caps the table at 2 KiB of ROM (8 bytes a trigger). The map compiler refuses a map with
+/// more.
+pub const TRIGGERS_MAX: u32 = 256;
+
 /// Widest logical screen, in columns (Mode 4 at full width).
 pub const SCREEN_WIDTH_MAX: i32 = 240;
 
