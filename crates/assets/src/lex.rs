@@ -3,7 +3,7 @@
 use portalcast_format::limits::{HEIGHT_DIFF_MAX, WORLD_COORD_MAX};
 
 use crate::diag::{Loc, Located};
-use crate::source::{Spanned, ThingOptions, DEFAULT_FRAME_TICKS};
+use crate::source::{MoverKind, SourceMover, Spanned, ThingOptions, DEFAULT_FRAME_TICKS};
 
 /// A whitespace-separated word of a line and where it starts.
 #[derive(Clone, Copy, Debug)]
@@ -132,6 +132,152 @@ pub(crate) const THING_FLAGS: &[&str] = &["hang", "solid", "translucent"];
 
 /// The bare words a `wall` line of a `.map` may carry after its two vertices.
 pub(crate) const WALL_FLAGS: &[&str] = &["blocks", "translucent"];
+
+/// The bare words a `sector` line of a `.map` may carry after its name: a door, and how movers
+/// start.
+pub(crate) const SECTOR_FLAGS: &[&str] = &["door", "touch", "locked"];
+
+/// Fastest `speed=`: world units a mover's plane moves a tick.
+pub(crate) const MOVER_SPEED_MAX: i64 = 64;
+
+/// Largest `tag=` (of a mover or a switch) and `trigger=`; tag 0 means none.
+pub(crate) const TAG_MAX: i64 = u16::MAX as i64;
+
+/// Parses a tag (`tag=N`, `trigger=N`): 1 ..= [`TAG_MAX`].
+pub(crate) fn tag(token: Token<'_>, what: &str) -> Result<Spanned<u16>, Located> {
+    integer_in(token, what, 1, TAG_MAX).map(|value| Spanned::new(value as u16, token.loc))
+}
+
+/// The mover of a sector line: its mover word (the bare word `door`, or `lift=`, `platform=`,
+/// `crusher=` taken from `keys`), the words `touch` and `locked` (among `flags`, from
+/// [`split_flags`]) and the settings `speed=`, `wait=`, `tag=`. `Some(None)` for a sector that
+/// does not move, `None` if something is wrong (each error reported once, at its word).
+pub(crate) fn mover_options(
+    flags: &[Token<'_>],
+    keys: &mut KeyValues<'_>,
+    errors: &mut Vec<Located>,
+) -> Option<Option<SourceMover>> {
+    let flag = |word: &str| flags.iter().find(|f| f.text == word).map(|f| f.loc);
+    // Every mover word written, in the order written.
+    let mut words: Vec<(MoverKind, &str, Loc, Option<Token<'_>>)> = Vec::new();
+    if let Some(loc) = flag("door") {
+        words.push((MoverKind::Door, "door", loc, None));
+    }
+    for (kind, key) in [
+        (MoverKind::Lift, "lift="),
+        (MoverKind::Platform, "platform="),
+        (MoverKind::Crusher, "crusher="),
+    ] {
+        if let Some(token) = keys.take(key.trim_end_matches('=')) {
+            words.push((kind, key, token.loc, Some(token)));
+        }
+    }
+    words.sort_by_key(|word| word.2);
+    let before = errors.len();
+    for extra in words.iter().skip(1) {
+        errors.push((
+            extra.2,
+            format!(
+                "'{}' after '{}': a sector moves one way; keep one of door, lift=LOW, platform=OTHER, crusher=LOW",
+                extra.1, words[0].1
+            ),
+        ));
+    }
+    let speed = keys.take("speed");
+    let wait = keys.take("wait");
+    let tag_token = keys.take("tag");
+    let (touch, locked) = (flag("touch"), flag("locked"));
+    let Some(&(kind, _, loc, height)) = words.first() else {
+        for (key, token) in [("speed", speed), ("wait", wait), ("tag", tag_token)] {
+            if let Some(token) = token {
+                errors.push((
+                    token.loc,
+                    format!(
+                        "{key}= applies to a moving sector; add a mover word (door, lift=LOW, platform=OTHER, crusher=LOW) or remove {key}="
+                    ),
+                ));
+            }
+        }
+        if let Some(at) = touch {
+            errors.push((
+                at,
+                "'touch' applies to a door (it opens when the player walks into it); add the word door, or remove touch".to_string(),
+            ));
+        }
+        if let Some(at) = locked {
+            errors.push((
+                at,
+                "'locked' applies to a door or a lift (only a switch or line with its tag starts it); add door or lift=LOW, or remove locked".to_string(),
+            ));
+        }
+        return (errors.len() == before).then_some(None);
+    };
+    if let Some(at) = touch {
+        if kind != MoverKind::Door {
+            errors.push((
+                at,
+                format!(
+                    "'touch' applies to doors only, and this sector is a {}; remove touch",
+                    kind.name()
+                ),
+            ));
+        } else if locked.is_some() {
+            errors.push((
+                at,
+                "'touch' opens the door when the player walks into it, 'locked' says only a switch or line with its tag does; keep one".to_string(),
+            ));
+        }
+    }
+    if let Some(at) = locked {
+        if !matches!(kind, MoverKind::Door | MoverKind::Lift) {
+            errors.push((
+                at,
+                format!(
+                    "'locked' applies to doors and lifts only: a {} moves from the start, without being started; remove locked",
+                    kind.name()
+                ),
+            ));
+        } else if tag_token.is_none() {
+            errors.push((
+                at,
+                format!(
+                    "a locked {} needs tag=N: only a switch (switch=TEX tag=N) or a line (trigger=N) with that tag starts it; add tag=N",
+                    kind.name()
+                ),
+            ));
+        }
+    }
+    let (default_speed, default_wait) = kind.defaults();
+    let mut number = |token: Option<Token<'_>>, what: &str, min: i64, max: i64, default: u16| {
+        token.map_or(default, |t| match integer_in(t, what, min, max) {
+            Ok(value) => value as u16,
+            Err(e) => {
+                errors.push(e);
+                default
+            }
+        })
+    };
+    let speed = number(speed, "speed", 1, MOVER_SPEED_MAX, default_speed);
+    let wait = number(wait, "wait", 0, i64::from(u16::MAX), default_wait);
+    let tag = tag_token.and_then(|t| tag(t, "tag").map_err(|e| errors.push(e)).ok());
+    let height = height.and_then(|t| {
+        integer(t, &format!("{} height", kind.name()))
+            .map(|value| Spanned::new(value, t.loc))
+            .map_err(|e| errors.push(e))
+            .ok()
+    });
+    let mover = SourceMover {
+        kind,
+        loc,
+        height,
+        touch: touch.is_some(),
+        locked,
+        speed,
+        wait,
+        tag,
+    };
+    (errors.len() == before).then_some(Some(mover))
+}
 
 /// Takes the bare option words (`flags`) out of `words`, the words after a directive's name:
 /// only at index `skip` (the first word after its plain values) or later, each at most once.

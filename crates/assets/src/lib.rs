@@ -406,6 +406,12 @@ impl Usage {
                 }
                 usage.translucent |= wall.flags & WALL_MIDDLE_TRANSLUCENT != 0;
             }
+            // A switch shows its used texture on its (solid) wall once used.
+            for trigger in &map.triggers {
+                if trigger.used_texture != NO_TEXTURE {
+                    usage.wall_textures[usize::from(trigger.used_texture)] = true;
+                }
+            }
             for sector in &map.sectors {
                 usage.flat_textures[usize::from(sector.floor_texture)] = true;
                 if sector.ceil_texture == SKY {
@@ -737,6 +743,9 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
             if wall.middle != NO_TEXTURE {
                 wall.middle = set_index[usize::from(wall.middle)];
             }
+        }
+        for trigger in &mut map.triggers {
+            trigger.used_texture = remap(trigger.used_texture);
         }
         for sector in &mut map.sectors {
             sector.floor_texture = remap(sector.floor_texture);

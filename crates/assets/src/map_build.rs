@@ -8,18 +8,21 @@
 use std::collections::HashMap;
 
 use portalcast_format::limits::{
-    HEIGHT_MAX, HEIGHT_MIN, PORTAL_DEPTH_MAX, TEXTURE_COORD_MAX, THINGS_MAX, WORLD_COORD_MAX,
+    HEIGHT_MAX, HEIGHT_MIN, MOVERS_MAX, PORTAL_DEPTH_MAX, TEXTURE_COORD_MAX, THINGS_MAX,
+    TRIGGERS_MAX, WORLD_COORD_MAX,
 };
 use portalcast_format::{
-    MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall, NO_PORTAL, NO_TEXTURE,
-    SKY, THING_HANGING, THING_SOLID, THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS,
-    WALL_MIDDLE_TRANSLUCENT,
+    MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall, MOVER_CRUSHER, MOVER_DOOR,
+    MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM, NO_PORTAL, NO_TEXTURE, SKY,
+    THING_HANGING, THING_SOLID, THING_TRANSLUCENT, TRIGGER_LINE, TRIGGER_SWITCH,
+    WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
 };
 
 use crate::diag::{Loc, Located};
 use crate::geometry::{cross, dot, double_area, segments_touch, Point};
 use crate::source::{
-    CeilingSource, SourceMap, SourcePlace, SourceSector, SourceThing, SourceWall, Spanned,
+    CeilingSource, MoverKind, SourceMap, SourceMover, SourcePlace, SourceSector, SourceThing,
+    SourceWall, Spanned,
 };
 
 /// What an asset directory offers, by name; maps are checked against it. Texture and sprite set
@@ -237,9 +240,12 @@ pub(crate) struct ThingFit {
     radius: Option<Spanned<i64>>,
     z: i64,
     hanging: bool,
-    /// Its sector's floor and ceiling heights.
+    /// Its sector's floor and ceiling heights: the floor at its highest where the sector is a
+    /// lift or a platform (the least room the sprite gets).
     floor: i64,
     ceil: i64,
+    /// How messages name the floor: "the floor", or "the platform's floor at its highest".
+    floor_name: &'static str,
     /// The lines of its sector's walls, as seen from the thing.
     walls: Vec<WallLine>,
 }
@@ -321,6 +327,13 @@ pub(crate) fn build(
         &mut errors,
     );
     if player_sector != NO_PORTAL {
+        check_not_in_closing_sector(
+            source,
+            usize::from(player_sector),
+            &source.player,
+            "player start",
+            &mut errors,
+        );
         check_start_clearance(source, &outlines, &source.player, &mut errors);
         check_portal_depth(source, &outlines, usize::from(player_sector), &mut errors);
     }
@@ -329,7 +342,12 @@ pub(crate) fn build(
         .iter()
         .map(|thing| {
             let what = format!("thing '{}'", thing.sprite.value);
-            locate(source, &outlines, &thing.place, &what, &mut errors)
+            let sector = locate(source, &outlines, &thing.place, &what, &mut errors);
+            if sector != NO_PORTAL {
+                let sector = usize::from(sector);
+                check_not_in_closing_sector(source, sector, &thing.place, &what, &mut errors);
+            }
+            sector
         })
         .collect();
     if !errors.is_empty() {
@@ -398,6 +416,13 @@ fn thing_fit(
         })
         .collect();
     let sector = &source.sectors[sector];
+    // A lift's highest floor is the one drawn; a platform's may be higher.
+    let (floor, floor_name) = match mover_range(sector) {
+        Some((kind, _, high)) if !kind.moves_ceiling() && high > sector.floor.value => {
+            (high, "the platform's floor at its highest")
+        }
+        _ => (sector.floor.value, "the floor"),
+    };
     ThingFit {
         loc: thing.place.loc,
         label: format!(
@@ -409,8 +434,9 @@ fn thing_fit(
         radius: thing.options.radius.clone(),
         z: thing.options.z,
         hanging: thing.options.hanging,
-        floor: sector.floor.value,
+        floor,
         ceil: sector.ceil.value,
+        floor_name,
         walls,
     }
 }
@@ -506,7 +532,7 @@ fn check_footprint(fit: &ThingFit, radius: i64, least: i64, errors: &mut Vec<Loc
 /// Refuses a thing whose sprite (`height` tall) pokes through its sector's ceiling or floor.
 fn check_thing_height(fit: &ThingFit, height: i64, errors: &mut Vec<Located>) {
     let room = fit.ceil - fit.floor;
-    let (z, label) = (fit.z, &fit.label);
+    let (z, label, floor_name) = (fit.z, &fit.label, fit.floor_name);
     // How far the sprite passes the floor (hanging) or the ceiling (standing), and the words
     // that say where it is.
     let (over, placed) = if fit.hanging {
@@ -514,7 +540,7 @@ fn check_thing_height(fit: &ThingFit, height: i64, errors: &mut Vec<Located>) {
         (
             fit.floor - bottom,
             format!(
-                "hangs {z} below the ceiling ({}), so its bottom ({bottom}) is {} below the floor ({})",
+                "hangs {z} below the ceiling ({}), so its bottom ({bottom}) is {} below {floor_name} ({})",
                 fit.ceil,
                 fit.floor - bottom,
                 fit.floor
@@ -525,7 +551,7 @@ fn check_thing_height(fit: &ThingFit, height: i64, errors: &mut Vec<Located>) {
         (
             top - fit.ceil,
             format!(
-                "stands {z} above the floor ({}), so its top ({top}) is {} above the ceiling ({})",
+                "stands {z} above {floor_name} ({}), so its top ({top}) is {} above the ceiling ({})",
                 fit.floor,
                 top - fit.ceil,
                 fit.ceil
@@ -535,8 +561,10 @@ fn check_thing_height(fit: &ThingFit, height: i64, errors: &mut Vec<Located>) {
     let message = (over > 0).then(|| {
         let fix = if z >= over {
             format!("lower z= by {over} (to {})", z - over)
-        } else {
+        } else if floor_name == "the floor" {
             format!("its sector is only {room} tall: raise the ceiling or use a shorter sprite")
+        } else {
+            format!("only {room} lies between {floor_name} and the ceiling: raise the ceiling, lower the platform's top or use a shorter sprite")
         };
         format!("{label}: the sprite is {height} tall and {placed}; {fix}")
     });
@@ -759,8 +787,48 @@ fn check_values(source: &SourceMap, catalog: &Catalog, errors: &mut Vec<Located>
     let wall_total: usize = source.sectors.iter().map(|s| s.walls.len()).sum();
     count_limit("walls", wall_total, usize::from(u16::MAX), errors);
 
+    // The tags of the map's movers, which every switch and line must name one of.
+    let mut mover_tags: Vec<u16> = source
+        .sectors
+        .iter()
+        .filter_map(|sector| Some(sector.mover.as_ref()?.tag.as_ref()?.value))
+        .collect();
+    mover_tags.sort_unstable();
+    mover_tags.dedup();
     for (index, sector) in source.sectors.iter().enumerate() {
-        check_sector_values(source, index, sector, catalog, errors);
+        check_sector_values(source, index, sector, catalog, &mover_tags, errors);
+    }
+    if let Some(extra) = source
+        .sectors
+        .iter()
+        .filter_map(|sector| sector.mover.as_ref())
+        .nth(MOVERS_MAX as usize)
+    {
+        let count = source.sectors.iter().filter(|s| s.mover.is_some()).count();
+        errors.push((
+            extra.loc,
+            format!(
+                "the map has {count} movers, more than the {MOVERS_MAX} a map may hold (this is the first beyond); remove some or split the map"
+            ),
+        ));
+    }
+    let trigger_words: Vec<Loc> = source
+        .sectors
+        .iter()
+        .flat_map(|sector| &sector.walls)
+        .filter_map(|wall| {
+            let switch = wall.switch.as_ref().map(|s| s.loc);
+            switch.or(wall.trigger.as_ref().map(|t| t.loc))
+        })
+        .collect();
+    if let Some(&extra) = trigger_words.get(TRIGGERS_MAX as usize) {
+        errors.push((
+            extra,
+            format!(
+                "the map has {} switches and walk-over lines, more than the {TRIGGERS_MAX} a map may hold (this is the first beyond); remove some or split the map",
+                trigger_words.len()
+            ),
+        ));
     }
     for place in std::iter::once(&source.player).chain(source.things.iter().map(|t| &t.place)) {
         for (axis, value) in [("x", &place.x_fx8), ("y", &place.y_fx8)] {
@@ -789,11 +857,126 @@ fn check_values(source: &SourceMap, catalog: &Catalog, errors: &mut Vec<Located>
     }
 }
 
+/// The heights a sector's mover moves its plane between, `(low, high)` ([`Mover::low`],
+/// [`Mover::high`]), from the heights drawn and the mover's word; `None` for a sector that does
+/// not move.
+fn mover_range(sector: &SourceSector) -> Option<(MoverKind, i64, i64)> {
+    let mover = sector.mover.as_ref()?;
+    let (floor, ceil) = (sector.floor.value, sector.ceil.value);
+    let other = mover.height.as_ref().map_or(floor, |h| h.value);
+    Some(match mover.kind {
+        MoverKind::Door => (MoverKind::Door, floor, ceil),
+        MoverKind::Lift => (MoverKind::Lift, other, floor),
+        MoverKind::Platform => (MoverKind::Platform, other.min(floor), other.max(floor)),
+        MoverKind::Crusher => (MoverKind::Crusher, other, ceil),
+    })
+}
+
+/// The lowest and highest heights a sector's floor and its ceiling take as its mover moves:
+/// `((floor low, floor high), (ceiling low, ceiling high))`.
+fn plane_spans(sector: &SourceSector) -> ((i64, i64), (i64, i64)) {
+    let (floor, ceil) = (sector.floor.value, sector.ceil.value);
+    match mover_range(sector) {
+        Some((kind, low, high)) if kind.moves_ceiling() => ((floor, floor), (low, high)),
+        Some((_, low, high)) => ((low, high), (ceil, ceil)),
+        None => ((floor, floor), (ceil, ceil)),
+    }
+}
+
+/// Checks the height a mover word gives against the limits and the sector's floor and ceiling:
+/// a lift goes down below the floor, a platform's other end is not the floor and stays below
+/// the ceiling, a crusher's ceiling comes down to a height strictly between floor and ceiling.
+fn check_mover_heights(sector: &SourceSector, mover: &SourceMover, errors: &mut Vec<Located>) {
+    let Some(height) = &mover.height else {
+        return;
+    };
+    let (value, name) = (height.value, mover.kind.name());
+    if !(i64::from(HEIGHT_MIN)..=i64::from(HEIGHT_MAX)).contains(&value) {
+        errors.push((
+            height.loc,
+            format!("{name} height {value} is outside the limits; use {HEIGHT_MIN}..={HEIGHT_MAX}"),
+        ));
+        return;
+    }
+    let (floor, ceil) = (sector.floor.value, sector.ceil.value);
+    let problem = match mover.kind {
+        MoverKind::Lift if value >= floor => Some(format!(
+            "lift={value} is not below the sector's floor ({floor}): a lift's floor goes down from the floor drawn to LOW and back; use a LOW under {floor} (draw the sector at its raised height)"
+        )),
+        MoverKind::Platform if value == floor => Some(format!(
+            "platform={value} is the sector's own floor, so the platform would not move; give the other height its floor moves to"
+        )),
+        MoverKind::Platform if value >= ceil => Some(format!(
+            "platform={value} is not below the sector's ceiling ({ceil}): the floor would rise into it; use a height under {ceil}"
+        )),
+        MoverKind::Crusher if value <= floor || value >= ceil => Some(format!(
+            "crusher={value} is not between the sector's floor ({floor}) and ceiling ({ceil}): a crusher's ceiling comes down from the ceiling drawn to LOW and back; use a LOW strictly between them"
+        )),
+        _ => None,
+    };
+    errors.extend(problem.map(|message| (height.loc, message)));
+}
+
+/// Checks a wall's trigger words as written on its line: `switch=TEX tag=N` on a solid wall,
+/// `trigger=N` on a portal, and the tag of each names some mover of the map (`mover_tags`,
+/// sorted).
+fn check_trigger_words(
+    wall: &SourceWall,
+    catalog: &Catalog,
+    mover_tags: &[u16],
+    errors: &mut Vec<Located>,
+) {
+    let mut tag = None;
+    if let Some(texture) = &wall.switch {
+        catalog.texture(texture, errors);
+        if wall.portal.is_some() {
+            errors.push((
+                texture.loc,
+                "switch= goes on a solid wall (the player uses it, facing it); on a portal write trigger=N: crossing the line starts the movers tagged N".to_string(),
+            ));
+        } else if wall.tag.is_none() {
+            errors.push((
+                texture.loc,
+                "switch= needs tag=N on the same line: using the switch starts the movers with tag=N; add tag=N".to_string(),
+            ));
+        } else {
+            tag = wall.tag.as_ref();
+        }
+    } else if let Some(written) = &wall.tag {
+        errors.push((
+            written.loc,
+            "tag= on a wall goes with switch=TEX (a switch starts the movers of its tag); add switch=TEX, or on a portal the player walks over write trigger=N instead".to_string(),
+        ));
+    }
+    if let Some(trigger) = &wall.trigger {
+        if wall.portal.is_none() {
+            errors.push((
+                trigger.loc,
+                "trigger= goes on a portal (crossing it from this side starts the movers of its tag); on a solid wall write switch=TEX tag=N".to_string(),
+            ));
+        } else {
+            tag = Some(trigger);
+        }
+    }
+    if let Some(tag) = tag {
+        if mover_tags.binary_search(&tag.value).is_err() {
+            errors.push((
+                tag.loc,
+                format!(
+                    "no mover has tag {0}; give a moving sector tag={0} (door, lift=, platform=, crusher=), or use the tag of one",
+                    tag.value
+                ),
+            ));
+        }
+    }
+}
+
 fn check_sector_values(
     source: &SourceMap,
     index: usize,
     sector: &SourceSector,
     catalog: &Catalog,
+    mover_tags: &[u16],
     errors: &mut Vec<Located>,
 ) {
     for (what, height) in [("floor", &sector.floor), ("ceiling", &sector.ceil)] {
@@ -830,6 +1013,9 @@ fn check_sector_values(
         )),
         CeilingSource::Sky => {}
     }
+    if let Some(mover) = &sector.mover {
+        check_mover_heights(sector, mover, errors);
+    }
     for wall in &sector.walls {
         for offset in [&wall.x_offset, &wall.y_offset] {
             // Offsets are stored as i16; the renderer reduces them modulo the texture size.
@@ -850,6 +1036,7 @@ fn check_sector_values(
             catalog.texture(texture, errors);
         }
         check_middle_words(wall, catalog, errors);
+        check_trigger_words(wall, catalog, mover_tags, errors);
         match &wall.portal {
             Some(portal) => {
                 if portal.value == index {
@@ -1116,26 +1303,113 @@ fn check_portals(source: &SourceMap, outlines: &[Outline<'_>], errors: &mut Vec<
                     )),
                 },
             }
-            let both_sky = matches!(here.ceiling, CeilingSource::Sky)
-                && matches!(there.ceiling, CeilingSource::Sky);
-            if there.ceil.value < here.ceil.value && !both_sky && wall.source.upper.is_none() {
-                errors.push((
-                    portal.loc,
-                    format!(
-                        "portal to {} needs upper=TEXTURE: its ceiling ({}) is lower than this sector's ({}), so a strip of wall shows above the opening",
-                        there.label, there.ceil.value, here.ceil.value
-                    ),
-                ));
-            }
-            if there.floor.value > here.floor.value && wall.source.lower.is_none() {
-                errors.push((
-                    portal.loc,
-                    format!(
-                        "portal to {} needs lower=TEXTURE: its floor ({}) is higher than this sector's ({}), so a step shows below the opening",
-                        there.label, there.floor.value, here.floor.value
-                    ),
-                ));
-            }
+            check_strips(here, there, wall.source, portal.loc, errors);
+        }
+    }
+}
+
+/// Refuses a portal from `here` to `there` (written as `wall`, its `portal=` at `at`) that lacks
+/// the `upper=` or `lower=` texture of a strip some heights show: the heights drawn, or any the
+/// two sectors' movers give their floors and ceilings (the renderer draws nothing where a strip
+/// has no texture). An upper strip shows where `there`'s ceiling is below `here`'s (unless both
+/// show the sky), a lower strip where `there`'s floor is above `here`'s.
+fn check_strips(
+    here: &SourceSector,
+    there: &SourceSector,
+    wall: &SourceWall,
+    at: Loc,
+    errors: &mut Vec<Located>,
+) {
+    let both_sky =
+        matches!(here.ceiling, CeilingSource::Sky) && matches!(there.ceiling, CeilingSource::Sky);
+    let (here_floor, here_ceil) = plane_spans(here);
+    let (there_floor, there_ceil) = plane_spans(there);
+    let kind_of = |sector: &SourceSector| sector.mover.as_ref().map_or("", |m| m.kind.name());
+    if wall.upper.is_none() && !both_sky {
+        let message = if there.ceil.value < here.ceil.value {
+            Some(format!(
+                "its ceiling ({}) is lower than this sector's ({})",
+                there.ceil.value, here.ceil.value
+            ))
+        } else if there_ceil.0 < here.ceil.value {
+            let closed = if kind_of(there) == "door" {
+                " when it closes"
+            } else {
+                ""
+            };
+            Some(format!(
+                "it is a {} whose ceiling comes down to {}{closed}, lower than this sector's ({})",
+                kind_of(there),
+                there_ceil.0,
+                here.ceil.value
+            ))
+        } else if there.ceil.value < here_ceil.1 {
+            Some(format!(
+                "this sector is a {} whose ceiling rises to {}, higher than the neighbour's ({})",
+                kind_of(here),
+                here_ceil.1,
+                there.ceil.value
+            ))
+        } else if there_ceil.0 < here_ceil.1 {
+            Some(format!(
+                "it is a {} whose ceiling comes down to {} and this sector a {} whose ceiling rises to {}",
+                kind_of(there),
+                there_ceil.0,
+                kind_of(here),
+                here_ceil.1
+            ))
+        } else {
+            None
+        };
+        if let Some(why) = message {
+            errors.push((
+                at,
+                format!(
+                    "portal to {} needs upper=TEXTURE: {why}, so a strip of wall shows above the opening",
+                    there.label
+                ),
+            ));
+        }
+    }
+    if wall.lower.is_none() {
+        let message = if there.floor.value > here.floor.value {
+            Some(format!(
+                "its floor ({}) is higher than this sector's ({})",
+                there.floor.value, here.floor.value
+            ))
+        } else if there_floor.1 > here.floor.value {
+            Some(format!(
+                "it is a {} whose floor rises to {}, higher than this sector's ({})",
+                kind_of(there),
+                there_floor.1,
+                here.floor.value
+            ))
+        } else if there.floor.value > here_floor.0 {
+            Some(format!(
+                "this sector is a {} whose floor goes down to {}, lower than the neighbour's ({})",
+                kind_of(here),
+                here_floor.0,
+                there.floor.value
+            ))
+        } else if there_floor.1 > here_floor.0 {
+            Some(format!(
+                "it is a {} whose floor rises to {} and this sector a {} whose floor goes down to {}",
+                kind_of(there),
+                there_floor.1,
+                kind_of(here),
+                here_floor.0
+            ))
+        } else {
+            None
+        };
+        if let Some(why) = message {
+            errors.push((
+                at,
+                format!(
+                    "portal to {} needs lower=TEXTURE: {why}, so a step shows below the opening",
+                    there.label
+                ),
+            ));
         }
     }
 }
@@ -1276,6 +1550,43 @@ fn check_start_clearance(
             ),
         ));
     }
+}
+
+/// Refuses the player's start or a thing (`what`, at `place`) in sector `sector` if it is a door
+/// or a crusher: their ceilings come down to (or toward) the floor, on the start or through the
+/// sprite. Lifts and platforms carry what stands on them.
+fn check_not_in_closing_sector(
+    source: &SourceMap,
+    sector: usize,
+    place: &SourcePlace,
+    what: &str,
+    errors: &mut Vec<Located>,
+) {
+    let sector = &source.sectors[sector];
+    let Some(mover) = &sector.mover else {
+        return;
+    };
+    let why = match mover.kind {
+        MoverKind::Door => {
+            "a door: it is closed when the map starts, its ceiling down on its floor"
+        }
+        MoverKind::Crusher => "a crusher: its ceiling keeps coming down toward its floor",
+        MoverKind::Lift | MoverKind::Platform => return,
+    };
+    let fix = if what == "player start" {
+        "start the player outside it"
+    } else {
+        "place the thing outside it (things may stand in lifts and platforms)"
+    };
+    errors.push((
+        place.loc,
+        format!(
+            "{what} at ({}, {}) is in {}, {why}; {fix}",
+            fx8(place.x_fx8.value),
+            fx8(place.y_fx8.value),
+            sector.label
+        ),
+    ));
 }
 
 /// A direction in the plane, as an integer vector (y down).
@@ -1558,9 +1869,14 @@ fn tables(
     }
     let mut walls = Vec::new();
     let mut sectors = Vec::new();
+    let mut triggers = Vec::new();
+    let mut movers = Vec::new();
     for ((sector, outline), middles) in source.sectors.iter().zip(outlines).zip(middles) {
         let first_wall = walls.len() as u16;
         for (wall, middle) in outline.walls.iter().zip(middles) {
+            if let Some(trigger) = trigger(wall.source, walls.len() as u16, catalog) {
+                triggers.push(trigger);
+            }
             let (middle, flags) = match middle.and_then(|m| Some((m, m.middle.as_ref()?))) {
                 Some((words, name)) => (
                     catalog.sprite(name, &mut Vec::new()),
@@ -1609,6 +1925,9 @@ fn tables(
             },
             light: sector.light,
         });
+        if let Some(mover) = mover(sector, (sectors.len() - 1) as u16) {
+            movers.push(mover);
+        }
     }
     let place = |p: &SourcePlace| (p.x_fx8.value as i32, p.y_fx8.value as i32, p.angle);
     let (x_fx8, y_fx8, angle) = place(&source.player);
@@ -1649,8 +1968,8 @@ fn tables(
         sectors,
         things,
         sector_things,
-        movers: Vec::new(),
-        triggers: Vec::new(),
+        movers,
+        triggers,
         player_start: PlayerStart {
             x_fx8,
             y_fx8,
@@ -1659,6 +1978,56 @@ fn tables(
         },
     };
     (map, fits)
+}
+
+/// The [`Trigger`] of a wall (index `wall_index` in the walls table) whose line gives
+/// `switch=TEX tag=N` or `trigger=N`, if it does; its words are checked by now.
+fn trigger(wall: &SourceWall, wall_index: u16, catalog: &Catalog) -> Option<Trigger> {
+    let (tag, kind, used_texture) = match (&wall.switch, &wall.tag, &wall.trigger) {
+        (Some(texture), Some(tag), _) => (
+            tag.value,
+            TRIGGER_SWITCH,
+            catalog.texture(texture, &mut Vec::new()),
+        ),
+        (_, _, Some(tag)) => (tag.value, TRIGGER_LINE, NO_TEXTURE),
+        _ => return None,
+    };
+    Some(Trigger {
+        wall: wall_index,
+        tag,
+        kind,
+        reserved: 0,
+        used_texture,
+    })
+}
+
+/// The [`Mover`] of `sector` (index `sector_index`), if it moves; its heights are checked by
+/// now. A door is drawn open and starts closed; a lift is drawn raised and starts there; a
+/// platform starts at the floor drawn; a crusher starts open.
+fn mover(sector: &SourceSector, sector_index: u16) -> Option<Mover> {
+    let written = sector.mover.as_ref()?;
+    let (kind, low, high) = mover_range(sector)?;
+    let (kind, start) = match kind {
+        MoverKind::Door => (MOVER_DOOR, low),
+        MoverKind::Lift => (MOVER_LIFT, high),
+        MoverKind::Platform => (MOVER_PLATFORM, sector.floor.value),
+        MoverKind::Crusher => (MOVER_CRUSHER, high),
+    };
+    let started_by_use =
+        matches!(written.kind, MoverKind::Door | MoverKind::Lift) && written.locked.is_none();
+    let flags = if started_by_use { MOVER_ON_USE } else { 0 }
+        | if written.touch { MOVER_ON_TOUCH } else { 0 };
+    Some(Mover {
+        sector: sector_index,
+        kind,
+        flags,
+        low: low as i32,
+        high: high as i32,
+        speed: written.speed,
+        wait: written.wait,
+        tag: written.tag.as_ref().map_or(0, |tag| tag.value),
+        start: start as i32,
+    })
 }
 
 /// `floor(256·√(Δx² + Δy²))`: a wall's length in 24.8, as [`Wall::length_fx8`] stores it. Within

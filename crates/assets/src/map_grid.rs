@@ -355,6 +355,9 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 middle: None,
                 blocks: None,
                 translucent: None,
+                switch: None,
+                tag: None,
+                trigger: None,
             };
             match across {
                 Across::Solid(solid) => wall.texture = Some(solids[solid].1.clone()),
@@ -391,6 +394,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             floor_texture: kind.floor_texture.clone(),
             ceiling: kind.ceiling.clone(),
             light: kind.light,
+            mover: None,
             walls,
         });
     }

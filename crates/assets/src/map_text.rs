@@ -14,8 +14,22 @@ use crate::source::{
 /// Light level of a sector that does not set `light=`: textures shown as painted.
 const DEFAULT_LIGHT: u8 = portalcast_format::LIGHT_NEUTRAL;
 
-const SECTOR_KEYS: &[&str] = &["floor", "ceil", "floor_tex", "ceil_tex", "light"];
-const WALL_KEYS: &[&str] = &["tex", "portal", "upper", "lower", "mid", "xoff", "yoff"];
+const SECTOR_KEYS: &[&str] = &[
+    "floor",
+    "ceil",
+    "floor_tex",
+    "ceil_tex",
+    "light",
+    "lift",
+    "platform",
+    "crusher",
+    "speed",
+    "wait",
+    "tag",
+];
+const WALL_KEYS: &[&str] = &[
+    "tex", "portal", "upper", "lower", "mid", "switch", "tag", "trigger", "xoff", "yoff",
+];
 const PLACE_KEYS: &[&str] = &["angle"];
 const THING_KEYS: &[&str] = &["angle", "z", "radius", "anim"];
 
@@ -33,6 +47,9 @@ struct WrittenWall<'t> {
     middle: Option<Spanned<String>>,
     blocks: Option<Loc>,
     translucent: Option<Loc>,
+    switch: Option<Spanned<String>>,
+    tag: Option<Spanned<u16>>,
+    trigger: Option<Spanned<u16>>,
 }
 
 struct WrittenSector<'t> {
@@ -63,6 +80,14 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 lex::split_flags(rest, 3, lex::THING_FLAGS, "thing", THING_KEYS, &mut errors)
             }
             "wall" => lex::split_flags(rest, 2, lex::WALL_FLAGS, "wall", WALL_KEYS, &mut errors),
+            "sector" => lex::split_flags(
+                rest,
+                1,
+                lex::SECTOR_FLAGS,
+                "sector",
+                SECTOR_KEYS,
+                &mut errors,
+            ),
             _ => (rest.to_vec(), Vec::new()),
         };
         let (positional, mut keys) = KeyValues::split(&rest, &mut errors);
@@ -96,7 +121,8 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 });
             }
             "sector" => {
-                let (name, parsed) = parse_sector(directive, &positional, &mut keys, &mut errors);
+                let (name, parsed) =
+                    parse_sector(directive, &positional, &flags, &mut keys, &mut errors);
                 keys.report_unknown("sector", SECTOR_KEYS, &mut errors);
                 if let Some(name) = name {
                     // A sector with a bad value keeps its name, so portals to it report nothing
@@ -228,6 +254,7 @@ fn placeholder_sector(loc: Loc) -> SourceSector {
         floor_texture: Spanned::new(String::new(), loc),
         ceiling: CeilingSource::Sky,
         light: DEFAULT_LIGHT,
+        mover: None,
         walls: Vec::new(),
     }
 }
@@ -240,19 +267,23 @@ fn texture_name(token: Token<'_>, errors: &mut Vec<Located>) -> Option<Spanned<S
 fn parse_sector(
     directive: Token<'_>,
     positional: &[Token<'_>],
+    flags: &[Token<'_>],
     keys: &mut KeyValues<'_>,
     errors: &mut Vec<Located>,
 ) -> (Option<String>, Option<SourceSector>) {
     let name = expect_words(directive, positional, ["NAME"], errors)
         .and_then(|[name]| record(lex::name(name, "sector name"), errors));
-    let sector = parse_sector_values(directive, name.as_deref(), keys, errors);
+    let sector = parse_sector_values(directive, name.as_deref(), flags, keys, errors);
     (name, sector)
 }
 
-/// The values of a `sector` line named `name`, if all are valid (each bad one is reported).
+/// The values of a `sector` line named `name`, if all are valid (each bad one is reported):
+/// its heights, textures and light, and its mover's words (`flags`, from
+/// [`lex::split_flags`]) and settings.
 fn parse_sector_values(
     directive: Token<'_>,
     name: Option<&str>,
+    flags: &[Token<'_>],
     keys: &mut KeyValues<'_>,
     errors: &mut Vec<Located>,
 ) -> Option<SourceSector> {
@@ -302,9 +333,10 @@ fn parse_sector_values(
         None => None,
     };
     let light = match light {
-        Some(t) => record(lex::integer_in(t, "light", 0, 255), errors)? as u8,
-        None => DEFAULT_LIGHT,
+        Some(t) => record(lex::integer_in(t, "light", 0, 255), errors).map(|v| v as u8),
+        None => Some(DEFAULT_LIGHT),
     };
+    let mover = lex::mover_options(flags, keys, errors);
     Some(SourceSector {
         label: format!("sector '{}'", name?),
         loc: directive.loc,
@@ -312,7 +344,8 @@ fn parse_sector_values(
         ceil: ceil?,
         floor_texture: floor_texture?,
         ceiling: ceiling?,
-        light,
+        light: light?,
+        mover: mover?,
         walls: Vec::new(),
     })
 }
@@ -332,6 +365,13 @@ fn parse_wall<'t>(
     let middle = keys.take("mid").and_then(|t| {
         record(lex::name(t, "sprite name"), errors).map(|name| Spanned::new(name, t.loc))
     });
+    let switch = keys.take("switch").and_then(|t| texture_name(t, errors));
+    let tag = keys
+        .take("tag")
+        .and_then(|t| record(lex::tag(t, "tag"), errors));
+    let trigger = keys
+        .take("trigger")
+        .and_then(|t| record(lex::tag(t, "trigger"), errors));
     let flag = |word: &str| flags.iter().find(|f| f.text == word).map(|f| f.loc);
     let mut offset = |key: &str| match keys.take(key) {
         Some(t) => {
@@ -355,6 +395,9 @@ fn parse_wall<'t>(
         middle,
         blocks: flag("blocks"),
         translucent: flag("translucent"),
+        switch,
+        tag,
+        trigger,
     })
 }
 
@@ -433,6 +476,9 @@ fn resolve_walls(
                 middle: wall.middle,
                 blocks: wall.blocks,
                 translucent: wall.translucent,
+                switch: wall.switch,
+                tag: wall.tag,
+                trigger: wall.trigger,
             });
         }
         resolved.push(sector);

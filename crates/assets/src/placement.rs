@@ -2,7 +2,7 @@
 //! ([`portalcast_format::memory::ewram_texel_budget`]); the others are read from the cartridge
 //! (slower, 5 cycles a byte against 3), so a texture set of any size builds.
 
-use portalcast_format::{Wall, SKY};
+use portalcast_format::{Wall, MOVER_CRUSHER, MOVER_DOOR, SKY};
 
 use crate::{Compiled, CompiledMap, CompiledTexture};
 
@@ -20,8 +20,10 @@ pub(crate) fn textures_in_ewram(compiled: &Compiled) -> Vec<bool> {
 
 /// How much of the maps each texture covers, in square world units times 256: a wall's length
 /// times the height it shows the texture over (the whole wall, or an upper or lower strip), and
-/// a floor's or ceiling's area. The more of the world a texture covers, the more pixels it is
-/// likely to draw, so the EWRAM copy takes the hottest first.
+/// a floor's or ceiling's area; a moving sector counts with the heights it has when the map
+/// starts (a closed door's face is the upper strip of the walls into it). The more of the world
+/// a texture covers, the more pixels it is likely to draw, so the EWRAM copy takes the hottest
+/// first.
 pub(crate) fn texture_heat(texture_count: usize, maps: &[CompiledMap]) -> Vec<u64> {
     let mut heat = vec![0u64; texture_count];
     let mut add = |texture: u16, amount: i64| {
@@ -30,18 +32,33 @@ pub(crate) fn texture_heat(texture_count: usize, maps: &[CompiledMap]) -> Vec<u6
         }
     };
     for map in maps {
-        for sector in &map.sectors {
+        // Each sector's floor and ceiling as the map starts.
+        let mut heights: Vec<(i32, i32)> = map
+            .sectors
+            .iter()
+            .map(|sector| (sector.floor_z, sector.ceil_z))
+            .collect();
+        for mover in &map.movers {
+            if let Some(slot) = heights.get_mut(usize::from(mover.sector)) {
+                match mover.kind {
+                    MOVER_DOOR | MOVER_CRUSHER => slot.1 = mover.start,
+                    _ => slot.0 = mover.start,
+                }
+            }
+        }
+        for (index, sector) in map.sectors.iter().enumerate() {
+            let (floor_z, ceil_z) = heights[index];
             let first = usize::from(sector.first_wall);
             let walls: &[Wall] = &map.walls[first..first + usize::from(sector.wall_count)];
             let length = |wall: &Wall| i64::from(wall.length_fx8);
-            let height = i64::from(sector.ceil_z - sector.floor_z);
+            let height = i64::from(ceil_z - floor_z);
             for wall in walls {
                 match wall.neighbour() {
                     None => add(wall.texture, length(wall) * height),
                     Some(next) => {
-                        let next = &map.sectors[usize::from(next)];
-                        let upper = i64::from(sector.ceil_z - next.ceil_z);
-                        let lower = i64::from(next.floor_z - sector.floor_z);
+                        let (next_floor, next_ceil) = heights[usize::from(next)];
+                        let upper = i64::from(ceil_z - next_ceil);
+                        let lower = i64::from(next_floor - floor_z);
                         add(wall.upper_texture, length(wall) * upper);
                         add(wall.lower_texture, length(wall) * lower);
                     }

@@ -48,7 +48,72 @@ pub(crate) struct SourceSector {
     pub floor_texture: Spanned<String>,
     pub ceiling: CeilingSource,
     pub light: u8,
+    /// The sector's mover word and its settings, if it moves (`door`, `lift=`, `platform=`,
+    /// `crusher=`).
+    pub mover: Option<SourceMover>,
     pub walls: Vec<SourceWall>,
+}
+
+/// How a sector moves: its mover word.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum MoverKind {
+    /// `door`: the ceiling opens from the floor up to the ceiling drawn.
+    Door,
+    /// `lift=LOW`: the floor goes down from the floor drawn to LOW.
+    Lift,
+    /// `platform=OTHER`: the floor moves for ever between the floor drawn and OTHER.
+    Platform,
+    /// `crusher=LOW`: the ceiling moves for ever between the ceiling drawn and LOW.
+    Crusher,
+}
+
+impl MoverKind {
+    /// How messages name it: "door", "lift", ...
+    pub fn name(self) -> &'static str {
+        match self {
+            MoverKind::Door => "door",
+            MoverKind::Lift => "lift",
+            MoverKind::Platform => "platform",
+            MoverKind::Crusher => "crusher",
+        }
+    }
+
+    /// Whether it moves the sector's ceiling (doors, crushers) rather than its floor.
+    pub fn moves_ceiling(self) -> bool {
+        matches!(self, MoverKind::Door | MoverKind::Crusher)
+    }
+
+    /// `speed=` and `wait=` when the sector gives none: world units a tick, ticks at the far
+    /// end (60 ticks a second).
+    pub fn defaults(self) -> (u16, u16) {
+        match self {
+            MoverKind::Door => (2, 150),
+            MoverKind::Lift => (2, 120),
+            MoverKind::Platform => (1, 60),
+            MoverKind::Crusher => (1, 30),
+        }
+    }
+}
+
+/// A sector's mover as written: its word and settings, checked for syntax and ranges by the
+/// parser; the heights are checked against the sector's by `map_build`.
+#[derive(Clone, Debug)]
+pub(crate) struct SourceMover {
+    pub kind: MoverKind,
+    /// Where the mover word is written (`door`; the value of `lift=`, `platform=`, `crusher=`).
+    pub loc: Loc,
+    /// The height written with `lift=`, `platform=` or `crusher=` (none for a door).
+    pub height: Option<Spanned<i64>>,
+    /// The word `touch` (doors: also opens when the player walks into it).
+    pub touch: bool,
+    /// Where the word `locked` is written, if it is (doors and lifts: only a trigger starts it).
+    pub locked: Option<Loc>,
+    /// World units a tick (`speed=`, else the kind's default).
+    pub speed: u16,
+    /// Ticks at the far end (`wait=`, else the kind's default).
+    pub wait: u16,
+    /// `tag=N`, if written.
+    pub tag: Option<Spanned<u16>>,
 }
 
 #[derive(Clone, Debug)]
@@ -69,6 +134,14 @@ pub(crate) struct SourceWall {
     pub blocks: Option<Loc>,
     /// Where the word `translucent` is written, if it is.
     pub translucent: Option<Loc>,
+    /// Solid only (`.map`): `switch=TEX`, the texture the wall shows once used; the wall starts
+    /// the movers of its `tag=`.
+    pub switch: Option<Spanned<String>>,
+    /// `tag=N` of a switch.
+    pub tag: Option<Spanned<u16>>,
+    /// Portal only (`.map`): `trigger=N`, crossing the portal from this side starts the movers
+    /// tagged N.
+    pub trigger: Option<Spanned<u16>>,
 }
 
 #[derive(Clone, Debug)]
