@@ -546,13 +546,13 @@ fn examples_in_the_format_doc_compile() {
     let doc = std::fs::read_to_string(doc_path).expect("docs/MAP_FORMAT.md");
     let catalog = portalcast_assets::Catalog::new(
         [
-            "brick", "ceiling", "grass", "step", "stone", "tiles", "wood",
+            "brick", "ceiling", "grass", "metal", "step", "stone", "tiles", "trim", "wood",
         ],
         ["torch"],
         true,
     )
     .with_sprite_size("torch", 16, 48);
-    let mut examples = 0;
+    let (mut examples, mut movers, mut triggers) = (0, 0, 0);
     for section in doc.split("### Example").skip(1) {
         let block = section
             .split("```")
@@ -563,10 +563,18 @@ fn examples_in_the_format_doc_compile() {
         } else {
             "example.map"
         };
-        if let Err(errors) = portalcast_assets::compile_map_str(file, block, &catalog) {
-            panic!("the {file} example in docs/MAP_FORMAT.md does not compile:\n{errors}");
+        match portalcast_assets::compile_map_str(file, block, &catalog) {
+            Ok(map) => {
+                movers += map.movers.len();
+                triggers += map.triggers.len();
+            }
+            Err(errors) => {
+                panic!("the {file} example in docs/MAP_FORMAT.md does not compile:\n{errors}")
+            }
         }
         examples += 1;
     }
-    assert_eq!(examples, 2);
+    assert_eq!(examples, 3);
+    // The movers' example: a door and a lift, a switch and a walk-over line.
+    assert_eq!((movers, triggers), (2, 2));
 }
