@@ -16,8 +16,8 @@ use crate::diag::{Loc, Located};
 use crate::geometry::Point;
 use crate::lex::{self, KeyValues, Token};
 use crate::source::{
-    CeilingSource, SourceMap, SourcePlace, SourceSector, SourceThing, SourceVertex, SourceWall,
-    Spanned, ThingOptions,
+    CeilingSource, MoverKind, SourceMap, SourceMover, SourcePlace, SourceSector, SourceThing,
+    SourceVertex, SourceWall, Spanned, ThingOptions,
 };
 
 /// Cell side in world units when the file has no `cell` line.
@@ -29,6 +29,9 @@ const OPEN_KEYS: &[&str] = &["floor", "ceil", "floor_tex", "ceil_tex", "light", 
 const SOLID_KEYS: &[&str] = &["tex"];
 const PLAYER_KEYS: &[&str] = &["on", "angle"];
 const THING_KEYS: &[&str] = &["on", "angle", "z", "radius", "anim"];
+const DOOR_KEYS: &[&str] = &["on", "tex", "speed", "wait"];
+/// The bare words a `door` legend line may carry.
+const DOOR_FLAGS: &[&str] = &["touch"];
 
 struct OpenKind {
     symbol: char,
@@ -39,6 +42,17 @@ struct OpenKind {
     ceiling: CeilingSource,
     light: u8,
     side: Option<Spanned<String>>,
+    /// A door kind's mover (`door` legend lines); `None` for `open` kinds.
+    mover: Option<SourceMover>,
+}
+
+/// A `door` legend line: cells of `symbol` are doors with the heights and textures of the open
+/// kind `on`, whose face (the upper strip of the walls into them) shows `face`.
+struct DoorLine<'t> {
+    symbol: char,
+    on: Token<'t>,
+    face: Spanned<String>,
+    mover: SourceMover,
 }
 
 /// Something standing on an open cell: the player (`sprite: None`) or a thing.
@@ -105,6 +119,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
     let mut solids: Vec<(char, Spanned<String>)> = Vec::new();
     let mut opens: Vec<OpenKind> = Vec::new();
     let mut markers: Vec<Marker<'_>> = Vec::new();
+    let mut doors: Vec<DoorLine<'_>> = Vec::new();
     let mut grid_start: Option<usize> = None;
     let mut symbols: HashMap<char, Loc> = HashMap::new();
     let mut player_seen = false;
@@ -131,7 +146,10 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             break;
         }
         // The second word of a legend line is a cell character, which may well be '#'.
-        let symbol_slot = matches!(directive.text, "solid" | "open" | "player" | "thing");
+        let symbol_slot = matches!(
+            directive.text,
+            "solid" | "open" | "door" | "player" | "thing"
+        );
         let first_comment_word = if symbol_slot { 2 } else { 1 };
         if let Some(cut) = words
             .iter()
@@ -170,10 +188,12 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
         } else {
             &words[1..]
         };
-        let (rest, flags) = if directive.text == "thing" {
-            lex::split_flags(rest, 1, lex::THING_FLAGS, "thing", THING_KEYS, &mut errors)
-        } else {
-            (rest.to_vec(), Vec::new())
+        let (rest, flags) = match directive.text {
+            "thing" => {
+                lex::split_flags(rest, 1, lex::THING_FLAGS, "thing", THING_KEYS, &mut errors)
+            }
+            "door" => lex::split_flags(rest, 0, DOOR_FLAGS, "door", DOOR_KEYS, &mut errors),
+            _ => (rest.to_vec(), Vec::new()),
         };
         let (positional, mut keys) = KeyValues::split(&rest, &mut errors);
         match directive.text {
@@ -211,6 +231,14 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                     opens.push(kind);
                 }
             }
+            "door" => {
+                let door = parse_door(directive, &flags, &mut keys, &mut errors);
+                keys.report_unknown("door", DOOR_KEYS, &mut errors);
+                if let (Some(symbol), Some(mut door)) = (symbol, door) {
+                    door.symbol = symbol;
+                    doors.push(door);
+                }
+            }
             "player" | "thing" => {
                 let sprite = if directive.text == "thing" {
                     match positional.as_slice() {
@@ -245,7 +273,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             }
             other => errors.push((
                 directive.loc,
-                format!("unknown directive '{other}'; expected cell, solid, open, player, thing or grid"),
+                format!("unknown directive '{other}'; expected cell, solid, open, door, player, thing or grid"),
             )),
         }
     }
@@ -257,6 +285,39 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
         ));
         return Err(errors);
     };
+    // Each door is a kind of its own: the heights and textures of its open kind, its face as the
+    // `side` the walls into it show, and its mover.
+    for door in doors {
+        let on = door
+            .on
+            .text
+            .chars()
+            .next()
+            .filter(|_| door.on.text.chars().count() == 1);
+        let Some(base) = on.and_then(|k| opens.iter().find(|o| o.symbol == k && o.mover.is_none()))
+        else {
+            errors.push((
+                door.on.loc,
+                format!(
+                    "on={} is not an open cell character; name one defined by an `open` line (the door takes its floor, ceiling and textures)",
+                    door.on.text
+                ),
+            ));
+            continue;
+        };
+        let kind = OpenKind {
+            symbol: door.symbol,
+            loc: door.mover.loc,
+            floor: base.floor.clone(),
+            ceil: base.ceil.clone(),
+            floor_texture: base.floor_texture.clone(),
+            ceiling: base.ceiling.clone(),
+            light: base.light,
+            side: Some(door.face),
+            mover: Some(door.mover),
+        };
+        opens.push(kind);
+    }
     let mut marker_kinds = Vec::new();
     for marker in &markers {
         let kind = marker
@@ -365,7 +426,12 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                     let there = &opens[rectangles[other].kind];
                     let both_sky = matches!(kind.ceiling, CeilingSource::Sky)
                         && matches!(there.ceiling, CeilingSource::Sky);
-                    let upper_shows = there.ceil.value < kind.ceil.value && !both_sky;
+                    // A door's ceiling comes down to its floor: the walls into it show its face.
+                    let lowest_ceiling = |kind: &OpenKind| match kind.mover {
+                        Some(_) => kind.floor.value,
+                        None => kind.ceil.value,
+                    };
+                    let upper_shows = lowest_ceiling(there) < kind.ceil.value && !both_sky;
                     let lower_shows = there.floor.value > kind.floor.value;
                     if (upper_shows || lower_shows) && there.side.is_none() {
                         missing_sides.insert((rectangles[other].kind, rectangle.kind));
@@ -394,7 +460,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             floor_texture: kind.floor_texture.clone(),
             ceiling: kind.ceiling.clone(),
             light: kind.light,
-            mover: None,
+            mover: kind.mover.clone(),
             walls,
         });
     }
@@ -536,6 +602,56 @@ fn parse_open(
         ceiling: ceiling?,
         light: light?,
         side,
+        mover: None,
+    })
+}
+
+/// Parses a `door` legend line's settings: `on=K` (the open kind whose heights and textures the
+/// door has), `tex=TEX` (its face), the word `touch`, `speed=` and `wait=`.
+fn parse_door<'t>(
+    directive: Token<'t>,
+    flags: &[Token<'t>],
+    keys: &mut KeyValues<'t>,
+    errors: &mut Vec<Located>,
+) -> Option<DoorLine<'t>> {
+    let on = keys.take("on");
+    let face = keys.take("tex");
+    if on.is_none() {
+        errors.push((
+            directive.loc,
+            "door needs on=K, the open cell character whose floor, ceiling and textures it has (e.g. `door D on=. tex=metal`)".to_string(),
+        ));
+    }
+    if face.is_none() {
+        errors.push((
+            directive.loc,
+            "door needs tex=TEXTURE, its face: the wall above the doorway while it is closed (e.g. `door D on=. tex=metal`)".to_string(),
+        ));
+    }
+    let face = face.and_then(|t| {
+        record(lex::name(t, "texture name"), errors).map(|name| Spanned::new(name, t.loc))
+    });
+    let (default_speed, default_wait) = MoverKind::Door.defaults();
+    let mut number = |key: &str, min: i64, max: i64, default: u16| match keys.take(key) {
+        Some(t) => record(lex::integer_in(t, key, min, max), errors).map(|v| v as u16),
+        None => Some(default),
+    };
+    let speed = number("speed", 1, lex::MOVER_SPEED_MAX, default_speed);
+    let wait = number("wait", 0, i64::from(u16::MAX), default_wait);
+    Some(DoorLine {
+        symbol: ' ',
+        on: on?,
+        face: face?,
+        mover: SourceMover {
+            kind: MoverKind::Door,
+            loc: directive.loc,
+            height: None,
+            touch: flags.iter().any(|f| f.text == "touch"),
+            locked: None,
+            speed: speed?,
+            wait: wait?,
+            tag: None,
+        },
     })
 }
 

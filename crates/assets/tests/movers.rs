@@ -1004,3 +1004,107 @@ fn an_asset_directory_compiles_a_switch_texture_used_nowhere_else() {
     );
     assert_eq!(map.movers[0].flags, 0);
 }
+
+/// A grid of three areas in a row, the middle cell a door (`door D ...`, with `words`).
+fn door_grid(words: &str, row: &str) -> String {
+    format!(
+        "cell 64\nsolid # tex=brick\n\
+         open . floor=0 ceil=128 floor_tex=stone ceil_tex=stone\n\
+         door D on=. tex=door {words}\n\
+         player @ on=. angle=0\n\
+         grid\n#######\n{row}\n#######\n"
+    )
+}
+
+#[test]
+fn a_grid_door_cell_is_a_door_whose_face_is_its_texture() {
+    let map = compile_map_str("doors.grid", &door_grid("", "#@.D..#"), &catalog())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(map.sectors.len(), 3);
+    assert_eq!(
+        map.movers,
+        [Mover {
+            sector: 1,
+            kind: MOVER_DOOR,
+            flags: MOVER_ON_USE,
+            low: 0,
+            high: 128,
+            speed: 2,
+            wait: 150,
+            tag: 0,
+            start: 0,
+        }]
+    );
+    // The walls into the door show its face above the opening; its own walls show nothing.
+    let door_texture = 1;
+    for (index, wall) in map.walls.iter().enumerate() {
+        let Some(next) = wall.neighbour() else {
+            continue;
+        };
+        let into_door = next == 1;
+        let expected = if into_door { door_texture } else { NO_TEXTURE };
+        assert_eq!(wall.upper_texture, expected, "wall {index}");
+        assert_eq!(wall.lower_texture, NO_TEXTURE, "wall {index}");
+    }
+    let map = compile_map_str(
+        "doors.grid",
+        &door_grid("touch speed=8 wait=60", "#@.D..#"),
+        &catalog(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let door = map.movers[0];
+    assert_eq!(
+        (door.flags, door.speed, door.wait),
+        (MOVER_ON_USE | MOVER_ON_TOUCH, 8, 60)
+    );
+    // Two door cells side by side are one door.
+    let map = compile_map_str("doors.grid", &door_grid("", "#@DD..#"), &catalog())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(map.movers.len(), 1);
+}
+
+#[test]
+fn grid_door_errors_are_located() {
+    let error = |words: &str, row: &str| {
+        let text = door_grid(words, row);
+        (text.clone(), only_error_in("doors.grid", &text))
+    };
+    // The player on a door cell (`on=D`): at the cell.
+    let text = door_grid("", "#.@...#").replace("on=. angle=0", "on=D angle=0");
+    let (line, col, message) = only_error_in("doors.grid", &text);
+    assert_eq!((line, col), (8, 3), "{message}");
+    assert!(
+        message.contains("player start at (160, 96) is in area 'D' at row 2, column 3, a door"),
+        "{message}"
+    );
+    let (text, (line, col, message)) = error("speed=0", "#@.D..#");
+    assert_eq!((line, col), value_of(&text, 4, "speed"));
+    assert!(
+        message.contains("speed 0 is out of range; use 1..=64"),
+        "{message}"
+    );
+    let (text, (line, col, message)) = error("locked", "#@.D..#");
+    assert_eq!((line, col), at(&text, 4, "locked"));
+    assert!(
+        message.contains("unknown word 'locked' for door"),
+        "{message}"
+    );
+    let text = door_grid("", "#@.D..#").replace("door D on=. tex=door ", "door D on=x tex=door");
+    let (line, col, message) = only_error_in("doors.grid", &text);
+    assert_eq!((line, col), value_of(&text, 4, "on"));
+    assert!(
+        message.contains("on=x is not an open cell character"),
+        "{message}"
+    );
+    let text = door_grid("", "#@.D..#").replace(" tex=door", "");
+    let (line, col, message) = only_error_in("doors.grid", &text);
+    assert_eq!((line, col), (4, 1));
+    assert!(message.contains("door needs tex=TEXTURE"), "{message}");
+}
+
+fn only_error_in(file_name: &str, text: &str) -> (u32, u32, String) {
+    let errors = compile_map_str(file_name, text, &catalog()).expect_err("an error");
+    assert_eq!(errors.0.len(), 1, "{errors}\n---\n{text}");
+    let error = &errors.0[0];
+    (error.loc.line, error.loc.col, error.message.clone())
+}
