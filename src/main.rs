@@ -165,14 +165,13 @@ mod rom {
             let camera = game.camera();
             if frame_lines {
                 let started = meter::now();
-                log_player_line(
-                    frame,
-                    sampler.next_index(),
-                    lost,
-                    game,
-                    game_cycles,
-                    &ticks,
-                );
+                log_player_line(frame, sampler.next_index(), lost, game, game_cycles, &ticks);
+                if !game.world.movers().is_empty() {
+                    log::info(format_args!(
+                        "movers frame={frame} heights={}",
+                        MoverHeights(game.world.movers())
+                    ));
+                }
                 rate.frame_lines_cycles += meter::cycles_since(started);
             }
             let settings = game.settings;
@@ -253,6 +252,22 @@ mod rom {
                 ticks.total,
                 ticks.max,
             ));
+    }
+
+    /// The movers' heights as `h0,h1,…`: the `movers …` line that follows a frame's `player`
+    /// line on a map with movers, so the tests draw the frame the ROM drew.
+    struct MoverHeights<'w>(&'w [portalcast::world::MoverState]);
+
+    impl core::fmt::Display for MoverHeights<'_> {
+        fn fmt(&self, f: &mut core::fmt::Formatter) -> core::fmt::Result {
+            for (index, mover) in self.0.iter().enumerate() {
+                if index > 0 {
+                    f.write_str(",")?;
+                }
+                write!(f, "{}", mover.height)?;
+            }
+            Ok(())
+        }
     }
 
     /// VBlanks a [`RateWindow`] spans at least: one second of the GBA's 59.73 Hz display.

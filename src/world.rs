@@ -12,7 +12,7 @@
 //!
 //! # The player is never crushed
 //! A mover moves a tick only if the player's body, as the move would leave it, still fits every
-//! sector its disc touches ([`Body::admits`], the rule the collision code keeps the body to): a
+//! sector its disc touches ([`Body::admits`](crate::player::collide::Body::admits), the rule the collision code keeps the body to): a
 //! door or a crusher that would come down on the player goes back up, a lift that would lift the
 //! player's head into its ceiling (or its floor past a step under a body beside it) goes back
 //! down. A lift's floor carries a player standing on it.
@@ -174,6 +174,15 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
         }
     }
 
+    /// Puts each of `map`'s movers at the height `heights` gives it (in the order of
+    /// `MapTables::movers`), for drawing a frame a log line describes.
+    pub fn set_heights(&mut self, map: &MapTables, heights: &[i32]) {
+        for (index, (mover, &height)) in map.movers.iter().zip(heights).enumerate() {
+            self.movers[index].height = height;
+            self.set_height(mover, height);
+        }
+    }
+
     /// The live state of the map's movers, in the order of `MapTables::movers`.
     pub fn movers(&self) -> &[MoverState] {
         &self.movers[..self.mover_count]
@@ -190,7 +199,9 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
 
     /// One game tick on a map with movers, the player's `intent` included: what the player
     /// starts starts, the movers move (turning back rather than closing on the player), then the
-    /// player moves on the moved map, and the lines it crossed start their tags.
+    /// player moves on the moved map, and the lines it crossed start their tags. Not inlined:
+    /// in the game's tick its frame would sit on the stack on maps without movers too.
+    #[inline(never)]
     pub fn tick_with_player(&mut self, map: &MapTables, player: &mut Player, intent: &Intent) {
         if intent.activate {
             self.use_button(map, player);
@@ -394,6 +405,11 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
                 self.start_tag(map, trigger.tag);
             }
         }
+    }
+
+    /// Mover `index` starts as the use button starts it (an open door closes).
+    pub fn use_mover(&mut self, map: &MapTables, index: usize) {
+        self.start_mover(map, index, true);
     }
 
     /// Every mover tagged `tag` starts.

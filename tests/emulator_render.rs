@@ -11,6 +11,7 @@ mod common;
 use common::demos::{render_line_settings, PlayerLine};
 use common::*;
 use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
+use portalcast::game::GameWorld;
 use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
@@ -46,6 +47,9 @@ struct Checker {
     renderer: Renderer,
     colours: MenuColours,
     player: Option<PlayerLine>,
+    /// The movers' heights of the frame the `player` line describes (`movers …` line), on a
+    /// map with movers.
+    mover_heights: Vec<i32>,
     compared: Vec<Compared>,
     screenshots: BTreeSet<String>,
 }
@@ -66,6 +70,13 @@ impl Checker {
             // (the next frame's `player` line may follow in the same emulator frame).
             if line.text.starts_with("player ") {
                 self.player = Some(PlayerLine::parse(&line.text));
+                self.mover_heights.clear();
+            } else if line.text.starts_with("movers ") {
+                let heights = field(&line.text, "heights").expect("heights=");
+                self.mover_heights = heights
+                    .split(',')
+                    .map(|h| h.parse().expect("a height"))
+                    .collect();
             } else if line.text.starts_with("render ") {
                 self.compare(&line.text);
                 drawn = true;
@@ -101,8 +112,17 @@ impl Checker {
             resolution,
             halved_flats: false,
         };
+        // The map as the ROM's game had it: its movers at the heights the ROM logged.
+        assert_eq!(
+            self.mover_heights.len(),
+            map.movers.len(),
+            "a `movers` line gives every mover's height: {text}"
+        );
+        let mut world = GameWorld::start(&map);
+        world.set_heights(&map, &self.mover_heights);
+        let live = world.map(&map);
         let stats = self.renderer.render(
-            &map,
+            &live,
             &self.assets,
             &View::new(&camera, &settings).at_tick(player.tick),
             &mut canvas,
@@ -220,6 +240,7 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         renderer: Renderer::new(),
         colours: MenuColours::from_palette(&portalcast::assets::PALETTE),
         player: None,
+        mover_heights: Vec::new(),
         compared: Vec::new(),
         screenshots: BTreeSet::new(),
     };

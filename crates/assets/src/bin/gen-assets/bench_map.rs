@@ -279,16 +279,69 @@ fn areas() -> Vec<Area> {
         rect(1792, 320, 1920, 448),
     );
 
-    // The long corridor from the hall east to the lower landing, alternating light and dark.
+    // The long corridor from the hall east to the lower landing, alternating light and dark,
+    // behind a door 16 deep at its mouth (`MOVERS`).
+    add(
+        "corridor_door",
+        CORRIDOR.with(0, 96, 200),
+        rect(768, 352, 784, 416),
+    );
     for (k, light) in [200, 50, 200, 50].into_iter().enumerate() {
         let x = 768 + 256 * k as i32;
         add(
             &format!("corridor_{}", k + 1),
             CORRIDOR.with(0, 96, light),
-            rect(x, 352, x + 256, 416),
+            rect(x.max(784), 352, x + 256, 416),
         );
     }
+
+    // A lift beside the staircase, from the lower landing's floor up to the upper landing's
+    // (`MOVERS`): drawn raised.
+    add(
+        "lift",
+        STAIRS.with(128, 256, 140),
+        rect(1920, -64, 2048, 448),
+    );
     areas
+}
+
+/// The bench's movers (issue 18): (sector, its mover words, the lowest and highest floor and
+/// ceiling it takes, for the strips the generator writes on the walls round it).
+struct MoverSpec {
+    sector: &'static str,
+    words: &'static str,
+    floor: (i32, i32),
+    ceil: (i32, i32),
+}
+
+const MOVERS: &[MoverSpec] = &[
+    // The corridor's door: opens when walked into or used (or from the switch beside it), and
+    // closes after 2.5 s.
+    MoverSpec {
+        sector: "corridor_door",
+        words: "door touch tag=1",
+        floor: (0, 0),
+        ceil: (0, 96),
+    },
+    // The lift: down to the lower landing on use, up again after 2 s.
+    MoverSpec {
+        sector: "lift",
+        words: "lift=0",
+        floor: (0, 128),
+        ceil: (256, 256),
+    },
+];
+
+/// Switches (issue 18): (sector, the wall's start and end, the words on that solid wall).
+const SWITCHES: &[(&str, Point, Point, &str)] =
+    &[("hall_e", (768, 256), (768, 352), "switch=trim tag=1")];
+
+/// A sector's lowest and highest floor and ceiling: its mover's range, or its own heights.
+fn height_range(name: &str, look: &Look) -> ((i32, i32), (i32, i32)) {
+    MOVERS.iter().find(|mover| mover.sector == name).map_or(
+        ((look.floor, look.floor), (look.ceil, look.ceil)),
+        |mover| (mover.floor, mover.ceil),
+    )
 }
 
 /// Images drawn in portal openings (issue 17): (sector, neighbour, the words on that sector's
@@ -369,7 +422,9 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
          # corridor ends at a staircase of eight 16-unit steps up to an upper corridor and a dim\n\
          # gallery whose three leaded windows (translucent, closed) overlook the courtyard. North\n\
          # of the courtyard, an antechamber leads into a dark octagonal shrine. South of the\n\
-         # hall, a crawlway (40 high: crouch) leads to a den, next to a ledge 24 up (jump).\n"
+         # hall, a crawlway (40 high: crouch) leads to a den, next to a ledge 24 up (jump).\n\
+         # Movers: a door at the corridor's mouth (walk into it, use it, or the switch on the hall's wall\n\
+         # north of it) and a lift beside the staircase, between the two landings' floors.\n"
     );
     for point in &order {
         let _ = writeln!(text, "vertex {} {} {}", names[point], point.0, point.1);
@@ -377,11 +432,15 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
     let (mut walls, mut portals) = (0, 0);
     for area in &areas {
         let look = &area.look;
-        let _ = writeln!(
+        let _ = write!(
             text,
             "\nsector {} floor={} ceil={} floor_tex={} ceil_tex={} light={}",
             area.name, look.floor, look.ceil, look.floor_tex, look.ceil_tex, look.light
         );
+        for mover in MOVERS.iter().filter(|mover| mover.sector == area.name) {
+            let _ = write!(text, " {}", mover.words);
+        }
+        let _ = writeln!(text);
         for (i, &a) in area.outline.iter().enumerate() {
             let b = area.outline[(i + 1) % area.outline.len()];
             walls += 1;
@@ -392,10 +451,13 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
                     let there = &areas[other].look;
                     let _ = write!(text, " portal={}", areas[other].name);
                     let both_sky = look.ceil_tex == "sky" && there.ceil_tex == "sky";
-                    if there.ceil < look.ceil && !both_sky {
+                    // A strip shows if it does at some height a mover on either side takes.
+                    let (floors, ceils) = height_range(&area.name, look);
+                    let (there_floors, there_ceils) = height_range(&areas[other].name, there);
+                    if there_ceils.0 < ceils.1 && !both_sky {
                         let _ = write!(text, " upper={}", look.upper);
                     }
-                    if there.floor > look.floor {
+                    if there_floors.1 > floors.0 {
                         let _ = write!(text, " lower={}", look.lower);
                     }
                     let neighbour = areas[other].name.as_str();
@@ -408,6 +470,11 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
                 }
                 None => {
                     let _ = write!(text, " tex={}", look.wall);
+                    for (_, _, _, words) in SWITCHES.iter().filter(|(sector, from, to, _)| {
+                        *sector == area.name && (*from, *to) == (a, b)
+                    }) {
+                        let _ = write!(text, " {words}");
+                    }
                 }
             }
             let _ = writeln!(text);
