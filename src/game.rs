@@ -45,22 +45,45 @@ impl<'m> Game<'m> {
     /// A game on the demo map (or the first of `maps`), at 120×80 with lighting, the player at
     /// the map's start.
     pub fn new(maps: &'m [MapTables<'m>]) -> Game<'m> {
-        let map_index = maps
-            .iter()
-            .position(|map| map.name == DEMO_MAP)
-            .unwrap_or(0);
+        let mut game = Game::blank(maps);
+        game.start();
+        game
+    }
+
+    /// The game before [`Game::start`]: no world, the player nowhere in particular. A constant,
+    /// so that the ROM can write it where it keeps the game without a copy on the stack.
+    pub const fn blank(maps: &'m [MapTables<'m>]) -> Game<'m> {
         Game {
             maps,
-            map_index,
-            player: Player::spawn(&maps[map_index]),
-            world: World::start(&maps[map_index]),
+            map_index: 0,
+            player: Player::NOWHERE,
+            world: World::new(),
             controls: Controls::new(),
-            menu: Menu::default(),
+            menu: Menu {
+                open: false,
+                cursor: 0,
+            },
             settings: Settings::DEFAULT,
             hud: false,
             held: Buttons::NONE,
             ticks: 0,
         }
+    }
+
+    /// Plays `maps` (from the next [`Game::start`]).
+    pub fn set_maps(&mut self, maps: &'m [MapTables<'m>]) {
+        self.maps = maps;
+    }
+
+    /// Starts the game in place: on the demo map (or the first), the player at its start.
+    pub fn start(&mut self) {
+        let maps = self.maps;
+        self.map_index = maps
+            .iter()
+            .position(|map| map.name == DEMO_MAP)
+            .unwrap_or(0);
+        self.player = Player::spawn(&maps[self.map_index]);
+        self.world.restart(&maps[self.map_index]);
     }
 
     /// The map being played, as it is now (its moving sectors' live heights).
@@ -186,7 +209,7 @@ impl<'m> Game<'m> {
                     (self.map_index + count - 1) % count
                 };
                 self.player = Player::spawn(&self.maps[self.map_index]);
-                self.world = World::start(&self.maps[self.map_index]);
+                self.world.restart(&self.maps[self.map_index]);
             }
             Entry::Fly => self.player.toggle_fly(),
             Entry::Run => self.controls.always_run = !self.controls.always_run,

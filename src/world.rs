@@ -89,7 +89,15 @@ pub struct World<const SECTORS: usize, const MOVERS: usize> {
     movers: [MoverState; MOVERS],
     /// Movers of the map in [`World::movers`].
     mover_count: usize,
+    /// The sector whose touch door [`World::touch_door`] is ([`NONE`]: none looked at yet).
+    touch_sector: u16,
+    /// The first door that opens on touch through a portal of [`World::touch_sector`]
+    /// ([`NONE`]: none).
+    touch_door: u16,
 }
+
+/// No sector, no mover.
+const NONE: u16 = u16::MAX;
 
 impl<const SECTORS: usize, const MOVERS: usize> Default for World<SECTORS, MOVERS> {
     fn default() -> Self {
@@ -124,6 +132,8 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
             live: 0,
             movers: [MoverState::IDLE; MOVERS],
             mover_count: 0,
+            touch_sector: NONE,
+            touch_door: NONE,
         }
     }
 
@@ -134,8 +144,22 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
     /// If `map` has more sectors than `SECTORS` and movers, or more movers than `MOVERS`.
     pub fn start(map: &MapTables) -> World<SECTORS, MOVERS> {
         let mut world = World::new();
+        world.restart(map);
+        world
+    }
+
+    /// [`World::start`] in place: a game switching maps keeps no second world on the stack
+    /// (on the GBA, the stack's room is smaller than a map's live sector table).
+    ///
+    /// # Panics
+    /// As [`World::start`].
+    pub fn restart(&mut self, map: &MapTables) {
+        self.live = 0;
+        self.mover_count = 0;
+        self.touch_sector = NONE;
+        self.touch_door = NONE;
         if map.movers.is_empty() {
-            return world;
+            return;
         }
         assert!(
             map.sectors.len() <= SECTORS && map.movers.len() <= MOVERS,
@@ -144,11 +168,11 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
             map.sectors.len(),
             map.movers.len()
         );
-        world.live = map.sectors.len();
-        world.mover_count = map.movers.len();
-        world.sectors[..world.live].copy_from_slice(map.sectors);
+        self.live = map.sectors.len();
+        self.mover_count = map.movers.len();
+        self.sectors[..self.live].copy_from_slice(map.sectors);
         for (index, mover) in map.movers.iter().enumerate() {
-            world.movers[index] = MoverState {
+            self.movers[index] = MoverState {
                 height: mover.start,
                 phase: if runs_always(mover) {
                     Phase::Away
@@ -157,9 +181,8 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
                 },
                 timer: 0,
             };
-            world.set_height(mover, mover.start);
+            self.set_height(mover, mover.start);
         }
-        world
     }
 
     /// `map` as it is now: its tables with the live sector table in place of the cartridge's
@@ -219,7 +242,9 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
     /// in which case it turns back. `map` is the cartridge's tables.
     pub fn tick(&mut self, map: &MapTables, player: &Player) {
         for (index, mover) in map.movers.iter().enumerate() {
-            self.advance(map, index, mover, player);
+            if self.movers[index].phase != Phase::Resting {
+                self.advance(map, index, mover, player);
+            }
         }
     }
 
@@ -275,12 +300,18 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
     /// move leaves it, still fits the moved sector if its disc touches it, and every other
     /// sector its disc touches if the move carries it.
     fn allows(&self, map: &MapTables, mover: &Mover, height: i32, player: &Player) -> bool {
-        let live = self.map(map);
         let index = mover.sector;
-        let sector = &live.sectors[usize::from(index)];
-        if !touches(&live, sector, player.position, RADIUS) {
+        // The walls and vertices are the cartridge's; only heights live.
+        if !touches(
+            map,
+            &map.sectors[usize::from(index)],
+            player.position,
+            RADIUS,
+        ) {
             return true;
         }
+        let live = self.map(map);
+        let sector = &live.sectors[usize::from(index)];
         let mut moved = *sector;
         if moves_floor(mover) {
             moved.floor_z = height;
@@ -374,18 +405,30 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
         None
     }
 
-    /// Doors that open on touch within [`TOUCH_REACH`] of the body open.
+    /// A door that opens on touch within [`TOUCH_REACH`] of the body opens. Only a door through
+    /// a portal of the player's sector can be that near (the body is smaller than a sector); it
+    /// is looked for when the player's sector changes, as this runs every tick.
     pub fn touch(&mut self, map: &MapTables, player: &Player) {
-        for index in 0..map.movers.len() {
-            let mover = &map.movers[index];
-            if mover.flags & MOVER_ON_TOUCH == 0 || self.movers[index].phase != Phase::Resting {
-                continue;
-            }
-            let live = self.map(map);
-            let sector = &live.sectors[usize::from(mover.sector)];
-            if touches(&live, sector, player.position, RADIUS + TOUCH_REACH) {
-                self.start_mover(map, index, false);
-            }
+        if player.sector != self.touch_sector {
+            self.touch_sector = player.sector;
+            self.touch_door = map
+                .sectors
+                .get(usize::from(player.sector))
+                .and_then(|here| {
+                    map.sector_walls(here).iter().find_map(|wall| {
+                        let index = self.mover_of(map, wall.neighbour()?)?;
+                        (map.movers[index].flags & MOVER_ON_TOUCH != 0).then_some(index as u16)
+                    })
+                })
+                .unwrap_or(NONE);
+        }
+        let index = usize::from(self.touch_door);
+        if self.touch_door == NONE || self.movers[index].phase != Phase::Resting {
+            return;
+        }
+        let sector = &map.sectors[usize::from(map.movers[index].sector)];
+        if touches(map, sector, player.position, RADIUS + TOUCH_REACH) {
+            self.start_mover(map, index, false);
         }
     }
 

@@ -174,8 +174,13 @@ pub fn game_in_ewram(
         assert!(!*taken, "the game's memory is handed out once");
         *taken = true;
         let slot: *mut Game<'static> = (&raw mut GAME).cast();
-        slot.write(Game::new(maps));
-        &mut *slot
+        // The blank game is a constant: written without a copy on the stack, then started in
+        // place.
+        slot.write(const { Game::blank(&[]) });
+        let game = &mut *slot;
+        game.set_maps(maps);
+        game.start();
+        game
     }
 }
 

@@ -88,6 +88,22 @@ pub struct Player {
 }
 
 impl Player {
+    /// A player at the origin of no map, before [`Player::spawn`] puts it somewhere.
+    pub const NOWHERE: Player = Player {
+        position: WorldPoint::new(Fx24_8::ZERO, Fx24_8::ZERO),
+        sector: 0,
+        velocity: (0, 0),
+        angle: Angle::from_bits(0),
+        feet_z: Fx24_8::ZERO,
+        vertical_speed: Fx24_8::ZERO,
+        eye_height: Fx24_8::from_int(STAND_EYE),
+        on_ground: true,
+        fly: false,
+        look_lines: 0,
+        turn_ticks: 0,
+        jump_latched: false,
+    };
+
     /// The player at the map's start: standing on the floor, looking straight ahead.
     pub fn spawn(map: &MapTables) -> Player {
         let start = map.player_start;
