@@ -52,12 +52,17 @@ mod rom {
         // After the sampler starts, so its VBlank count is the emulator's frame count whatever
         // the boot checks cost (the player's emulator tests rely on it).
         log::info(format_args!(
-            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} ewram_used={} division_digest=0x{:08x}",
+            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} ewram_used={} division_digest=0x{:08x} game_bytes={} live_sectors={} sector_bytes={} live_movers={} mover_state_bytes={}",
             hw::WAITCNT_SETTING,
             memory::iwram_used(),
             memory::stack_room(),
             memory::ewram_used(),
-            portalcast::selfcheck::division_digest()
+            portalcast::selfcheck::division_digest(),
+            core::mem::size_of::<Game>(),
+            assets::LIVE_SECTORS,
+            core::mem::size_of::<portalcast_format::Sector>(),
+            assets::LIVE_MOVERS,
+            core::mem::size_of::<portalcast::world::MoverState>(),
         ));
 
         let held_at_boot = hw::keys_held();

@@ -946,6 +946,25 @@ fn sizes(doc: &mut String, measurements: &Measurements) {
             group_digits(u64::from(region.usable).saturating_sub(used)),
         );
     }
+    if let (Some(game), Some(sectors), Some(sector), Some(movers), Some(mover)) = (
+        boot("game_bytes"),
+        boot("live_sectors"),
+        boot("sector_bytes"),
+        boot("live_movers"),
+        boot("mover_state_bytes"),
+    ) {
+        let _ = write!(
+            doc,
+            "\nThe game's state (`Game`, in EWRAM) takes {} bytes. Of them, the live heights of \
+             moving sectors (`portalcast::world`, issue 18): the ROM's largest map with movers \
+             gets a copy of its sector table, {sector} bytes a sector ({sectors} sectors: {} \
+             bytes), and each of its movers {mover} bytes of state ({movers} movers: {} bytes); a \
+             map without movers keeps none.\n",
+            group_digits(game),
+            group_digits(sectors * sector),
+            group_digits(movers * mover),
+        );
+    }
     let _ = write!(
         doc,
         "\nIWRAM's usable size leaves out the {} bytes at its top that the BIOS keeps; what IWRAM \
