@@ -1,7 +1,8 @@
 //! The player in the ROM under the real mGBA core, driven by scripted key demos: the jump's
 //! eye height, the sector after climbing the stairs, a step too tall, crouching under a low
-//! ceiling, fly mode, and determinism: the same demo, or the ROM's own recording of it, gives
-//! the same log and the same screens.
+//! ceiling, fly mode, the bench map's movers (a door walked through, a lift ridden up and down,
+//! a switch thrown, a closing door turning back at the body: issue 18), and determinism: the
+//! same demo, or the ROM's own recording of it, gives the same log and the same screens.
 //!
 //! Every demo also checks that each pose the ROM logs is the pose the host's game reaches after
 //! the same ticks of the same script (`common::demos::replay`): the ROM and the host run the
@@ -389,4 +390,142 @@ fn the_tick_benchmark_walk_turns_strafes_jumps_and_slides_along_walls() {
     assert!(strafes >= 100, "{strafes} ticks strafed");
     assert!(jumps >= 5, "{jumps} jumps");
     assert!(slides >= 100, "{slides} ticks slid along a wall");
+}
+
+/// Whether the door is at least the standing body's height whenever the body is under it.
+fn door_height_ok(run: &RomRun, tick: u32) -> bool {
+    let game = &run.host[tick as usize];
+    game.world.movers()[0].height >= 48
+}
+
+/// The movers' heights the ROM logged after each `player` line (`movers frame=F heights=…`),
+/// checked against the host's game at the same tick, in order.
+fn checked_mover_heights(run: &RomRun) -> Vec<(u32, Vec<i32>)> {
+    let mut heights = Vec::new();
+    let mut tick = None;
+    for line in &run.log {
+        if line.starts_with("player ") {
+            tick = Some(PlayerLine::parse(line).tick);
+        } else if let Some(rest) = line.strip_prefix("movers ") {
+            let tick = tick.expect("a player line before the movers line");
+            let logged: Vec<i32> = field(rest, "heights")
+                .expect("heights=")
+                .split(',')
+                .map(|h| h.parse().expect("a height"))
+                .collect();
+            let host: Vec<i32> = run.host[tick as usize]
+                .world
+                .movers()
+                .iter()
+                .map(|m| m.height)
+                .collect();
+            assert_eq!(logged, host, "the movers after tick {tick}: {line}");
+            heights.push((tick, logged));
+        }
+    }
+    assert!(!heights.is_empty(), "the ROM logged no movers");
+    heights
+}
+
+#[test]
+fn a_walk_opens_the_door_passes_it_and_rides_the_lift_up_and_down() {
+    // The stairs walk's way east (run on, onto the dais, a turn east): the corridor's door
+    // opens as the body walks into it, and the walk goes through, to the lower landing's east
+    // side. There, L + R lowers the lift in front; a few steps onto it; it comes back up with
+    // the body after its wait; L + R again, standing on it: down, and up once more.
+    let script = "
+10-13: SELECT
+11-12: B
+20-32: R
+20-72: UP
+100-135: RIGHT
+150-420: UP
+425-428: L+R
+505-525: UP
+760-763: L+R
+";
+    let run = play(script, 1150);
+    let heights = checked_mover_heights(&run);
+    let corridor = sector_index("bench.map", "corridor_1");
+    let lift = sector_index("bench.map", "lift");
+    let door_open = heights.iter().any(|(_, h)| h[0] == 96);
+    assert!(door_open, "the door never opened");
+    assert!(
+        run.host_ticks()
+            .iter()
+            .any(|game| game.player.sector == corridor),
+        "the walk never went through the door"
+    );
+    // On the lift: carried up to 128 and down to 0 again, standing.
+    let on_lift: Vec<&Game> = run
+        .host_ticks()
+        .iter()
+        .filter(|game| game.player.sector == lift)
+        .collect();
+    let feet = |game: &&Game| game.player.feet_z.to_bits();
+    let up = on_lift.iter().position(|game| feet(game) == 128 * 256);
+    let down_again = up.and_then(|at| on_lift[at..].iter().position(|game| feet(game) == 0));
+    assert!(
+        up.is_some() && down_again.is_some(),
+        "the lift did not carry the body up and down"
+    );
+    assert!(on_lift.iter().all(|game| game.player.on_ground));
+    let last = run.last();
+    assert_eq!(last.sector, lift, "{}", last.text);
+}
+
+#[test]
+fn the_switch_opens_the_door_and_the_closing_door_turns_back_at_the_body() {
+    // North on the dais further than the stairs walk, east to the hall's east wall beside the
+    // door, out of its touch: L + R throws the switch there, which opens the door (tag 1). A walk
+    // south-east, sliding along the wall, through the doorway, to stop just past it with the
+    // body still under the door: when the door comes down to it, it goes back up.
+    let script = "
+10-13: SELECT
+11-12: B
+20-32: R
+20-88: UP
+100-135: RIGHT
+150-230: UP
+240-243: L+R
+250-266: RIGHT
+270-292: UP
+";
+    let run = play(script, 560);
+    let heights = checked_mover_heights(&run);
+    let door: Vec<(u32, i32)> = heights.iter().map(|(tick, h)| (*tick, h[0])).collect();
+    // Shut until the switch, then opening: the switch (out of the door's touch) opened it.
+    let opened_at = door
+        .iter()
+        .find(|(_, h)| *h > 0)
+        .map(|(tick, _)| *tick)
+        .expect("the door opened");
+    let switch_tick = run
+        .host_ticks()
+        .iter()
+        .position(|game| game.world.movers()[0].height > 0)
+        .expect("the host's door opened") as u32;
+    // The press is on emulator frames 240-243: the game's ticks from `start` on.
+    let press = 240 - run.start;
+    assert!(
+        (press..=press + 8).contains(&switch_tick) && opened_at >= switch_tick,
+        "the door opened at tick {switch_tick}, not on the switch's press (tick {press})"
+    );
+    // It came down, then went back up, never below what the standing body needs (feet 0, eye
+    // 32, headroom 16).
+    let closing = door
+        .windows(2)
+        .position(|pair| pair[1].1 < pair[0].1)
+        .expect("the door came down");
+    let lowest = door[closing..]
+        .windows(2)
+        .find(|pair| pair[1].1 > pair[0].1)
+        .map(|pair| pair[0].1);
+    assert!(
+        matches!(lowest, Some(h) if h >= 48),
+        "the closing door did not turn back above the body: {door:?}"
+    );
+    assert!(door
+        .iter()
+        .all(|(tick, _)| *tick < 300 || door_height_ok(&run, *tick)));
 }
