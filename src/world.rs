@@ -22,8 +22,8 @@ use portalcast_format::{
     MOVER_PLATFORM, TRIGGER_LINE, TRIGGER_SWITCH,
 };
 
-use crate::math::WorldPoint;
-use crate::player::collide::RADIUS;
+use crate::math::{cross, Fx24_8, WorldPoint};
+use crate::player::collide::{wall_points, RADIUS};
 use crate::player::input::Intent;
 use crate::player::Player;
 
@@ -324,7 +324,7 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
             && !player.fly
             && (player.on_ground || body.feet.to_bits() < height * 256);
         if carried {
-            body.feet = crate::math::Fx24_8::from_int(height);
+            body.feet = Fx24_8::from_int(height);
         }
         if !body.admits(&moved) {
             return false;
@@ -358,11 +358,12 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
     fn use_target(&self, map: &MapTables, player: &Player) -> Option<UseTarget> {
         let live = self.map(map);
         let (sin, cos) = player.angle.sin_cos();
-        let from = point_bits(player.position);
+        let from = player.position;
         // The reach's end: USE_RANGE units along the view, 16.16 direction by 24.8 units.
-        let to = (
-            from.0 + ((i64::from(cos.to_bits()) * i64::from(USE_RANGE * 256)) >> 16) as i32,
-            from.1 + ((i64::from(sin.to_bits()) * i64::from(USE_RANGE * 256)) >> 16) as i32,
+        let reach = |unit: i32| ((i64::from(unit) * i64::from(USE_RANGE * 256)) >> 16) as i32;
+        let to = WorldPoint::new(
+            Fx24_8::from_bits(from.x.to_bits() + reach(cos.to_bits())),
+            Fx24_8::from_bits(from.y.to_bits() + reach(sin.to_bits())),
         );
         let mut sector = player.sector;
         // A few portals at most lie within the reach.
@@ -493,45 +494,26 @@ fn opens_on_use(mover: &Mover) -> bool {
     mover.flags & MOVER_ON_USE != 0 && matches!(mover.kind, MOVER_DOOR | MOVER_LIFT)
 }
 
-type Bits = (i32, i32);
-
-fn point_bits(p: WorldPoint) -> Bits {
-    (p.x.to_bits(), p.y.to_bits())
-}
-
-fn vertex_bits(map: &MapTables, index: u16) -> Bits {
-    let vertex = map.vertices[usize::from(index)];
-    (vertex.x * 256, vertex.y * 256)
-}
-
-/// `(b − a) × (p − a)`: positive with `p` right of `a → b` (a sector's inside, y down).
-fn cross(a: Bits, b: Bits, p: Bits) -> i64 {
-    let (abx, aby) = (i64::from(b.0 - a.0), i64::from(b.1 - a.1));
-    let (apx, apy) = (i64::from(p.0 - a.0), i64::from(p.1 - a.1));
-    abx * apy - aby * apx
-}
-
 /// Whether a disc of radius `radius` (world units) centred at `p` may touch `sector`: `p` lies
 /// less than `radius` outside every wall's line. Near a corner this takes in a little more than
 /// the disc (a mover turns back a little early there, never late).
 fn touches(map: &MapTables, sector: &Sector, p: WorldPoint, radius: i32) -> bool {
-    let p = point_bits(p);
     map.sector_walls(sector).iter().all(|wall| {
-        let (a, b) = (vertex_bits(map, wall.start), vertex_bits(map, wall.end));
+        let (a, b) = wall_points(map, wall);
         // The wall's length in 24.8 bits, by the radius in 24.8 bits: the cross product's scale.
         cross(a, b, p) > -(i64::from(radius * 256) * i64::from(wall.length_fx8))
     })
 }
 
 /// The wall of `sector` through which the segment `from → to` leaves it, if it does.
-fn exit_wall(map: &MapTables, sector: u16, from: Bits, to: Bits) -> Option<usize> {
+fn exit_wall(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint) -> Option<usize> {
     let record = map.sectors.get(usize::from(sector))?;
     let first = usize::from(record.first_wall);
     map.sector_walls(record)
         .iter()
         .enumerate()
         .find(|(_, wall)| {
-            let (a, b) = (vertex_bits(map, wall.start), vertex_bits(map, wall.end));
+            let (a, b) = wall_points(map, wall);
             // From the inside of the wall's line to the outside, between its ends.
             cross(a, b, from) > 0
                 && cross(a, b, to) <= 0

@@ -88,7 +88,8 @@ pub struct Player {
 }
 
 impl Player {
-    /// A player at the origin of no map, before [`Player::spawn`] puts it somewhere.
+    /// A player standing still at the origin of no map, before [`Player::spawn`] puts it
+    /// somewhere.
     pub const NOWHERE: Player = Player {
         position: WorldPoint::new(Fx24_8::ZERO, Fx24_8::ZERO),
         sector: 0,
@@ -124,16 +125,9 @@ impl Player {
         Player {
             position,
             sector,
-            velocity: (0, 0),
             angle,
             feet_z: Fx24_8::from_int(floor),
-            vertical_speed: Fx24_8::ZERO,
-            eye_height: Fx24_8::from_int(STAND_EYE),
-            on_ground: true,
-            fly: false,
-            look_lines: 0,
-            turn_ticks: 0,
-            jump_latched: false,
+            ..Player::NOWHERE
         }
     }
 
