@@ -94,7 +94,13 @@ pub struct World<const SECTORS: usize, const MOVERS: usize> {
     /// The first door that opens on touch through a portal of [`World::touch_sector`]
     /// ([`NONE`]: none).
     touch_door: u16,
+    /// The box, world units, outside which the body's centre cannot be within
+    /// [`TOUCH_REACH`] of [`World::touch_door`]'s sector: most ticks end the touch test at it.
+    touch_box: TouchBox,
 }
+
+/// An axis-aligned box, world units: `min_x, min_y, max_x, max_y`, bounds included.
+type TouchBox = [i32; 4];
 
 /// No sector, no mover.
 const NONE: u16 = u16::MAX;
@@ -134,6 +140,7 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
             mover_count: 0,
             touch_sector: NONE,
             touch_door: NONE,
+            touch_box: [0; 4],
         }
     }
 
@@ -158,6 +165,7 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
         self.mover_count = 0;
         self.touch_sector = NONE;
         self.touch_door = NONE;
+        self.touch_box = [0; 4];
         if map.movers.is_empty() {
             return;
         }
@@ -241,14 +249,18 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
     /// One tick: every mover moves a step (or waits), unless the step would close on `player`,
     /// in which case it turns back. `map` is the cartridge's tables.
     pub fn tick(&mut self, map: &MapTables, player: &Player) {
-        for (index, mover) in map.movers.iter().enumerate() {
+        for index in 0..self.mover_count {
             if self.movers[index].phase != Phase::Resting {
-                self.advance(map, index, mover, player);
+                self.advance(map, index, player);
             }
         }
     }
 
-    fn advance(&mut self, map: &MapTables, index: usize, mover: &Mover, player: &Player) {
+    /// Not inlined: most ticks no mover moves, and inlined into [`World::tick`]'s loop its
+    /// set-up (the map's tables loaded before the loop) would cost every tick.
+    #[inline(never)]
+    fn advance(&mut self, map: &MapTables, index: usize, player: &Player) {
+        let mover = &map.movers[index];
         let state = self.movers[index];
         let (target, arriving) = match state.phase {
             Phase::Resting => return,
@@ -347,6 +359,7 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
 
     /// The player pressed use: the mover in front of the eye within [`USE_RANGE`] (a door or a
     /// lift that opens on use, seen through its portal or stood in), or the switch there, starts.
+    #[inline(never)]
     pub fn use_button(&mut self, map: &MapTables, player: &Player) {
         match self.use_target(map, player) {
             Some(UseTarget::Mover(index)) => self.start_mover(map, index, true),
@@ -411,22 +424,47 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
     /// is looked for when the player's sector changes, as this runs every tick.
     pub fn touch(&mut self, map: &MapTables, player: &Player) {
         if player.sector != self.touch_sector {
-            self.touch_sector = player.sector;
-            self.touch_door = map
-                .sectors
-                .get(usize::from(player.sector))
-                .and_then(|here| {
-                    map.sector_walls(here).iter().find_map(|wall| {
-                        let index = self.mover_of(map, wall.neighbour()?)?;
-                        (map.movers[index].flags & MOVER_ON_TOUCH != 0).then_some(index as u16)
-                    })
-                })
-                .unwrap_or(NONE);
+            self.look_for_touch_door(map, player.sector);
         }
         let index = usize::from(self.touch_door);
         if self.touch_door == NONE || self.movers[index].phase != Phase::Resting {
             return;
         }
+        let [min_x, min_y, max_x, max_y] = self.touch_box;
+        let (x, y) = (
+            player.position.x.to_int_floor(),
+            player.position.y.to_int_floor(),
+        );
+        if x < min_x || x > max_x || y < min_y || y > max_y {
+            return;
+        }
+        self.touch_near(map, player);
+    }
+
+    /// [`World::touch_door`] and its box for the player in `sector`. Not inlined: it runs
+    /// only when the player's sector changes.
+    #[inline(never)]
+    fn look_for_touch_door(&mut self, map: &MapTables, sector: u16) {
+        self.touch_sector = sector;
+        self.touch_door = map
+            .sectors
+            .get(usize::from(sector))
+            .and_then(|here| {
+                map.sector_walls(here).iter().find_map(|wall| {
+                    let index = self.mover_of(map, wall.neighbour()?)?;
+                    (map.movers[index].flags & MOVER_ON_TOUCH != 0).then_some(index as u16)
+                })
+            })
+            .unwrap_or(NONE);
+        if let Some(door) = map.movers.get(usize::from(self.touch_door)) {
+            self.touch_box = reach_box(map, &map.sectors[usize::from(door.sector)]);
+        }
+    }
+
+    /// The exact test of [`World::touch`], for a body inside the touch door's box.
+    #[inline(never)]
+    fn touch_near(&mut self, map: &MapTables, player: &Player) {
+        let index = usize::from(self.touch_door);
         let sector = &map.sectors[usize::from(map.movers[index].sector)];
         if touches(map, sector, player.position, RADIUS + TOUCH_REACH) {
             self.start_mover(map, index, false);
@@ -503,6 +541,24 @@ fn touches(map: &MapTables, sector: &Sector, p: WorldPoint, radius: i32) -> bool
         // The wall's length in 24.8 bits, by the radius in 24.8 bits: the cross product's scale.
         cross(a, b, p) > -(i64::from(radius * 256) * i64::from(wall.length_fx8))
     })
+}
+
+/// The bounding box of `sector`'s vertices grown by the body's radius and [`TOUCH_REACH`] (and
+/// a unit to spare): a centre whose floored coordinates lie outside it is too far.
+fn reach_box(map: &MapTables, sector: &Sector) -> TouchBox {
+    let reach = RADIUS + TOUCH_REACH + 1;
+    map.sector_walls(sector).iter().fold(
+        [i32::MAX, i32::MAX, i32::MIN, i32::MIN],
+        |[min_x, min_y, max_x, max_y], wall| {
+            let v = map.vertices[usize::from(wall.start)];
+            [
+                min_x.min(v.x - reach),
+                min_y.min(v.y - reach),
+                max_x.max(v.x + reach),
+                max_y.max(v.y + reach),
+            ]
+        },
+    )
 }
 
 /// The wall of `sector` through which the segment `from → to` leaves it, if it does.

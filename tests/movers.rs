@@ -12,7 +12,9 @@ use portalcast::player::collide::HEADROOM;
 use portalcast::player::input::Intent;
 use portalcast::player::Player;
 use portalcast::world::{Phase, World};
-use portalcast_format::{MapTables, Mover, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_USE};
+use portalcast_format::{
+    MapTables, Mover, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
+};
 
 /// West room, a door 16 deep, east room; north of the west room a lift (its floor 64 when
 /// raised) and north of the lift a ledge at 64.
@@ -157,6 +159,43 @@ fn a_closed_door_blocks_and_opens_on_use_and_lets_the_body_through() {
     assert_eq!(world.movers()[0].phase, Phase::WaitingAway);
     // Through the door into the east room.
     play(&mut world, &map, &mut player, walk(1, 0, 0), 40);
+    assert_eq!(player.sector, 2, "{:?}", position(&player));
+}
+
+#[test]
+fn a_touch_door_opens_when_the_body_comes_within_reach_and_not_before() {
+    let touch_door = Mover {
+        flags: MOVER_ON_TOUCH,
+        ..mover(DOOR, MOVER_DOOR, 0, 112, 0)
+    };
+    let map = compiled(vec![touch_door]);
+    let map = map.tables();
+    let reach = f64::from(portalcast::player::collide::RADIUS + portalcast::world::TOUCH_REACH);
+    // The door's line is x = 256, between y = 96 and 160. Standing still: out of reach (in
+    // front of it, and beyond its ends), then just within it. (Nearer than a radius, the
+    // closed door would turn back at once: the body would overlap its sector.)
+    for (x, y, opens) in [
+        (256.0 - reach - 2.5, 128.5, false),
+        (256.0 - reach - 0.5, 128.5, false),
+        (238.5, 96.0 - reach - 2.5, false),
+        (238.5, 160.0 + reach + 2.5, false),
+        (256.0 - reach + 0.5, 128.5, true),
+        (238.5, 100.5, true),
+    ] {
+        let mut world = TestWorld::start(&map);
+        let mut player = at(&map, 0, x, y, EAST);
+        play(&mut world, &map, &mut player, Intent::default(), 2);
+        assert_eq!(
+            world.movers()[0].phase != Phase::Resting,
+            opens,
+            "body at ({x}, {y}): {:?}",
+            world.movers()[0]
+        );
+    }
+    // Walking into it from the middle of the room opens it; the use button is not needed.
+    let mut world = TestWorld::start(&map);
+    let mut player = at(&map, 0, 128.5, 128.5, EAST);
+    play(&mut world, &map, &mut player, walk(1, 0, 0), 240);
     assert_eq!(player.sector, 2, "{:?}", position(&player));
 }
 

@@ -253,10 +253,10 @@ fn run(options: &Options) -> Result<(), String> {
         }
         let mut rows: Vec<(u32, usize)> = by_address.into_iter().collect();
         rows.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
-        println!("\ninstruction addresses:");
+        println!("\ninstruction addresses (share, samples, address):");
         for (address, count) in rows.into_iter().take(options.addresses) {
             println!(
-                "{:6.2}% 0x{address:08x}  {}",
+                "{:6.2}% {count:8} 0x{address:08x}  {}",
                 count as f64 * 100.0 / total,
                 symbols.lookup(address).unwrap_or("?")
             );
