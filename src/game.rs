@@ -18,7 +18,11 @@ use crate::render::view::{Floors, TexturePlacement};
 use crate::world::World;
 
 /// The live state of the ROM's maps: room for the largest one with movers.
-pub type GameWorld = World<{ crate::assets::LIVE_SECTORS }, { crate::assets::LIVE_MOVERS }>;
+pub type GameWorld = World<
+    { crate::assets::LIVE_SECTORS },
+    { crate::assets::LIVE_MOVERS },
+    { crate::assets::LIVE_TRIGGERS },
+>;
 
 /// The state of a game.
 #[derive(Clone, Copy, Debug)]

@@ -173,8 +173,9 @@ mod rom {
                 log_player_line(frame, sampler.next_index(), lost, game, game_cycles, &ticks);
                 if !game.world.movers().is_empty() {
                     log::info(format_args!(
-                        "movers frame={frame} heights={}",
-                        MoverHeights(game.world.movers())
+                        "movers frame={frame} heights={} thrown={}",
+                        MoverHeights(game.world.movers()),
+                        Thrown(game.world.triggers())
                     ));
                 }
                 rate.frame_lines_cycles += meter::cycles_since(started);
@@ -270,6 +271,22 @@ mod rom {
                     f.write_str(",")?;
                 }
                 write!(f, "{}", mover.height)?;
+            }
+            Ok(())
+        }
+    }
+
+    /// Each trigger's switch thrown (`1`) or not (`0`), as `0,1,…` (empty where the map has no
+    /// triggers): the `movers …` line's `thrown=`.
+    struct Thrown<'w>(&'w [portalcast_format::Trigger]);
+
+    impl core::fmt::Display for Thrown<'_> {
+        fn fmt(&self, f: &mut core::fmt::Formatter) -> core::fmt::Result {
+            for (index, trigger) in self.0.iter().enumerate() {
+                if index > 0 {
+                    f.write_str(",")?;
+                }
+                write!(f, "{}", trigger.thrown)?;
             }
             Ok(())
         }

@@ -18,8 +18,8 @@
 //! down. A lift's floor carries a player standing on it.
 
 use portalcast_format::{
-    MapTables, Mover, Sector, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
-    MOVER_PLATFORM, TRIGGER_LINE, TRIGGER_SWITCH,
+    MapTables, Mover, Sector, Trigger, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH,
+    MOVER_ON_USE, MOVER_PLATFORM, TRIGGER_LINE, TRIGGER_SWITCH, TRIGGER_THROWN,
 };
 
 use crate::math::{cross, Fx24_8, WorldPoint};
@@ -78,17 +78,33 @@ const NO_SECTOR: Sector = Sector {
     light: 0,
 };
 
-/// The live state of one map: room for a sector table of `SECTORS` sectors and `MOVERS`
-/// movers' states (the ROM's: `assets::LIVE_SECTORS` and `assets::LIVE_MOVERS`, its largest
-/// map's with movers; both 0 where no map has any).
+/// The trigger a [`World`] holds where it keeps no copy.
+const NO_TRIGGER: Trigger = Trigger {
+    wall: 0,
+    tag: 0,
+    kind: TRIGGER_SWITCH,
+    thrown: 0,
+    used_texture: 0,
+};
+
+/// The live state of one map: room for a sector table of `SECTORS` sectors, `MOVERS` movers'
+/// states and a trigger table of `TRIGGERS` triggers (the ROM's: `assets::LIVE_SECTORS`,
+/// `assets::LIVE_MOVERS` and `assets::LIVE_TRIGGERS`, the most of its maps with movers; all 0
+/// where no map has any).
 #[derive(Clone, Copy, Debug)]
-pub struct World<const SECTORS: usize, const MOVERS: usize> {
+pub struct World<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize> {
     sectors: [Sector; SECTORS],
     /// Sectors of the map in [`World::sectors`]; 0 when the map has no movers.
     live: usize,
     movers: [MoverState; MOVERS],
     /// Movers of the map in [`World::movers`].
     mover_count: usize,
+    /// The map's triggers, its switches' [`Trigger::thrown`] live.
+    triggers: [Trigger; TRIGGERS],
+    /// Triggers of the map in [`World::triggers`].
+    trigger_count: usize,
+    /// Switches thrown now: while there is any, each tick sees whether its movers are back.
+    thrown: usize,
     /// The sector whose touch door [`World::touch_door`] is ([`NONE`]: none looked at yet).
     touch_sector: u16,
     /// The first door that opens on touch through a portal of [`World::touch_sector`]
@@ -105,7 +121,9 @@ type TouchBox = [i32; 4];
 /// No sector, no mover.
 const NONE: u16 = u16::MAX;
 
-impl<const SECTORS: usize, const MOVERS: usize> Default for World<SECTORS, MOVERS> {
+impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize> Default
+    for World<SECTORS, MOVERS, TRIGGERS>
+{
     fn default() -> Self {
         World::new()
     }
@@ -130,14 +148,19 @@ fn away_height(mover: &Mover) -> i32 {
     }
 }
 
-impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
+impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
+    World<SECTORS, MOVERS, TRIGGERS>
+{
     /// A world for a map without movers.
-    pub const fn new() -> World<SECTORS, MOVERS> {
+    pub const fn new() -> World<SECTORS, MOVERS, TRIGGERS> {
         World {
             sectors: [NO_SECTOR; SECTORS],
             live: 0,
             movers: [MoverState::IDLE; MOVERS],
             mover_count: 0,
+            triggers: [NO_TRIGGER; TRIGGERS],
+            trigger_count: 0,
+            thrown: 0,
             touch_sector: NONE,
             touch_door: NONE,
             touch_box: [0; 4],
@@ -149,7 +172,7 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
     ///
     /// # Panics
     /// If `map` has more sectors than `SECTORS` and movers, or more movers than `MOVERS`.
-    pub fn start(map: &MapTables) -> World<SECTORS, MOVERS> {
+    pub fn start(map: &MapTables) -> World<SECTORS, MOVERS, TRIGGERS> {
         let mut world = World::new();
         world.restart(map);
         world
@@ -163,6 +186,8 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
     pub fn restart(&mut self, map: &MapTables) {
         self.live = 0;
         self.mover_count = 0;
+        self.trigger_count = 0;
+        self.thrown = 0;
         self.touch_sector = NONE;
         self.touch_door = NONE;
         self.touch_box = [0; 4];
@@ -170,15 +195,20 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
             return;
         }
         assert!(
-            map.sectors.len() <= SECTORS && map.movers.len() <= MOVERS,
-            "map '{}' has {} sectors and {} movers: the game keeps {SECTORS} and {MOVERS}",
+            map.sectors.len() <= SECTORS
+                && map.movers.len() <= MOVERS
+                && map.triggers.len() <= TRIGGERS,
+            "map '{}' has {} sectors, {} movers and {} triggers: the game keeps {SECTORS}, {MOVERS} and {TRIGGERS}",
             map.name,
             map.sectors.len(),
-            map.movers.len()
+            map.movers.len(),
+            map.triggers.len()
         );
         self.live = map.sectors.len();
         self.mover_count = map.movers.len();
+        self.trigger_count = map.triggers.len();
         self.sectors[..self.live].copy_from_slice(map.sectors);
+        self.triggers[..self.trigger_count].copy_from_slice(map.triggers);
         for (index, mover) in map.movers.iter().enumerate() {
             self.movers[index] = MoverState {
                 height: mover.start,
@@ -193,14 +223,15 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
         }
     }
 
-    /// `map` as it is now: its tables with the live sector table in place of the cartridge's
-    /// (the same tables where the map has no movers).
+    /// `map` as it is now: its tables with the live sector and trigger tables in place of the
+    /// cartridge's (the same tables where the map has no movers).
     pub fn map<'s>(&'s self, map: &MapTables<'s>) -> MapTables<'s> {
         if self.live == 0 {
             return *map;
         }
         MapTables {
             sectors: &self.sectors[..self.live],
+            triggers: &self.triggers[..self.trigger_count],
             ..*map
         }
     }
@@ -212,6 +243,20 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
             self.movers[index].height = height;
             self.set_height(mover, height);
         }
+    }
+
+    /// Throws the map's switches that `thrown` says (one per trigger, in the order of
+    /// `MapTables::triggers`), for drawing a frame a log line describes.
+    pub fn set_thrown(&mut self, thrown: &[bool]) {
+        for (trigger, &thrown) in self.triggers[..self.trigger_count].iter_mut().zip(thrown) {
+            trigger.thrown = if thrown { TRIGGER_THROWN } else { 0 };
+        }
+    }
+
+    /// The live state of the map's triggers (its switches thrown or not), in the order of
+    /// `MapTables::triggers`.
+    pub fn triggers(&self) -> &[Trigger] {
+        &self.triggers[..self.trigger_count]
     }
 
     /// The live state of the map's movers, in the order of `MapTables::movers`.
@@ -252,6 +297,29 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
         for index in 0..self.mover_count {
             if self.movers[index].phase != Phase::Resting {
                 self.advance(map, index, player);
+            }
+        }
+        if self.thrown > 0 {
+            self.release_switches(map);
+        }
+    }
+
+    /// A thrown switch whose movers are all back at rest returns to its texture (and may be
+    /// used again to the same effect); one of a platform or crusher, which never rests, stays
+    /// thrown.
+    #[inline(never)]
+    fn release_switches(&mut self, map: &MapTables) {
+        for index in 0..self.trigger_count {
+            let trigger = self.triggers[index];
+            if trigger.thrown == TRIGGER_THROWN
+                && map
+                    .movers
+                    .iter()
+                    .zip(&self.movers)
+                    .all(|(mover, state)| mover.tag != trigger.tag || state.phase == Phase::Resting)
+            {
+                self.triggers[index].thrown = 0;
+                self.thrown -= 1;
             }
         }
     }
@@ -363,7 +431,15 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
     pub fn use_button(&mut self, map: &MapTables, player: &Player) {
         match self.use_target(map, player) {
             Some(UseTarget::Mover(index)) => self.start_mover(map, index, true),
-            Some(UseTarget::Switch(tag)) => self.start_tag(map, tag),
+            Some(UseTarget::Switch(index)) => {
+                let trigger = &mut self.triggers[index];
+                if trigger.thrown != TRIGGER_THROWN {
+                    trigger.thrown = TRIGGER_THROWN;
+                    self.thrown += 1;
+                }
+                let tag = trigger.tag;
+                self.start_tag(map, tag);
+            }
             None => {}
         }
     }
@@ -391,12 +467,12 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
             let wall = &live.walls[wall_index];
             match wall.neighbour() {
                 None => {
-                    if let Some(trigger) = map
+                    if let Some(index) = map
                         .triggers
                         .iter()
-                        .find(|t| usize::from(t.wall) == wall_index && t.kind == TRIGGER_SWITCH)
+                        .position(|t| usize::from(t.wall) == wall_index && t.kind == TRIGGER_SWITCH)
                     {
-                        return Some(UseTarget::Switch(trigger.tag));
+                        return Some(UseTarget::Switch(index));
                     }
                     return here
                         .filter(|&i| opens_on_use(&map.movers[i]))
@@ -524,8 +600,10 @@ impl<const SECTORS: usize, const MOVERS: usize> World<SECTORS, MOVERS> {
 /// What the use button reaches.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum UseTarget {
+    /// A mover, by index in `MapTables::movers`.
     Mover(usize),
-    Switch(u16),
+    /// A switch, by index in `MapTables::triggers`.
+    Switch(usize),
 }
 
 fn opens_on_use(mover: &Mover) -> bool {

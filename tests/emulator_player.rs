@@ -15,6 +15,8 @@ use common::player::sector_index;
 use common::*;
 use portalcast::game::Game;
 use portalcast::player::vertical::{CROUCH_EYE, JUMP_RISE, STAND_EYE};
+use portalcast::world::Phase;
+use portalcast_format::TRIGGER_THROWN;
 use portalcast_harness::KeyScript;
 
 /// What one run of a demo in the ROM left behind.
@@ -399,7 +401,8 @@ fn door_height_ok(run: &RomRun, tick: u32) -> bool {
 }
 
 /// The movers' heights the ROM logged after each `player` line (`movers frame=F heights=…`),
-/// checked against the host's game at the same tick, in order.
+/// checked against the host's game at the same tick, in order; the switches the line gives as
+/// thrown (`thrown=…`) are checked too.
 fn checked_mover_heights(run: &RomRun) -> Vec<(u32, Vec<i32>)> {
     let mut heights = Vec::new();
     let mut tick = None;
@@ -420,6 +423,19 @@ fn checked_mover_heights(run: &RomRun) -> Vec<(u32, Vec<i32>)> {
                 .map(|m| m.height)
                 .collect();
             assert_eq!(logged, host, "the movers after tick {tick}: {line}");
+            let thrown: Vec<u8> = field(rest, "thrown")
+                .expect("thrown=")
+                .split(',')
+                .filter(|t| !t.is_empty())
+                .map(|t| t.parse().expect("0 or 1"))
+                .collect();
+            let host: Vec<u8> = run.host[tick as usize]
+                .world
+                .triggers()
+                .iter()
+                .map(|t| t.thrown)
+                .collect();
+            assert_eq!(thrown, host, "the switches after tick {tick}: {line}");
             heights.push((tick, logged));
         }
     }
@@ -511,6 +527,14 @@ fn the_switch_opens_the_door_and_the_closing_door_turns_back_at_the_body() {
         (press..=press + 8).contains(&switch_tick) && opened_at >= switch_tick,
         "the door opened at tick {switch_tick}, not on the switch's press (tick {press})"
     );
+    // The switch shows its used texture from the press until the door is shut again.
+    let thrown = |game: &Game| game.world.triggers()[0].thrown == TRIGGER_THROWN;
+    let ticks = run.host_ticks();
+    assert!(!ticks[..switch_tick as usize].iter().any(thrown));
+    assert!(ticks[switch_tick as usize..]
+        .iter()
+        .take_while(|game| game.world.movers()[0].phase != Phase::Resting)
+        .all(thrown));
     // It came down, then went back up, never below what the standing body needs (feet 0, eye
     // 32, headroom 16).
     let closing = door

@@ -50,6 +50,8 @@ struct Checker {
     /// The movers' heights of the frame the `player` line describes (`movers …` line), on a
     /// map with movers.
     mover_heights: Vec<i32>,
+    /// The switches the `movers` line gives as thrown.
+    thrown: Vec<bool>,
     compared: Vec<Compared>,
     screenshots: BTreeSet<String>,
 }
@@ -71,11 +73,18 @@ impl Checker {
             if line.text.starts_with("player ") {
                 self.player = Some(PlayerLine::parse(&line.text));
                 self.mover_heights.clear();
+                self.thrown.clear();
             } else if line.text.starts_with("movers ") {
                 let heights = field(&line.text, "heights").expect("heights=");
                 self.mover_heights = heights
                     .split(',')
                     .map(|h| h.parse().expect("a height"))
+                    .collect();
+                self.thrown = field(&line.text, "thrown")
+                    .expect("thrown=")
+                    .split(',')
+                    .filter(|t| !t.is_empty())
+                    .map(|t| t == "1")
                     .collect();
             } else if line.text.starts_with("render ") {
                 self.compare(&line.text);
@@ -112,7 +121,8 @@ impl Checker {
             resolution,
             halved_flats: false,
         };
-        // The map as the ROM's game had it: its movers at the heights the ROM logged.
+        // The map as the ROM's game had it: its movers at the heights the ROM logged, its
+        // switches thrown as it logged them.
         assert_eq!(
             self.mover_heights.len(),
             map.movers.len(),
@@ -120,6 +130,7 @@ impl Checker {
         );
         let mut world = GameWorld::start(&map);
         world.set_heights(&map, &self.mover_heights);
+        world.set_thrown(&self.thrown);
         let live = world.map(&map);
         let stats = self.renderer.render(
             &live,
@@ -241,6 +252,7 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         colours: MenuColours::from_palette(&portalcast::assets::PALETTE),
         player: None,
         mover_heights: Vec::new(),
+        thrown: Vec::new(),
         compared: Vec::new(),
         screenshots: BTreeSet::new(),
     };

@@ -88,7 +88,7 @@ fn mover(sector: u16, kind: u8, low: i32, high: i32, start: i32) -> Mover {
     }
 }
 
-type TestWorld = World<8, 4>;
+type TestWorld = World<8, 4, 4>;
 
 /// The map compiled, with `movers` added (in sector order).
 fn compiled(movers: Vec<Mover>) -> portalcast_assets::CompiledMap {

@@ -1514,10 +1514,11 @@ impl<'s> WallJob<'s> {
             level: StripLevel::NONE,
         };
         let (strips, portal) = if wall.portal == NO_PORTAL {
+            let texture = scene.map.solid_texture(wall_index, wall);
             (
                 [
-                    strip(wall.texture, sector.ceil_z, Surface::Wall(wall_index)),
-                    strip(wall.texture, sector.ceil_z, Surface::Wall(wall_index)),
+                    strip(texture, sector.ceil_z, Surface::Wall(wall_index)),
+                    strip(texture, sector.ceil_z, Surface::Wall(wall_index)),
                 ],
                 None,
             )

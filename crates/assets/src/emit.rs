@@ -284,13 +284,22 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
         .map(|map| map.movers.len())
         .max()
         .unwrap_or(0);
+    let live_triggers = compiled
+        .maps
+        .iter()
+        .map(|map| map.triggers.len())
+        .max()
+        .unwrap_or(0);
     let _ = writeln!(
         s,
         "/// Sectors of the largest map with movers: the live copy of its sector table the game\n\
          /// keeps (0: no map has movers, and the game keeps none).\n\
          pub const LIVE_SECTORS: usize = {live_sectors};\n\
          /// The most movers a map has: the game keeps a state for each.\n\
-         pub const LIVE_MOVERS: usize = {live_movers};"
+         pub const LIVE_MOVERS: usize = {live_movers};\n\
+         /// The most switches and walk-over lines a map has: the game keeps a live copy of a\n\
+         /// map's, whose switches it throws.\n\
+         pub const LIVE_TRIGGERS: usize = {live_triggers};"
     );
     let _ = writeln!(s, "/// Every map, sorted by name.");
     let _ = writeln!(s, "pub static MAPS: &[{FORMAT}::MapTables<'static>] = &[");
@@ -386,7 +395,7 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
     for t in &map.triggers {
         let _ = writeln!(
             s,
-            "    {FORMAT}::Trigger {{ wall: {}, tag: {}, kind: {}, reserved: 0, used_texture: {} }},",
+            "    {FORMAT}::Trigger {{ wall: {}, tag: {}, kind: {}, thrown: 0, used_texture: {} }},",
             t.wall, t.tag, t.kind, t.used_texture
         );
     }

@@ -15,7 +15,7 @@ use portalcast_format::{
     MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall, MOVER_CRUSHER, MOVER_DOOR,
     MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM, NO_PORTAL, NO_TEXTURE, SKY,
     THING_HANGING, THING_SOLID, THING_TRANSLUCENT, TRIGGER_LINE, TRIGGER_SWITCH,
-    WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
+    WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT, WALL_SWITCH,
 };
 
 use crate::diag::{Loc, Located};
@@ -1874,9 +1874,15 @@ fn tables(
     for ((sector, outline), middles) in source.sectors.iter().zip(outlines).zip(middles) {
         let first_wall = walls.len() as u16;
         for (wall, middle) in outline.walls.iter().zip(middles) {
-            if let Some(trigger) = trigger(wall.source, walls.len() as u16, catalog) {
-                triggers.push(trigger);
-            }
+            let trigger = trigger(wall.source, walls.len() as u16, catalog);
+            let switch = match trigger {
+                Some(Trigger {
+                    kind: TRIGGER_SWITCH,
+                    ..
+                }) => WALL_SWITCH,
+                _ => 0,
+            };
+            triggers.extend(trigger);
             let (middle, flags) = match middle.and_then(|m| Some((m, m.middle.as_ref()?))) {
                 Some((words, name)) => (
                     catalog.sprite(name, &mut Vec::new()),
@@ -1910,7 +1916,7 @@ fn tables(
                     vertices[usize::from(new_index[wall.end])],
                 ),
                 middle,
-                flags,
+                flags: flags | switch,
             });
         }
         sectors.push(Sector {
@@ -1996,7 +2002,7 @@ fn trigger(wall: &SourceWall, wall_index: u16, catalog: &Catalog) -> Option<Trig
         wall: wall_index,
         tag,
         kind,
-        reserved: 0,
+        thrown: 0,
         used_texture,
     })
 }

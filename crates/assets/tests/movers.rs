@@ -10,8 +10,8 @@ use common::{pattern, valid_assets};
 use portalcast_assets::{compile_dir, compile_map_str, Catalog, CompiledMap};
 use portalcast_format::limits::{MOVERS_MAX, TRIGGERS_MAX};
 use portalcast_format::{
-    Mover, Trigger, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
-    MOVER_PLATFORM, NO_TEXTURE, TRIGGER_LINE, TRIGGER_SWITCH,
+    MapTables, Mover, Trigger, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
+    MOVER_PLATFORM, NO_TEXTURE, TRIGGER_LINE, TRIGGER_SWITCH, TRIGGER_THROWN, WALL_SWITCH,
 };
 
 /// Catalog indices (sorted names).
@@ -370,36 +370,51 @@ fn switches_and_lines_compile_to_triggers_in_wall_order() {
                 wall: 0,
                 tag: 3,
                 kind: TRIGGER_SWITCH,
-                reserved: 0,
+                thrown: 0,
                 used_texture: USED,
             },
             Trigger {
                 wall: 1,
                 tag: 3,
                 kind: TRIGGER_LINE,
-                reserved: 0,
+                thrown: 0,
                 used_texture: NO_TEXTURE,
             },
             Trigger {
                 wall: 4,
                 tag: 3,
                 kind: TRIGGER_SWITCH,
-                reserved: 0,
+                thrown: 0,
                 used_texture: BRICK,
             },
             Trigger {
                 wall: 11,
                 tag: 3,
                 kind: TRIGGER_LINE,
-                reserved: 0,
+                thrown: 0,
                 used_texture: NO_TEXTURE,
             },
         ]
     );
-    // The switch's wall keeps its own texture until used; the line is the wall written.
+    // The switch's wall keeps its own texture until used, and says it is a switch; the line
+    // is the wall written.
     assert_eq!(map.walls[0].texture, BRICK);
     assert_eq!(map.walls[1].portal, 1);
     assert_eq!(map.walls[11].portal, 1);
+    let switches: Vec<usize> = (0..map.walls.len())
+        .filter(|&i| map.walls[i].flags & WALL_SWITCH != 0)
+        .collect();
+    assert_eq!(switches, [0, 4]);
+    let tables = map.tables();
+    assert_eq!(tables.solid_texture(0, &map.walls[0]), BRICK);
+    let mut live = map.triggers.clone();
+    live[0].thrown = TRIGGER_THROWN;
+    let thrown = MapTables {
+        triggers: &live,
+        ..tables
+    };
+    assert_eq!(thrown.solid_texture(0, &map.walls[0]), USED);
+    assert_eq!(thrown.solid_texture(4, &map.walls[4]), BRICK);
 }
 
 #[test]

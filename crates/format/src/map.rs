@@ -62,7 +62,7 @@ pub struct Wall {
     /// top is at the opening's top (the lower of the two ceilings) plus `y_offset`, its column
     /// `floor(u) mod width`; it does not repeat vertically.
     pub middle: u16,
-    /// [`WALL_MIDDLE_BLOCKS`], [`WALL_MIDDLE_TRANSLUCENT`].
+    /// [`WALL_MIDDLE_BLOCKS`], [`WALL_MIDDLE_TRANSLUCENT`], [`WALL_SWITCH`].
     pub flags: u16,
 }
 
@@ -70,6 +70,9 @@ pub struct Wall {
 pub const WALL_MIDDLE_BLOCKS: u16 = 1;
 /// [`Wall::flags`]: the middle image is drawn at 50 % over what is behind it.
 pub const WALL_MIDDLE_TRANSLUCENT: u16 = 2;
+/// [`Wall::flags`]: a solid wall that is a switch (a [`TRIGGER_SWITCH`] trigger's wall): while
+/// the switch is thrown it shows the trigger's `used_texture` ([`MapTables::solid_texture`]).
+pub const WALL_SWITCH: u16 = 4;
 /// [`Thing::flags`]: the sprite is drawn at 50 % over what is behind it.
 pub const THING_TRANSLUCENT: u16 = 4;
 
@@ -211,8 +214,9 @@ pub struct Trigger {
     pub tag: u16,
     /// [`TRIGGER_SWITCH`] or [`TRIGGER_LINE`].
     pub kind: u8,
-    /// Padding.
-    pub reserved: u8,
+    /// A switch is thrown ([`TRIGGER_THROWN`]) or not (0). Always 0 in a map's tables; a
+    /// game's live copy of them sets it while the switch shows its `used_texture`.
+    pub thrown: u8,
     /// A switch's texture once used (index into the textures table); [`NO_TEXTURE`] for a
     /// line.
     pub used_texture: u16,
@@ -222,6 +226,8 @@ pub struct Trigger {
 pub const TRIGGER_SWITCH: u8 = 0;
 /// [`Trigger::kind`]: a portal wall the player crosses, from its side.
 pub const TRIGGER_LINE: u8 = 1;
+/// [`Trigger::thrown`]: the switch is thrown.
+pub const TRIGGER_THROWN: u8 = 1;
 
 /// Everything the engine needs to run one map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -250,6 +256,23 @@ pub struct MapTables<'a> {
 }
 
 impl<'a> MapTables<'a> {
+    /// The texture solid wall `wall` (index `index` in [`MapTables::walls`]) shows now: a
+    /// thrown switch's `used_texture`, else [`Wall::texture`]. Only a [`WALL_SWITCH`] wall
+    /// looks further than its flags.
+    #[inline]
+    pub fn solid_texture(&self, index: u16, wall: &Wall) -> u16 {
+        if wall.flags & WALL_SWITCH == 0 {
+            return wall.texture;
+        }
+        match self
+            .triggers
+            .binary_search_by_key(&index, |trigger| trigger.wall)
+        {
+            Ok(at) if self.triggers[at].thrown == TRIGGER_THROWN => self.triggers[at].used_texture,
+            _ => wall.texture,
+        }
+    }
+
     /// The walls of `sector`, in clockwise order.
     #[inline]
     pub fn sector_walls(&self, sector: &Sector) -> &'a [Wall] {

@@ -618,7 +618,11 @@ fn segment_hit(map: &MapTables, segment: &Segment, eye_z: f64, k: f64) -> Option
         v: f64::from(anchor) - h_out + f64::from(wall.y_offset),
     };
     let Some(next) = wall.neighbour() else {
-        return Some(at(Surface::Wall(segment.wall), wall.texture, sector.ceil_z));
+        return Some(at(
+            Surface::Wall(segment.wall),
+            map.solid_texture(segment.wall, wall),
+            sector.ceil_z,
+        ));
     };
     let neighbour = &map.sectors[usize::from(next)];
     // Ties again go down the screen: past the upper strip's bottom edge into the opening,
