@@ -1402,6 +1402,7 @@ mod tests {
             sector_things: &[],
             movers: &[],
             triggers: &[],
+            lights: &[],
         }
     }
 

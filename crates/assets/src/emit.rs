@@ -310,7 +310,7 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
             "    {FORMAT}::MapTables {{ name: {:?}, vertices: &MAP_{index}_VERTICES, walls: &MAP_{index}_WALLS, \
              sectors: &MAP_{index}_SECTORS, player_start: {FORMAT}::PlayerStart {{ x_fx8: {}, y_fx8: {}, angle: {}, sector: {} }}, \
              things: &MAP_{index}_THINGS, sector_things: &MAP_{index}_SECTOR_THINGS, \
-             movers: &MAP_{index}_MOVERS, triggers: &MAP_{index}_TRIGGERS }},",
+             movers: &MAP_{index}_MOVERS, triggers: &MAP_{index}_TRIGGERS, lights: &MAP_{index}_LIGHTS }},",
             map.name, p.x_fx8, p.y_fx8, p.angle, p.sector
         );
     }
@@ -397,6 +397,19 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
             s,
             "    {FORMAT}::Trigger {{ wall: {}, tag: {}, kind: {}, thrown: 0, used_texture: {} }},",
             t.wall, t.tag, t.kind, t.used_texture
+        );
+    }
+    let _ = writeln!(s, "];");
+    let _ = writeln!(
+        s,
+        "static MAP_{index}_LIGHTS: [{FORMAT}::Light; {}] = [",
+        map.lights.len()
+    );
+    for l in &map.lights {
+        let _ = writeln!(
+            s,
+            "    {FORMAT}::Light {{ sector: {}, kind: {}, low: {}, period: {}, tag: {} }},",
+            l.sector, l.kind, l.low, l.period, l.tag
         );
     }
     let _ = writeln!(s, "];\n");

@@ -12,9 +12,9 @@ use portalcast_format::limits::{
     TRIGGERS_MAX, WORLD_COORD_MAX,
 };
 use portalcast_format::{
-    MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall, MOVER_CRUSHER, MOVER_DOOR,
-    MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM, NO_PORTAL, NO_TEXTURE, SKY,
-    THING_HANGING, THING_SOLID, THING_TRANSLUCENT, TRIGGER_LINE, TRIGGER_SWITCH,
+    Light, MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall, MOVER_CRUSHER,
+    MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM, NO_PORTAL, NO_TEXTURE,
+    SKY, THING_HANGING, THING_SOLID, THING_TRANSLUCENT, TRIGGER_LINE, TRIGGER_SWITCH,
     WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT, WALL_SWITCH,
 };
 
@@ -182,6 +182,8 @@ pub struct CompiledMap {
     pub movers: Vec<Mover>,
     /// [`MapTables::triggers`].
     pub triggers: Vec<Trigger>,
+    /// [`MapTables::lights`].
+    pub lights: Vec<Light>,
     /// Player start.
     pub player_start: PlayerStart,
 }
@@ -199,6 +201,7 @@ impl CompiledMap {
             sector_things: &self.sector_things,
             movers: &self.movers,
             triggers: &self.triggers,
+            lights: &self.lights,
         }
     }
 }
@@ -1976,6 +1979,7 @@ fn tables(
         sector_things,
         movers,
         triggers,
+        lights: Vec::new(),
         player_start: PlayerStart {
             x_fx8,
             y_fx8,

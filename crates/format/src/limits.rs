@@ -99,6 +99,11 @@ pub const MOVERS_MAX: u32 = 64;
 /// more.
 pub const TRIGGERS_MAX: u32 = 256;
 
+/// Most sectors with a light effect ([`crate::Light`]) one map may have. The game sets each
+/// one's level every frame it draws, so the bound caps that work; it also caps the table at
+/// 2 KiB of ROM (8 bytes a light). The map compiler refuses a map with more.
+pub const LIGHTS_MAX: u32 = 256;
+
 /// Widest logical screen, in columns (Mode 4 at full width).
 pub const SCREEN_WIDTH_MAX: i32 = 240;
 

@@ -203,6 +203,40 @@ pub const MOVER_ON_USE: u8 = 1;
 /// [`Mover::flags`]: the player starts it by walking into one of its portals.
 pub const MOVER_ON_TOUCH: u8 = 2;
 
+/// A sector whose light level changes while the game runs: it glows, strobes or flickers by
+/// itself, or a switch or a walk-over line turns it down and up. The map's [`Sector::light`] is
+/// the high level; the game keeps the live one (`portalcast::world`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct Light {
+    /// The sector whose light changes.
+    pub sector: u16,
+    /// [`LIGHT_GLOW`], [`LIGHT_STROBE`], [`LIGHT_FLICKER`] or [`LIGHT_SWITCHED`].
+    pub kind: u8,
+    /// The low level, below the sector's [`Sector::light`] (the high one).
+    pub low: u8,
+    /// Ticks (60 a second) of one cycle: a glow's fall and rise, a strobe's flash and dark, a
+    /// flicker's time at one level before it draws again. At least 2 (a strobe's: more than
+    /// [`STROBE_FLASH_TICKS`]). Unused by a switched light.
+    pub period: u16,
+    /// A switched light: the switches and walk-over lines with this tag ([`Trigger::tag`])
+    /// turn it down, and up again. 0 for the others.
+    pub tag: u16,
+}
+
+/// [`Light::kind`]: the level falls from high to low and rises back, evenly, each `period`.
+pub const LIGHT_GLOW: u8 = 0;
+/// [`Light::kind`]: the level is high for [`STROBE_FLASH_TICKS`] of each `period`, low for the
+/// rest.
+pub const LIGHT_STROBE: u8 = 1;
+/// [`Light::kind`]: for each `period` ticks, high or (one time in four, at random but the same
+/// on every run) low.
+pub const LIGHT_FLICKER: u8 = 2;
+/// [`Light::kind`]: high until a trigger of its tag turns it low, then high at the next one.
+pub const LIGHT_SWITCHED: u8 = 3;
+/// Ticks a strobe's flash lasts.
+pub const STROBE_FLASH_TICKS: u16 = 5;
+
 /// A wall that starts the movers of its tag: a switch the player uses (its texture changes)
 /// or a portal line the player walks over.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -253,6 +287,8 @@ pub struct MapTables<'a> {
     pub movers: &'a [Mover],
     /// Switches and walk-over lines, in wall order.
     pub triggers: &'a [Trigger],
+    /// The sectors whose light changes, at most one effect a sector, in sector order.
+    pub lights: &'a [Light],
 }
 
 impl<'a> MapTables<'a> {

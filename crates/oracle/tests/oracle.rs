@@ -294,6 +294,7 @@ impl OwnedMap {
             sector_things: &self.sector_things,
             movers: &[],
             triggers: &[],
+            lights: &[],
         }
     }
 }
