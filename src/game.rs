@@ -95,6 +95,12 @@ impl<'m> Game<'m> {
         self.world.map(&self.maps[self.map_index])
     }
 
+    /// Sets the light of the map's glowing, strobing and flickering sectors for a frame drawn
+    /// now, at this tick ([`World::show`]): run before [`Game::map`] is drawn.
+    pub fn show(&mut self) {
+        self.world.show(&self.maps[self.map_index], self.ticks);
+    }
+
     /// The name of the map being played.
     pub fn map_name(&self) -> &'m str {
         self.maps[self.map_index].name
@@ -154,7 +160,7 @@ impl<'m> Game<'m> {
             // By reference: a copy of the tables' slices costs every tick.
             let maps = self.maps;
             let map = &maps[self.map_index];
-            if map.movers.is_empty() {
+            if map.movers.is_empty() && map.triggers.is_empty() {
                 self.player.tick(&intent, map);
             } else {
                 self.world.tick_with_player(map, &mut self.player, &intent);

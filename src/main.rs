@@ -168,14 +168,17 @@ mod rom {
             });
             let game_cycles = meter::cycles_since(game_started);
             let camera = game.camera();
+            game.show();
             if frame_lines {
                 let started = meter::now();
                 log_player_line(frame, sampler.next_index(), lost, game, game_cycles, &ticks);
-                if !game.world.movers().is_empty() {
+                if game.world.is_live() {
+                    let map = game.map();
                     log::info(format_args!(
-                        "movers frame={frame} heights={} thrown={}",
+                        "world frame={frame} heights={} thrown={} lights={}",
                         MoverHeights(game.world.movers()),
-                        Thrown(game.world.triggers())
+                        Thrown(game.world.triggers()),
+                        Levels(&map)
                     ));
                 }
                 rate.frame_lines_cycles += meter::cycles_since(started);
@@ -260,7 +263,7 @@ mod rom {
             ));
     }
 
-    /// The movers' heights as `h0,h1,…`: the `movers …` line that follows a frame's `player`
+    /// The movers' heights as `h0,h1,…`: the `world …` line that follows a frame's `player`
     /// line on a map with movers, so the tests draw the frame the ROM drew.
     struct MoverHeights<'w>(&'w [portalcast::world::MoverState]);
 
@@ -276,8 +279,24 @@ mod rom {
         }
     }
 
+    /// The light of each light effect's sector, as `l0,l1,…` (empty where the map has none): the
+    /// `world …` line's `lights=`.
+    struct Levels<'m>(&'m portalcast_format::MapTables<'m>);
+
+    impl core::fmt::Display for Levels<'_> {
+        fn fmt(&self, f: &mut core::fmt::Formatter) -> core::fmt::Result {
+            for (index, light) in self.0.lights.iter().enumerate() {
+                if index > 0 {
+                    f.write_str(",")?;
+                }
+                write!(f, "{}", self.0.sectors[usize::from(light.sector)].light)?;
+            }
+            Ok(())
+        }
+    }
+
     /// Each trigger's switch thrown (`1`) or not (`0`), as `0,1,…` (empty where the map has no
-    /// triggers): the `movers …` line's `thrown=`.
+    /// triggers): the `world …` line's `thrown=`.
     struct Thrown<'w>(&'w [portalcast_format::Trigger]);
 
     impl core::fmt::Display for Thrown<'_> {

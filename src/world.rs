@@ -1,12 +1,19 @@
 //! The world as it moves: the live heights of a map's moving sectors (doors, lifts, platforms,
-//! crushers: [`portalcast_format::Mover`]) and what starts them (the use button, walking into a
-//! door, switches and walk-over lines: [`portalcast_format::Trigger`]).
+//! crushers: [`portalcast_format::Mover`]), what starts them (the use button, walking into a
+//! door, switches and walk-over lines: [`portalcast_format::Trigger`]), the switches' thrown
+//! state, and the light of sectors that glow, strobe, flicker or are switched
+//! ([`portalcast_format::Light`]).
 //!
-//! A map with movers gets a copy of its sector table, whose moving heights the game's ticks
-//! change; the renderer, the collision code and the oracle read the frame's [`MapTables`] with
-//! that table in place of the cartridge's ([`World::map`]), so each reads heights the one way it
+//! A map with movers or light effects gets a copy of its sector table, whose moving heights the
+//! game's ticks change and whose effect lights each drawn frame sets ([`World::show`]); the
+//! renderer, the collision code and the oracle read the frame's [`MapTables`] with that table in
+//! place of the cartridge's ([`World::map`]), so each reads heights and light the one way it
 //! always has. A copy of only the moving sectors would put a lookup on every height read, the
-//! wall set-up's among them. A map without movers keeps no copy.
+//! wall set-up's among them. A map without either keeps no copy.
+//!
+//! A glow, a strobe and a flicker are functions of the game's tick, so they are set once a
+//! drawn frame rather than every tick: the same levels, for the frames anyone sees, at a
+//! fraction of the cost. A switched light changes only when a trigger of its tag fires.
 //!
 //! Everything is integer and advances once a tick, so the host replays the ROM exactly.
 //!
@@ -18,8 +25,9 @@
 //! down. A lift's floor carries a player standing on it.
 
 use portalcast_format::{
-    MapTables, Mover, Sector, Trigger, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH,
-    MOVER_ON_USE, MOVER_PLATFORM, TRIGGER_LINE, TRIGGER_SWITCH, TRIGGER_THROWN,
+    Light, MapTables, Mover, Sector, Trigger, LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE,
+    LIGHT_SWITCHED, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
+    MOVER_PLATFORM, STROBE_FLASH_TICKS, TRIGGER_LINE, TRIGGER_SWITCH, TRIGGER_THROWN,
 };
 
 use crate::math::{cross, Fx24_8, WorldPoint};
@@ -191,7 +199,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         self.touch_sector = NONE;
         self.touch_door = NONE;
         self.touch_box = [0; 4];
-        if map.movers.is_empty() {
+        if map.movers.is_empty() && map.lights.is_empty() {
             return;
         }
         assert!(
@@ -243,6 +251,41 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
             self.movers[index].height = height;
             self.set_height(mover, height);
         }
+    }
+
+    /// Sets the light of the map's glowing, strobing and flickering sectors for a frame drawn
+    /// at game tick `tick` (switched lights keep theirs). Run before drawing each frame: the
+    /// levels are a function of the tick alone.
+    pub fn show(&mut self, map: &MapTables, tick: u32) {
+        if self.live == 0 {
+            return;
+        }
+        for light in map.lights {
+            if light.kind != LIGHT_SWITCHED {
+                let high = map.sectors[usize::from(light.sector)].light;
+                self.sectors[usize::from(light.sector)].light = level(light, high, tick);
+            }
+        }
+    }
+
+    /// Sets each light effect's sector to the level `levels` gives it (in the order of
+    /// `MapTables::lights`), for drawing a frame a log line describes.
+    pub fn set_lights(&mut self, map: &MapTables, levels: &[u8]) {
+        for (light, &level) in map.lights.iter().zip(levels) {
+            self.sectors[usize::from(light.sector)].light = level;
+        }
+    }
+
+    /// The live level of each light effect's sector, in the order of `MapTables::lights`.
+    pub fn lights<'s>(&'s self, map: &'s MapTables) -> impl Iterator<Item = u8> + 's {
+        map.lights
+            .iter()
+            .map(move |light| self.sectors[usize::from(light.sector)].light)
+    }
+
+    /// Whether the map has movers or light effects: the world keeps its live tables.
+    pub fn is_live(&self) -> bool {
+        self.live != 0
     }
 
     /// Throws the map's switches that `thrown` says (one per trigger, in the order of
@@ -570,11 +613,26 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         self.start_mover(map, index, true);
     }
 
-    /// Every mover tagged `tag` starts.
+    /// Every mover tagged `tag` starts, and every light switched by `tag` turns low if it is
+    /// high, high if it is not.
     pub fn start_tag(&mut self, map: &MapTables, tag: u16) {
+        if tag == 0 {
+            return;
+        }
         for index in 0..map.movers.len() {
-            if tag != 0 && map.movers[index].tag == tag {
+            if map.movers[index].tag == tag {
                 self.start_mover(map, index, false);
+            }
+        }
+        for light in map.lights {
+            if light.kind == LIGHT_SWITCHED && light.tag == tag {
+                let high = map.sectors[usize::from(light.sector)].light;
+                let sector = &mut self.sectors[usize::from(light.sector)];
+                sector.light = if sector.light == high {
+                    light.low
+                } else {
+                    high
+                };
             }
         }
     }
@@ -595,6 +653,37 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
     fn mover_of(&self, map: &MapTables, sector: u16) -> Option<usize> {
         map.movers.binary_search_by_key(&sector, |m| m.sector).ok()
     }
+}
+
+/// The level of `light`'s sector (its high level `high`) at game tick `tick`; a switched
+/// light's high level, as it starts.
+pub fn level(light: &Light, high: u8, tick: u32) -> u8 {
+    let period = u32::from(light.period.max(2));
+    let at = tick % period;
+    match light.kind {
+        LIGHT_GLOW => {
+            // A triangle: down from high to low over the first half, back up over the second.
+            let half = period / 2;
+            let from_high = at.min(period - at).min(half);
+            let drop = u32::from(high.saturating_sub(light.low)) * from_high / half;
+            high - drop as u8
+        }
+        LIGHT_STROBE if at < u32::from(STROBE_FLASH_TICKS) => high,
+        LIGHT_STROBE => light.low,
+        LIGHT_FLICKER if flicker_draw(light.sector, tick / period) % 4 == 0 => light.low,
+        _ => high,
+    }
+}
+
+/// A well-mixed 32-bit number from a sector and a flicker's slot: the same on every run, and
+/// unlike for neighbouring slots and sectors (the finaliser of MurmurHash3).
+fn flicker_draw(sector: u16, slot: u32) -> u32 {
+    let mut x = slot ^ u32::from(sector).wrapping_mul(0x9e37_79b9);
+    x ^= x >> 16;
+    x = x.wrapping_mul(0x85eb_ca6b);
+    x ^= x >> 13;
+    x = x.wrapping_mul(0xc2b2_ae35);
+    x ^ (x >> 16)
 }
 
 /// What the use button reaches.

@@ -400,20 +400,21 @@ fn door_height_ok(run: &RomRun, tick: u32) -> bool {
     game.world.movers()[0].height >= 48
 }
 
-/// The movers' heights the ROM logged after each `player` line (`movers frame=F heights=…`),
+/// The movers' heights the ROM logged after each `player` line (`world frame=F heights=…`),
 /// checked against the host's game at the same tick, in order; the switches the line gives as
-/// thrown (`thrown=…`) are checked too.
+/// thrown (`thrown=…`) and the light effects' levels (`lights=…`) are checked too.
 fn checked_mover_heights(run: &RomRun) -> Vec<(u32, Vec<i32>)> {
     let mut heights = Vec::new();
     let mut tick = None;
     for line in &run.log {
         if line.starts_with("player ") {
             tick = Some(PlayerLine::parse(line).tick);
-        } else if let Some(rest) = line.strip_prefix("movers ") {
-            let tick = tick.expect("a player line before the movers line");
+        } else if let Some(rest) = line.strip_prefix("world ") {
+            let tick = tick.expect("a player line before the world line");
             let logged: Vec<i32> = field(rest, "heights")
                 .expect("heights=")
                 .split(',')
+                .filter(|h| !h.is_empty())
                 .map(|h| h.parse().expect("a height"))
                 .collect();
             let host: Vec<i32> = run.host[tick as usize]
@@ -436,6 +437,16 @@ fn checked_mover_heights(run: &RomRun) -> Vec<(u32, Vec<i32>)> {
                 .map(|t| t.thrown)
                 .collect();
             assert_eq!(thrown, host, "the switches after tick {tick}: {line}");
+            let lights: Vec<u8> = field(rest, "lights")
+                .expect("lights=")
+                .split(',')
+                .filter(|l| !l.is_empty())
+                .map(|l| l.parse().expect("a light level"))
+                .collect();
+            let mut shown = run.host[tick as usize];
+            shown.show();
+            let host: Vec<u8> = shown.world.lights(&shown.map()).collect();
+            assert_eq!(lights, host, "the light effects after tick {tick}: {line}");
             heights.push((tick, logged));
         }
     }

@@ -47,11 +47,13 @@ struct Checker {
     renderer: Renderer,
     colours: MenuColours,
     player: Option<PlayerLine>,
-    /// The movers' heights of the frame the `player` line describes (`movers …` line), on a
-    /// map with movers.
+    /// The movers' heights of the frame the `player` line describes (`world …` line), on a
+    /// map with movers or light effects.
     mover_heights: Vec<i32>,
-    /// The switches the `movers` line gives as thrown.
+    /// The switches the `world` line gives as thrown.
     thrown: Vec<bool>,
+    /// The light effects' levels the `world` line gives.
+    lights: Vec<u8>,
     compared: Vec<Compared>,
     screenshots: BTreeSet<String>,
 }
@@ -74,7 +76,8 @@ impl Checker {
                 self.player = Some(PlayerLine::parse(&line.text));
                 self.mover_heights.clear();
                 self.thrown.clear();
-            } else if line.text.starts_with("movers ") {
+                self.lights.clear();
+            } else if line.text.starts_with("world ") {
                 let heights = field(&line.text, "heights").expect("heights=");
                 self.mover_heights = heights
                     .split(',')
@@ -85,6 +88,12 @@ impl Checker {
                     .split(',')
                     .filter(|t| !t.is_empty())
                     .map(|t| t == "1")
+                    .collect();
+                self.lights = field(&line.text, "lights")
+                    .expect("lights=")
+                    .split(',')
+                    .filter(|l| !l.is_empty())
+                    .map(|l| l.parse().expect("a light level"))
                     .collect();
             } else if line.text.starts_with("render ") {
                 self.compare(&line.text);
@@ -122,15 +131,21 @@ impl Checker {
             halved_flats: false,
         };
         // The map as the ROM's game had it: its movers at the heights the ROM logged, its
-        // switches thrown as it logged them.
+        // switches thrown and its light effects at the levels it logged.
         assert_eq!(
             self.mover_heights.len(),
             map.movers.len(),
-            "a `movers` line gives every mover's height: {text}"
+            "a `world` line gives every mover's height: {text}"
+        );
+        assert_eq!(
+            self.lights.len(),
+            map.lights.len(),
+            "a `world` line gives every light effect's level: {text}"
         );
         let mut world = GameWorld::start(&map);
         world.set_heights(&map, &self.mover_heights);
         world.set_thrown(&self.thrown);
+        world.set_lights(&map, &self.lights);
         let live = world.map(&map);
         let stats = self.renderer.render(
             &live,
@@ -253,6 +268,7 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         player: None,
         mover_heights: Vec::new(),
         thrown: Vec::new(),
+        lights: Vec::new(),
         compared: Vec::new(),
         screenshots: BTreeSet::new(),
     };

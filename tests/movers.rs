@@ -3,7 +3,8 @@
 //! waits, and carries a body standing on it back up; a platform and a crusher run for ever and
 //! never close on the body. Every tick is checked against the live map with the exact invariants
 //! of the player tests (`common::player::check_tick`), and the live heights stay between the
-//! mover's two.
+//! mover's two. And the light effects: a glow's and a strobe's levels through their periods, a
+//! flicker's draws, a switched light turned by its tag.
 
 mod common;
 
@@ -11,9 +12,10 @@ use common::player::*;
 use portalcast::player::collide::HEADROOM;
 use portalcast::player::input::Intent;
 use portalcast::player::Player;
-use portalcast::world::{Phase, World};
+use portalcast::world::{level, Phase, World};
 use portalcast_format::{
-    MapTables, Mover, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
+    Light, MapTables, Mover, LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE, LIGHT_SWITCHED,
+    MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
 };
 
 /// West room, a door 16 deep, east room; north of the west room a lift (its floor 64 when
@@ -279,4 +281,89 @@ fn a_crusher_never_closes_on_the_body_and_a_platform_runs_for_ever() {
         reached |= world.movers()[0].height == 8;
     }
     assert!(reached);
+}
+
+fn light(sector: u16, kind: u8, low: u8, period: u16, tag: u16) -> Light {
+    Light {
+        sector,
+        kind,
+        low,
+        period,
+        tag,
+    }
+}
+
+#[test]
+fn a_glow_falls_to_its_low_level_and_back_each_period_and_a_strobe_flashes() {
+    let glow = light(0, LIGHT_GLOW, 40, 120, 0);
+    let levels: Vec<u8> = (0..=240).map(|tick| level(&glow, 200, tick)).collect();
+    assert_eq!(
+        (levels[0], levels[60], levels[120], levels[180]),
+        (200, 40, 200, 40)
+    );
+    assert!(levels[..=60].windows(2).all(|w| w[1] <= w[0]));
+    assert!(levels[60..=120].windows(2).all(|w| w[1] >= w[0]));
+    // Evenly: no step larger than the range over the half period, rounded up.
+    assert!(levels.windows(2).all(|w| w[0].abs_diff(w[1]) <= 3));
+    let strobe = light(0, LIGHT_STROBE, 10, 40, 0);
+    let flashes: Vec<bool> = (0..80)
+        .map(|tick| level(&strobe, 180, tick) == 180)
+        .collect();
+    assert!(flashes[..5].iter().all(|&f| f) && flashes[5..40].iter().all(|&f| !f));
+    assert_eq!(flashes[..40], flashes[40..]);
+    assert!((0..80).all(|tick| [10, 180].contains(&level(&strobe, 180, tick))));
+}
+
+#[test]
+fn a_flicker_is_low_about_one_slot_in_four_the_same_on_every_run_and_unlike_its_neighbour() {
+    let flicker = light(3, LIGHT_FLICKER, 20, 4, 0);
+    let slots: Vec<bool> = (0..4000)
+        .step_by(4)
+        .map(|tick| level(&flicker, 150, tick) == 20)
+        .collect();
+    let low = slots.iter().filter(|&&l| l).count();
+    assert!((180..=320).contains(&low), "{low} of 1000 slots low");
+    // Constant within a slot, only the two levels.
+    assert!((0..4000).all(|tick| level(&flicker, 150, tick) == level(&flicker, 150, tick / 4 * 4)));
+    assert!((0..4000).all(|tick| [20, 150].contains(&level(&flicker, 150, tick))));
+    let neighbour = light(4, LIGHT_FLICKER, 20, 4, 0);
+    let same = (0..4000)
+        .step_by(4)
+        .filter(|&tick| level(&flicker, 150, tick) == level(&neighbour, 150, tick))
+        .count();
+    assert!(
+        same < 900,
+        "two sectors flicker together in {same} of 1000 slots"
+    );
+}
+
+#[test]
+fn a_switched_light_turns_low_and_back_by_its_tag_and_the_others_follow_the_tick() {
+    let mut map = compiled(vec![Mover {
+        tag: 7,
+        ..mover(DOOR, MOVER_DOOR, 0, 112, 0)
+    }]);
+    map.lights = vec![
+        light(0, LIGHT_SWITCHED, 30, 0, 7),
+        light(2, LIGHT_GLOW, 50, 60, 0),
+    ];
+    let map = map.tables();
+    let high = |sector: usize| map.sectors[sector].light;
+    let mut world = TestWorld::start(&map);
+    assert!(world.is_live());
+    assert_eq!(world.lights(&map).collect::<Vec<_>>(), [high(0), high(2)]);
+    world.start_tag(&map, 7);
+    assert_eq!(world.map(&map).sectors[0].light, 30);
+    assert_eq!(
+        world.movers()[0].phase,
+        Phase::Away,
+        "the tag starts the door too"
+    );
+    world.show(&map, 30);
+    assert_eq!(world.lights(&map).collect::<Vec<_>>(), [30, 50]);
+    world.start_tag(&map, 7);
+    world.show(&map, 60);
+    assert_eq!(world.lights(&map).collect::<Vec<_>>(), [high(0), high(2)]);
+    // The cartridge's table keeps the drawn levels.
+    assert_eq!(map.sectors[0].light, high(0));
 }
