@@ -670,7 +670,7 @@ pub fn level(light: &Light, high: u8, tick: u32) -> u8 {
         }
         LIGHT_STROBE if at < u32::from(STROBE_FLASH_TICKS) => high,
         LIGHT_STROBE => light.low,
-        LIGHT_FLICKER if flicker_draw(light.sector, tick / period) % 4 == 0 => light.low,
+        LIGHT_FLICKER if flicker_draw(light.sector, tick / period).is_multiple_of(4) => light.low,
         _ => high,
     }
 }

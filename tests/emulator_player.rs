@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::demos::{replay, PlayerLine};
+use common::demos::{replay, PlayerLine, WorldLine};
 use common::player::sector_index;
 use common::*;
 use portalcast::game::Game;
@@ -409,44 +409,23 @@ fn checked_mover_heights(run: &RomRun) -> Vec<(u32, Vec<i32>)> {
     for line in &run.log {
         if line.starts_with("player ") {
             tick = Some(PlayerLine::parse(line).tick);
-        } else if let Some(rest) = line.strip_prefix("world ") {
+        } else if line.starts_with("world ") {
             let tick = tick.expect("a player line before the world line");
-            let logged: Vec<i32> = field(rest, "heights")
-                .expect("heights=")
-                .split(',')
-                .filter(|h| !h.is_empty())
-                .map(|h| h.parse().expect("a height"))
-                .collect();
-            let host: Vec<i32> = run.host[tick as usize]
-                .world
-                .movers()
-                .iter()
-                .map(|m| m.height)
-                .collect();
-            assert_eq!(logged, host, "the movers after tick {tick}: {line}");
-            let thrown: Vec<u8> = field(rest, "thrown")
-                .expect("thrown=")
-                .split(',')
-                .filter(|t| !t.is_empty())
-                .map(|t| t.parse().expect("0 or 1"))
-                .collect();
-            let host: Vec<u8> = run.host[tick as usize]
-                .world
-                .triggers()
-                .iter()
-                .map(|t| t.thrown)
-                .collect();
-            assert_eq!(thrown, host, "the switches after tick {tick}: {line}");
-            let lights: Vec<u8> = field(rest, "lights")
-                .expect("lights=")
-                .split(',')
-                .filter(|l| !l.is_empty())
-                .map(|l| l.parse().expect("a light level"))
-                .collect();
+            let logged = WorldLine::parse(line);
             let mut shown = run.host[tick as usize];
             shown.show();
-            let host: Vec<u8> = shown.world.lights(&shown.map()).collect();
-            assert_eq!(lights, host, "the light effects after tick {tick}: {line}");
+            let host = WorldLine {
+                heights: shown.world.movers().iter().map(|m| m.height).collect(),
+                thrown: shown
+                    .world
+                    .triggers()
+                    .iter()
+                    .map(|t| t.thrown == TRIGGER_THROWN)
+                    .collect(),
+                lights: shown.world.lights(&shown.map()).collect(),
+            };
+            assert_eq!(logged, host, "the world after tick {tick}: {line}");
+            let logged = logged.heights;
             heights.push((tick, logged));
         }
     }

@@ -8,10 +8,9 @@
 
 mod common;
 
-use common::demos::{render_line_settings, PlayerLine};
+use common::demos::{render_line_settings, PlayerLine, WorldLine};
 use common::*;
 use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
-use portalcast::game::GameWorld;
 use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
 use portalcast::render::demo;
@@ -47,13 +46,9 @@ struct Checker {
     renderer: Renderer,
     colours: MenuColours,
     player: Option<PlayerLine>,
-    /// The movers' heights of the frame the `player` line describes (`world …` line), on a
-    /// map with movers or light effects.
-    mover_heights: Vec<i32>,
-    /// The switches the `world` line gives as thrown.
-    thrown: Vec<bool>,
-    /// The light effects' levels the `world` line gives.
-    lights: Vec<u8>,
+    /// The live world of the frame the `player` line describes (its `world …` line), on a map
+    /// with movers or light effects.
+    world: Option<WorldLine>,
     compared: Vec<Compared>,
     screenshots: BTreeSet<String>,
 }
@@ -74,27 +69,9 @@ impl Checker {
             // (the next frame's `player` line may follow in the same emulator frame).
             if line.text.starts_with("player ") {
                 self.player = Some(PlayerLine::parse(&line.text));
-                self.mover_heights.clear();
-                self.thrown.clear();
-                self.lights.clear();
+                self.world = None;
             } else if line.text.starts_with("world ") {
-                let heights = field(&line.text, "heights").expect("heights=");
-                self.mover_heights = heights
-                    .split(',')
-                    .map(|h| h.parse().expect("a height"))
-                    .collect();
-                self.thrown = field(&line.text, "thrown")
-                    .expect("thrown=")
-                    .split(',')
-                    .filter(|t| !t.is_empty())
-                    .map(|t| t == "1")
-                    .collect();
-                self.lights = field(&line.text, "lights")
-                    .expect("lights=")
-                    .split(',')
-                    .filter(|l| !l.is_empty())
-                    .map(|l| l.parse().expect("a light level"))
-                    .collect();
+                self.world = Some(WorldLine::parse(&line.text));
             } else if line.text.starts_with("render ") {
                 self.compare(&line.text);
                 drawn = true;
@@ -130,22 +107,8 @@ impl Checker {
             resolution,
             halved_flats: false,
         };
-        // The map as the ROM's game had it: its movers at the heights the ROM logged, its
-        // switches thrown and its light effects at the levels it logged.
-        assert_eq!(
-            self.mover_heights.len(),
-            map.movers.len(),
-            "a `world` line gives every mover's height: {text}"
-        );
-        assert_eq!(
-            self.lights.len(),
-            map.lights.len(),
-            "a `world` line gives every light effect's level: {text}"
-        );
-        let mut world = GameWorld::start(&map);
-        world.set_heights(&map, &self.mover_heights);
-        world.set_thrown(&self.thrown);
-        world.set_lights(&map, &self.lights);
+        // The map as the ROM's game had it: the live world the ROM logged.
+        let world = WorldLine::world_of(self.world.as_ref(), &map);
         let live = world.map(&map);
         let stats = self.renderer.render(
             &live,
@@ -266,9 +229,7 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         renderer: Renderer::new(),
         colours: MenuColours::from_palette(&portalcast::assets::PALETTE),
         player: None,
-        mover_heights: Vec::new(),
-        thrown: Vec::new(),
-        lights: Vec::new(),
+        world: None,
         compared: Vec::new(),
         screenshots: BTreeSet::new(),
     };

@@ -118,8 +118,8 @@ fn every_map_survives_random_and_adversarial_input() {
     });
     let mut failures = Vec::new();
     println!("soak: {frames} emulator frames per map, cycle bound {FRAME_CYCLES_BOUND}");
-    println!("| map | frames | ticks | frames drawn | sectors visited | max cycles (resolution) | flips / unflipped frames compared | IWRAM code and data | stack high-water / room | IWRAM never touched (of {IWRAM_USABLE}) | mGBA warnings |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| map | frames | ticks | ticks with a mover moving | frames drawn | sectors visited | max cycles (resolution) | flips / unflipped frames compared | IWRAM code and data | stack high-water / room | IWRAM never touched (of {IWRAM_USABLE}) | mGBA warnings |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (map, report) in maps.iter().zip(reports) {
         match report {
             Ok(row) => println!("{row}"),
@@ -180,6 +180,7 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
     let mut drawn = 0u64;
     let mut last_tick = 0u32;
     let mut warnings = 0u64;
+    let mut world_lines = 0u64;
     let mut recent: Vec<String> = Vec::new();
     while (emulator.frames_run() as u32) < frames {
         let frame = emulator.frames_run() as u32;
@@ -228,6 +229,35 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
                 }
                 sectors.insert(logged.sector);
                 last_tick = logged.tick;
+            } else if let Some(rest) = text.strip_prefix("world ") {
+                // The live world the frame drew: the movers' heights and the switches as the
+                // host's game has them after the same tick.
+                let host = plan
+                    .state_after(last_tick)
+                    .ok_or("a world line before any player")?;
+                let heights: Vec<String> = host
+                    .world
+                    .movers()
+                    .iter()
+                    .map(|m| m.height.to_string())
+                    .collect();
+                let thrown: Vec<String> = host
+                    .world
+                    .triggers()
+                    .iter()
+                    .map(|t| t.thrown.to_string())
+                    .collect();
+                if field(rest, "heights") != Some(heights.join(",").as_str())
+                    || field(rest, "thrown") != Some(thrown.join(",").as_str())
+                {
+                    return Err(format!(
+                        "the ROM's world and the host's differ after tick {last_tick}:\n  rom:  {text}\n  host: heights={} thrown={}\n{}",
+                        heights.join(","),
+                        thrown.join(","),
+                        context()
+                    ));
+                }
+                world_lines += 1;
             } else if text.starts_with("render ") {
                 drawn += 1;
                 let cycles = number(text, "cycles");
@@ -304,8 +334,26 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
             "the soak hardly played: {drawn} frames drawn, sectors {sectors:?}"
         ));
     }
+    // Every shipped map moves (issue 18): the soak plays with its movers running, checked
+    // every tick like the player.
+    let moving_ticks = plan.states[..=last_tick as usize]
+        .iter()
+        .filter(|game| {
+            game.map_name() == map
+                && game
+                    .world
+                    .movers()
+                    .iter()
+                    .any(|mover| mover.phase != portalcast::world::Phase::Resting)
+        })
+        .count();
+    if moving_ticks == 0 || world_lines < drawn {
+        return Err(format!(
+            "the movers never moved ({moving_ticks} ticks with one away from rest) or the ROM drew frames without its world ({world_lines} world lines, {drawn} frames)"
+        ));
+    }
     Ok(format!(
-        "| {map} | {frames} | {} | {drawn} | {} | {} ({}) | {flips} / {pages_compared} | {iwram_used} | {stack_used_host} / {stack_room} | {} | {warnings} |",
+        "| {map} | {frames} | {} | {moving_ticks} | {drawn} | {} | {} ({}) | {flips} / {pages_compared} | {iwram_used} | {stack_used_host} / {stack_room} | {} | {warnings} |",
         last_tick,
         sectors.len(),
         max_cycles.0,
@@ -464,7 +512,7 @@ impl Plan {
             Buttons::DOWN.0 | Buttons::R.0,
         ];
         let ticks = 20 + self.rng.below(200) as u32;
-        match self.rng.below(9) {
+        match self.rng.below(10) {
             // Random walking, strafing and turning.
             0 => {
                 let mut left = ticks;
@@ -537,6 +585,22 @@ impl Plan {
                 self.hold(Buttons::SELECT.0, 1);
                 self.hold(Buttons::UP.0, ticks / 2);
                 self.press(Buttons::SELECT.0 | Buttons::A.0);
+            }
+            // Walking and using (L + R) what is in front: doors, lifts and switches, turning a
+            // little between uses.
+            9 => {
+                for _ in 0..ticks / 12 {
+                    let walk = 6 + self.rng.below(12) as u32;
+                    self.hold(Buttons::UP.0, walk);
+                    self.hold(Buttons::L.0 | Buttons::R.0, 2);
+                    let turn = if self.rng.below(2) == 0 {
+                        Buttons::LEFT.0
+                    } else {
+                        Buttons::RIGHT.0
+                    };
+                    let turning = self.rng.below(12) as u32;
+                    self.hold(turn, turning);
+                }
             }
             // The menu: random moves and changes, except the map (the soak stays on `map`).
             7 => {

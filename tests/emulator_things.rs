@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::demos::{render_line_settings, PlayerLine};
+use common::demos::{render_line_settings, PlayerLine, WorldLine};
 use common::*;
 use portalcast::frame::PAGE_ROW_HALFWORDS;
 use portalcast::render::surface::{Surface, THING_DEPTH_MIN};
@@ -83,20 +83,22 @@ fn sprite_covers(
     Some(covers)
 }
 
-/// The host's render of the ROM's frame of `render_line` (posed by `player`), recording each
-/// pixel's surface; panics unless the ROM's VRAM page is identical.
+/// The host's render of the ROM's frame of `render_line` (posed by `player`, its live world as
+/// `world` gives it), recording each pixel's surface; panics unless the ROM's VRAM page is
+/// identical.
 fn host_frame_matching(
     emulator: &portalcast_harness::Emulator,
     renderer: &mut Renderer,
-    player: &PlayerLine,
+    (player, world): (&PlayerLine, Option<&WorldLine>),
     render_line: &str,
 ) -> (MapTables<'static>, View, RecordingCanvas) {
     let (map, settings) = render_line_settings(render_line);
     let camera = player.camera();
     let view = View::new(&camera, &settings).at_tick(player.tick);
     let mut canvas = RecordingCanvas::new(settings.resolution);
+    let live = WorldLine::world_of(world, &map);
     renderer.render(
-        &map,
+        &live.map(&map),
         &portalcast::render::demo::render_assets(),
         &view,
         &mut canvas,
@@ -120,10 +122,10 @@ fn host_frame_matching(
 fn compare_frame(
     emulator: &portalcast_harness::Emulator,
     renderer: &mut Renderer,
-    player: &PlayerLine,
+    (player, world): (&PlayerLine, Option<&WorldLine>),
     render_line: &str,
 ) -> Seen {
-    let (map, view, canvas) = host_frame_matching(emulator, renderer, player, render_line);
+    let (map, view, canvas) = host_frame_matching(emulator, renderer, (player, world), render_line);
     let columns = view.viewport.width as usize;
     let oracle_camera = portalcast_oracle::Camera::from_fixed(
         player.x,
@@ -210,13 +212,15 @@ fn presses(keys: &[Keys]) -> Vec<Keys> {
 }
 
 /// Plays `keys` a frame each and calls `frame` with every frame the ROM draws outside the Start
-/// menu: the emulator, the pose its `player` line logged, and its `render` line.
+/// menu: the emulator, the pose its `player` line logged with the live world its `world` line
+/// logged, and its `render` line.
 fn play_frames(
     emulator: &mut portalcast_harness::Emulator,
     keys: &[Keys],
-    mut frame: impl FnMut(&portalcast_harness::Emulator, &PlayerLine, &str),
+    mut frame: impl FnMut(&portalcast_harness::Emulator, (&PlayerLine, Option<&WorldLine>), &str),
 ) {
     let mut player = None;
+    let mut world = None;
     for &held in keys {
         emulator.set_keys(held);
         emulator
@@ -231,10 +235,15 @@ fn play_frames(
             }
             if line.text.starts_with("player ") {
                 player = Some(PlayerLine::parse(&line.text));
+                world = None;
+            } else if line.text.starts_with("world ") {
+                world = Some(WorldLine::parse(&line.text));
             } else if line.text.starts_with("render ") {
                 // The first frame's player line may have gone with the boot's log.
                 match &player {
-                    Some(player) if player.menu < 0 => frame(emulator, player, &line.text),
+                    Some(player) if player.menu < 0 => {
+                        frame(emulator, (player, world.as_ref()), &line.text)
+                    }
                     _ => {}
                 }
             }

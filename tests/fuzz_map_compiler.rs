@@ -46,7 +46,7 @@ use portalcast_format::limits::{
 };
 use portalcast_format::{
     MapTables, Sky, Texture, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING, THING_SOLID,
-    THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
+    THING_TRANSLUCENT, TRIGGER_SWITCH, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT, WALL_SWITCH,
 };
 use portalcast_oracle::RecordingCanvas;
 use proptest::prelude::*;
@@ -656,9 +656,24 @@ fn check_wall_textures(
             || wall.upper_texture != NO_TEXTURE
             || wall.lower_texture != NO_TEXTURE
             || wall.middle != NO_TEXTURE
-            || wall.flags != 0
+            || wall.flags & !WALL_SWITCH != 0
         {
             return Err(format!("sector {s} wall {i}: solid wall textures {wall:?}"));
+        }
+        // A switch's wall is a switch trigger's, whose used texture is a wall texture too.
+        let switch = map.triggers.iter().find(|t| {
+            t.kind == TRIGGER_SWITCH
+                && map
+                    .walls
+                    .get(usize::from(t.wall))
+                    .is_some_and(|w| std::ptr::eq(w, wall))
+        });
+        let switch_ok = match switch {
+            Some(trigger) => wall.flags == WALL_SWITCH && wall_texture(trigger.used_texture),
+            None => wall.flags == 0,
+        };
+        if !switch_ok {
+            return Err(format!("sector {s} wall {i}: switch {wall:?} {switch:?}"));
         }
         return Ok(());
     };

@@ -174,3 +174,51 @@ pub fn render_line_settings(
     };
     (map, settings)
 }
+
+/// The ROM's `world …` line, printed after a frame's `player` line on a map with movers or
+/// light effects: the live state the frame was drawn with.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct WorldLine {
+    /// Each mover's height, in the order of `MapTables::movers`.
+    pub heights: Vec<i32>,
+    /// Each trigger's switch thrown, in the order of `MapTables::triggers`.
+    pub thrown: Vec<bool>,
+    /// Each light effect's level, in the order of `MapTables::lights`.
+    pub lights: Vec<u8>,
+}
+
+impl WorldLine {
+    /// Parses a `world …` line.
+    pub fn parse(text: &str) -> WorldLine {
+        fn list<T>(text: &str, key: &str, item: impl Fn(&str) -> T) -> Vec<T> {
+            field(text, key)
+                .unwrap_or_else(|| panic!("no {key}= in {text:?}"))
+                .split(',')
+                .filter(|item| !item.is_empty())
+                .map(item)
+                .collect()
+        }
+        WorldLine {
+            heights: list(text, "heights", |h| h.parse().expect("a height")),
+            thrown: list(text, "thrown", |t| t == "1"),
+            lights: list(text, "lights", |l| l.parse().expect("a light level")),
+        }
+    }
+
+    /// `map`'s world as the line gives it (the map as it starts where `line` is `None`: the
+    /// ROM prints no world line for a map without movers or light effects).
+    pub fn world_of(
+        line: Option<&WorldLine>,
+        map: &portalcast_format::MapTables,
+    ) -> portalcast::game::GameWorld {
+        let mut world = portalcast::game::GameWorld::start(map);
+        if let Some(line) = line {
+            assert_eq!(line.heights.len(), map.movers.len(), "{line:?}");
+            assert_eq!(line.lights.len(), map.lights.len(), "{line:?}");
+            world.set_heights(map, &line.heights);
+            world.set_thrown(&line.thrown);
+            world.set_lights(map, &line.lights);
+        }
+        world
+    }
+}

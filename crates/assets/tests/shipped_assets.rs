@@ -10,7 +10,7 @@ use common::{shipped_assets, Scratch};
 use portalcast_assets::{compile_dir, Compiled};
 use portalcast_format::{
     MapTables, Sector, NO_TEXTURE, SKY, THING_HANGING, THING_TRANSLUCENT, WALL_MIDDLE_BLOCKS,
-    WALL_MIDDLE_TRANSLUCENT,
+    WALL_MIDDLE_TRANSLUCENT, WALL_SWITCH,
 };
 
 fn compiled() -> Compiled {
@@ -72,7 +72,7 @@ fn check_invariants(map: &MapTables<'_>, texture_count: usize, compiled: &Compil
                         (NO_TEXTURE, NO_TEXTURE)
                     );
                     assert_eq!(
-                        (wall.middle, wall.flags),
+                        (wall.middle, wall.flags & !WALL_SWITCH),
                         (NO_TEXTURE, 0),
                         "{name}: no middle on a solid wall"
                     );
