@@ -13,6 +13,7 @@ pub mod flight;
 pub mod frame;
 pub mod game;
 pub mod kernel_check;
+pub mod live_flight;
 pub mod math;
 pub mod math_bench;
 pub mod menu;

@@ -13,12 +13,12 @@ fn main() {
 #[cfg(target_os = "none")]
 mod rom {
     use portalcast::bench::{self, BenchLine};
-    use portalcast::flight::Flight;
     use portalcast::frame::Resolution;
-    use portalcast::game::Game;
+    use portalcast::game::{Game, GameWorld};
     use portalcast::hw::kernels::{VramCanvas, VramPage};
     use portalcast::hw::memory::GbaRenderer;
     use portalcast::hw::{self, input, log, memory, meter, video::Display};
+    use portalcast::live_flight::LiveFlight;
     use portalcast::menu::{self, MenuColours};
     use portalcast::player::input::Buttons;
     use portalcast::render::demo;
@@ -426,23 +426,48 @@ mod rom {
 
     /// R held at boot: the benchmark. Every run of [`bench::all_runs`] (with Select also held,
     /// only the regression guard's, [`bench::guard_runs`]) flies
-    /// [`bench::FRAMES_PER_SETTING`] frames of the map's [`Flight`], one line per frame, then
+    /// the map's [`LiveFlight`] for [`bench::frames_for`] frames, one line per frame, then
     /// `bench done`. `cargo bench-report` and the guard test read the lines.
     fn bench_scene(display: &mut Display, guard_only: bool) -> ! {
         let renderer = memory::renderer_in_ewram(meter::now);
+        let world = memory::bench_world_in_ewram();
         for (map, settings) in bench::guard_runs() {
             let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-            bench_run(display, renderer, &render_assets, map, &settings, true);
+            bench_run(
+                display,
+                renderer,
+                world,
+                &render_assets,
+                map,
+                &settings,
+                true,
+            );
         }
         log::info(format_args!("{}", bench::GUARD_DONE));
         if !guard_only {
             for (map, settings) in bench::report_runs() {
                 let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-                bench_run(display, renderer, &render_assets, map, &settings, true);
+                bench_run(
+                    display,
+                    renderer,
+                    world,
+                    &render_assets,
+                    map,
+                    &settings,
+                    true,
+                );
             }
             for (map, settings) in bench::setup_runs() {
                 let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-                bench_run(display, renderer, &render_assets, map, &settings, false);
+                bench_run(
+                    display,
+                    renderer,
+                    world,
+                    &render_assets,
+                    map,
+                    &settings,
+                    false,
+                );
             }
         }
         log_stack();
@@ -459,17 +484,18 @@ mod rom {
     fn bench_run(
         display: &mut Display,
         renderer: &mut GbaRenderer,
+        world: &mut GameWorld,
         render_assets: &RenderAssets,
         map: &MapTables,
         settings: &Settings,
         kernels: bool,
     ) {
-        let frames = Flight::new(map)
-            .take(1)
-            .chain(Flight::new(map).take(bench::FRAMES_PER_SETTING as usize));
-        for (index, camera) in frames.enumerate() {
-            // The fly-through's clock: a tick a frame (the first, unmeasured, repeats frame 0).
-            let view = View::new(&camera, settings).at_tick((index as u32).saturating_sub(1));
+        let mut flight = LiveFlight::new(map, world);
+        // The first frame, unmeasured, is frame 0 drawn once more.
+        for index in 0..=bench::frames_for(map) {
+            let camera = flight.camera();
+            // The fly-through's clock: a tick a frame.
+            let view = View::new(&camera, settings).at_tick(flight.frame());
             let page = VramPage::back_of(display.shown_page());
             let mut canvas = if kernels {
                 VramCanvas::new(page, settings.resolution)
@@ -477,7 +503,7 @@ mod rom {
                 VramCanvas::without_kernels(page, settings.resolution)
             };
             let started = meter::now();
-            let stats = renderer.render(map, render_assets, &view, &mut canvas);
+            let stats = renderer.render(&world.map(map), render_assets, &view, &mut canvas);
             let cycles = meter::cycles_since(started);
             if kernels {
                 display.flip_at_vblank(settings.resolution);
@@ -486,7 +512,7 @@ mod rom {
                 let line = BenchLine {
                     map: map.name,
                     settings,
-                    frame: index as u32 - 1,
+                    frame: index - 1,
                     cycles,
                     stats: &stats,
                 };
@@ -495,6 +521,7 @@ mod rom {
                 } else {
                     log::info(format_args!("{}", bench::SetupLine(line)));
                 }
+                flight.advance(world);
             }
         }
     }

@@ -419,11 +419,15 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         }
     }
 
-    /// Whether `mover`'s plane may move to `height` with `player` where it is: the body, as the
-    /// move leaves it, still fits the moved sector if its disc touches it, and every other
-    /// sector its disc touches if the move carries it.
+    /// Whether `mover`'s plane may move to `height` with `player` where it is: a ceiling may
+    /// always rise (it only makes room: a door opens even on a body already overlapping its
+    /// doorway); else the body, as the move leaves it, still fits the moved sector if its disc
+    /// touches it, and every other sector its disc touches if the move carries it.
     fn allows(&self, map: &MapTables, mover: &Mover, height: i32, player: &Player) -> bool {
         let index = mover.sector;
+        if !moves_floor(mover) && height >= self.sectors[usize::from(index)].ceil_z {
+            return true;
+        }
         // The walls and vertices are the cartridge's; only heights live.
         if !touches(
             map,
@@ -500,7 +504,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         let mut sector = player.sector;
         // A few portals at most lie within the reach.
         for _ in 0..4 {
-            let here = self.mover_of(map, sector);
+            let here = self.mover_index(map, sector);
             let Some(wall_index) = exit_wall(&live, sector, from, to) else {
                 // The reach ends inside this sector.
                 return here
@@ -523,7 +527,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
                 }
                 Some(next) => {
                     if let Some(index) = self
-                        .mover_of(map, next)
+                        .mover_index(map, next)
                         .filter(|&i| opens_on_use(&map.movers[i]))
                     {
                         return Some(UseTarget::Mover(index));
@@ -570,7 +574,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
             .get(usize::from(sector))
             .and_then(|here| {
                 map.sector_walls(here).iter().find_map(|wall| {
-                    let index = self.mover_of(map, wall.neighbour()?)?;
+                    let index = self.mover_index(map, wall.neighbour()?)?;
                     (map.movers[index].flags & MOVER_ON_TOUCH != 0).then_some(index as u16)
                 })
             })
@@ -650,7 +654,8 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         };
     }
 
-    fn mover_of(&self, map: &MapTables, sector: u16) -> Option<usize> {
+    /// The index in `MapTables::movers` of `sector`'s mover, if it moves.
+    pub fn mover_index(&self, map: &MapTables, sector: u16) -> Option<usize> {
         map.movers.binary_search_by_key(&sector, |m| m.sector).ok()
     }
 }
@@ -708,6 +713,16 @@ fn touches(map: &MapTables, sector: &Sector, p: WorldPoint, radius: i32) -> bool
         // The wall's length in 24.8 bits, by the radius in 24.8 bits: the cross product's scale.
         cross(a, b, p) > -(i64::from(radius * 256) * i64::from(wall.length_fx8))
     })
+}
+
+/// Whether a player's body centred at `p` in sector `sector` lies in that sector alone: its
+/// disc touches none of the sectors beyond its portals (by the test a mover's rules use, so they
+/// would see it only there).
+pub fn body_only_in(map: &MapTables, sector: u16, p: WorldPoint) -> bool {
+    map.sector_walls(&map.sectors[usize::from(sector)])
+        .iter()
+        .filter_map(|wall| wall.neighbour())
+        .all(|next| !touches(map, &map.sectors[usize::from(next)], p, RADIUS))
 }
 
 /// The bounding box of `sector`'s vertices grown by the body's radius and [`TOUCH_REACH`] (and

@@ -184,6 +184,28 @@ pub fn game_in_ewram(
     }
 }
 
+use crate::game::GameWorld;
+
+#[link_section = ".ewram_bss"]
+static mut BENCH_WORLD: MaybeUninit<GameWorld> = MaybeUninit::uninit();
+static mut BENCH_WORLD_TAKEN: bool = false;
+
+/// The bench scene's live world (its fly-through's doors and lifts: [`crate::live_flight`]), in
+/// EWRAM for the same reason as the game's. Hands it out once.
+pub fn bench_world_in_ewram() -> &'static mut GameWorld {
+    // SAFETY: single-threaded, and the flag makes this the only reference ever made to the
+    // static; the interrupt handler never touches it. `write` initialises it (EWRAM's bss
+    // starts as whatever the last program left) before the reference is made.
+    unsafe {
+        let taken = &raw mut BENCH_WORLD_TAKEN;
+        assert!(!*taken, "the bench's world is handed out once");
+        *taken = true;
+        let slot: *mut GameWorld = (&raw mut BENCH_WORLD).cast();
+        slot.write(const { GameWorld::new() });
+        &mut *slot
+    }
+}
+
 use crate::assets;
 use portalcast_format::{Align4, Texture};
 

@@ -718,12 +718,18 @@ mod row_tests {
     }
 
     /// The wall between the eye-space points `[ax, az]` and `[bx, bz]` (times `scale`, 24.8
-    /// bits), turned to face the eye, and the columns it owns; `None` if it owns none.
+    /// bits), turned to face the eye, and the columns it owns; `None` if it owns none, or if it
+    /// passes through the eye: no map has such a wall (the eye is strictly inside its sector,
+    /// and no other sector's wall reaches inside it), and its projection has no divisor.
     fn front_facing_wall(
         viewport: &Viewport,
         [ax, az, bx, bz]: [i32; 4],
         scale: i32,
     ) -> Option<(EyePoint, EyePoint, i32, i32)> {
+        let (ax64, az64, bx64, bz64) = (i64::from(ax), i64::from(az), i64::from(bx), i64::from(bz));
+        if ax64 * bz64 == az64 * bx64 && ax64 * bx64 + az64 * bz64 <= 0 {
+            return None;
+        }
         let a = EyePoint::new(Fx24_8::from_bits(ax * scale), Fx24_8::from_bits(az * scale));
         let b = EyePoint::new(Fx24_8::from_bits(bx * scale), Fx24_8::from_bits(bz * scale));
         // A back-facing wall owns nothing; the same wall seen from its front does.

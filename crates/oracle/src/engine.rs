@@ -2,9 +2,10 @@
 //! (through the rasterizer twins, recording which surface each pixel shows), render it with the
 //! oracle, and compare. The accuracy test and the benchmark report both go through here.
 
-use portalcast::bench::{ACCURACY_FRAME_STEP, FRAMES_PER_SETTING};
-use portalcast::flight::Flight;
+use portalcast::bench::{frames_for, ACCURACY_FRAME_STEP};
 use portalcast::frame::Resolution;
+use portalcast::game::GameWorld;
+use portalcast::live_flight::LiveFlight;
 use portalcast::raster::column::ColumnTexture;
 use portalcast::raster::flat::FlatTexture;
 use portalcast::raster::sprite::SpriteColumn;
@@ -237,8 +238,8 @@ impl RunAccuracy {
 }
 
 /// The accuracy of the bench run `(map, settings)`: every [`ACCURACY_FRAME_STEP`]-th frame of the
-/// map's fly-through (the frames the ROM's bench scene times) rendered by the engine and by the
-/// oracle and compared.
+/// map's fly-through through its live world (the frames the ROM's bench scene times) rendered by
+/// the engine and by the oracle and compared.
 pub fn bench_run_accuracy(
     renderer: &mut Renderer,
     map: &MapTables,
@@ -246,15 +247,19 @@ pub fn bench_run_accuracy(
     settings: &Settings,
 ) -> RunAccuracy {
     let mut accuracy = RunAccuracy::default();
-    let poses = Flight::new(map)
-        .take(FRAMES_PER_SETTING as usize)
-        .enumerate()
-        .step_by(ACCURACY_FRAME_STEP as usize);
-    // The fly-through's clock is a tick a frame, as in the ROM's bench scene.
-    for (frame, camera) in poses {
-        let tick = frame as u32;
-        accuracy
-            .add(&compare_with_engine(renderer, map, assets, &camera, settings, tick).comparison);
+    let mut world = GameWorld::new();
+    let mut flight = LiveFlight::new(map, &mut world);
+    // The fly-through's clock is a tick a frame, as in the ROM's bench scene; the engine and
+    // the oracle draw the same live world.
+    for frame in 0..frames_for(map) {
+        if frame % ACCURACY_FRAME_STEP == 0 {
+            let live = world.map(map);
+            accuracy.add(
+                &compare_with_engine(renderer, &live, assets, &flight.camera(), settings, frame)
+                    .comparison,
+            );
+        }
+        flight.advance(&mut world);
     }
     accuracy
 }

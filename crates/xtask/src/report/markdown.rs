@@ -364,6 +364,12 @@ fn method(doc: &mut String, measurements: &Measurements) {
         .guard()
         .first()
         .map_or(0, |run| run.frames.len());
+    let bench_map = measurements.guard().first().map(|run| run.map.clone());
+    let other_frames = measurements
+        .runs
+        .iter()
+        .find(|run| Some(&run.map) != bench_map.as_ref())
+        .map_or(0, |run| run.frames.len());
     let mut stages = stage_names(&measurements.runs.iter().collect::<Vec<_>>());
     stages.push("other".to_string());
     let _ = write!(
@@ -375,10 +381,15 @@ fn method(doc: &mut String, measurements: &Measurements) {
          of dead ends, at about Doom's running speed, the eye at standing height, turning smoothly \
          towards where it goes. The path is derived from the map alone, so every map has one, and \
          every pose is exact in the engine's formats, so the host replays the ROM's frames exactly. \
+         The path is flown through the map's live world (`src/live_flight.rs`), a game tick a \
+         frame: the camera waits at a shut door and opens it, rides a lift standing on it, \
+         and the light effects run, so the frames include movers mid-motion. \
          For each map and setting the ROM draws one unmeasured frame (it fills the per-resolution \
-         tables, the column angles), then {frames} frames along the path, timing \
+         tables, the column angles), then {frames} frames along the path on the bench map ({} on \
+         every other map, the generated ones included), timing \
          `Renderer::render` with its cycle meter (timers 2 and 3 cascaded) and printing one line per \
-         frame with the cycles of each stage:\n\n"
+         frame with the cycles of each stage:\n\n",
+        other_frames
     );
     for stage in &stages {
         let meaning = if stage == "other" {
@@ -805,8 +816,8 @@ fn set_up(doc: &mut String, measurements: &Measurements) {
          columns). What the kernels add to each stage, over the pixels it draws, is their cost \
          per pixel as the game runs them: texels in EWRAM, the colormap in OBJ VRAM, the call \
          and its dispatch included (the kernel table above has texels and colormap in IWRAM and \
-         the call cancelled out). Means over the 64 frames; `cargo bench-rom` prints this table \
-         too.\n\n",
+         the call cancelled out). Means over the frames of the runs; `cargo bench-rom` prints \
+         this table too.\n\n",
     );
     doc.push_str(&set_up_table(
         measurements.guard(),

@@ -1,0 +1,95 @@
+//! The fly-through through the live world (`portalcast::live_flight`, issue 18): on every shipped
+//! map the camera's eye stays strictly between its sector's live floor and ceiling, the camera
+//! never gives up waiting, and the world it flies through is the game's (its movers within
+//! their ranges); on the bench map it opens the corridor's door and waits for it, and rides the
+//! lift down with its eye on the lift's floor.
+
+use portalcast::assets;
+use portalcast::flight::EYE_HEIGHT;
+use portalcast::game::GameWorld;
+use portalcast::live_flight::{LiveFlight, MAX_WAIT_FRAMES};
+use portalcast::world::Phase;
+use portalcast_format::{MOVER_DOOR, MOVER_LIFT};
+
+/// Frames flown on each map: well past one tour of the bench map.
+const FRAMES: u32 = 2000;
+
+#[test]
+fn the_camera_stays_inside_the_live_heights_and_never_gives_up_waiting() {
+    for map in assets::MAPS {
+        let mut world = GameWorld::new();
+        let mut flight = LiveFlight::new(map, &mut world);
+        let mut moved = 0;
+        let mut still = 0u32;
+        let mut last = flight.camera().position;
+        for frame in 0..FRAMES {
+            let camera = flight.camera();
+            let live = world.map(map);
+            let sector = &live.sectors[usize::from(camera.sector)];
+            let eye = camera.eye_z.to_bits();
+            assert!(
+                sector.floor_z * 256 < eye && eye < sector.ceil_z * 256,
+                "{} frame {frame}: eye {eye} outside sector {} ({}..{})",
+                map.name,
+                camera.sector,
+                sector.floor_z,
+                sector.ceil_z
+            );
+            for (state, mover) in world.movers().iter().zip(map.movers) {
+                assert!((mover.low..=mover.high).contains(&state.height));
+            }
+            moved += usize::from(world.movers().iter().any(|m| m.phase != Phase::Resting));
+            still = if camera.position == last {
+                still + 1
+            } else {
+                0
+            };
+            assert!(
+                still < MAX_WAIT_FRAMES / 2,
+                "{} frame {frame}: the camera waited {still} frames",
+                map.name
+            );
+            last = camera.position;
+            flight.advance(&mut world);
+        }
+        assert!(moved > 0, "{}: no mover moved in the fly-through", map.name);
+    }
+}
+
+#[test]
+fn on_the_bench_map_the_camera_opens_the_door_and_rides_the_lift() {
+    let map = assets::MAPS.iter().find(|m| m.name == "bench").unwrap();
+    let door = map
+        .movers
+        .iter()
+        .position(|m| m.kind == MOVER_DOOR)
+        .unwrap();
+    let lift = map
+        .movers
+        .iter()
+        .position(|m| m.kind == MOVER_LIFT)
+        .unwrap();
+    let door_sector = map.movers[door].sector;
+    let lift_sector = map.movers[lift].sector;
+    let mut world = GameWorld::new();
+    let mut flight = LiveFlight::new(map, &mut world);
+    let (mut through_door, mut rode_down) = (None, false);
+    for frame in 0..portalcast::bench::BENCH_MAP_FRAMES {
+        let camera = flight.camera();
+        if camera.sector == door_sector && through_door.is_none() {
+            through_door = Some((frame, world.movers()[door].height));
+        }
+        if camera.sector == lift_sector {
+            let floor = world.movers()[lift].height;
+            assert_eq!(camera.eye_z.to_bits(), (floor + EYE_HEIGHT) * 256);
+            rode_down |= floor < map.movers[lift].high - 32;
+        }
+        flight.advance(&mut world);
+    }
+    let (frame, height) = through_door.expect("the camera went through the door");
+    assert!(height >= 56, "frame {frame}: through the door at {height}");
+    assert!(
+        rode_down,
+        "the camera did not ride the lift down within the bench's frames"
+    );
+}
