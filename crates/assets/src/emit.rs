@@ -274,7 +274,7 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
     let live_sectors = compiled
         .maps
         .iter()
-        .filter(|map| !map.movers.is_empty())
+        .filter(|map| !map.movers.is_empty() || !map.lights.is_empty())
         .map(|map| map.sectors.len())
         .max()
         .unwrap_or(0);
@@ -292,8 +292,8 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
         .unwrap_or(0);
     let _ = writeln!(
         s,
-        "/// Sectors of the largest map with movers: the live copy of its sector table the game\n\
-         /// keeps (0: no map has movers, and the game keeps none).\n\
+        "/// Sectors of the largest map with movers or light effects: the live copy of its sector\n\
+         /// table the game keeps (0: no map has either, and the game keeps none).\n\
          pub const LIVE_SECTORS: usize = {live_sectors};\n\
          /// The most movers a map has: the game keeps a state for each.\n\
          pub const LIVE_MOVERS: usize = {live_movers};\n\

@@ -1,9 +1,14 @@
 //! Line tokens and number syntax shared by the `.map` and `.grid` parsers.
 
 use portalcast_format::limits::{HEIGHT_DIFF_MAX, WORLD_COORD_MAX};
+use portalcast_format::{
+    LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE, LIGHT_SWITCHED, STROBE_FLASH_TICKS,
+};
 
 use crate::diag::{Loc, Located};
-use crate::source::{MoverKind, SourceMover, Spanned, ThingOptions, DEFAULT_FRAME_TICKS};
+use crate::source::{
+    MoverKind, SourceLight, SourceMover, Spanned, ThingOptions, DEFAULT_FRAME_TICKS,
+};
 
 /// A whitespace-separated word of a line and where it starts.
 #[derive(Clone, Copy, Debug)]
@@ -99,6 +104,11 @@ impl<'t> KeyValues<'t> {
         (positional, KeyValues { pairs })
     }
 
+    /// Whether the directive sets `key`, without marking it as known.
+    pub fn has(&self, key: &str) -> bool {
+        self.pairs.iter().any(|(k, _, _)| k.text == key)
+    }
+
     /// The value of `key`, marking it as known.
     pub fn take(&mut self, key: &str) -> Option<Token<'t>> {
         self.pairs
@@ -140,7 +150,7 @@ pub(crate) const SECTOR_FLAGS: &[&str] = &["door", "touch", "locked"];
 /// Fastest `speed=`: world units a mover's plane moves a tick.
 pub(crate) const MOVER_SPEED_MAX: i64 = 64;
 
-/// Largest `tag=` (of a mover or a switch) and `trigger=`; tag 0 means none.
+/// Largest `tag=` (of a mover, a switched light or a switch) and `trigger=`; tag 0 means none.
 pub(crate) const TAG_MAX: i64 = u16::MAX as i64;
 
 /// Parses a tag (`tag=N`, `trigger=N`): 1 ..= [`TAG_MAX`].
@@ -152,9 +162,15 @@ pub(crate) fn tag(token: Token<'_>, what: &str) -> Result<Spanned<u16>, Located>
 /// `crusher=` taken from `keys`), the words `touch` and `locked` (among `flags`, from
 /// [`split_flags`]) and the settings `speed=`, `wait=`, `tag=`. `Some(None)` for a sector that
 /// does not move, `None` if something is wrong (each error reported once, at its word).
+///
+/// `tag_token` is the line's `tag=` and `tag` its value parsed (the caller takes and parses it:
+/// a switched light uses it too), and `switched` whether the line has a switched light, which
+/// makes `tag=` without a mover right.
 pub(crate) fn mover_options(
     flags: &[Token<'_>],
     keys: &mut KeyValues<'_>,
+    (tag_token, tag): (Option<Token<'_>>, Option<Spanned<u16>>),
+    switched: bool,
     errors: &mut Vec<Located>,
 ) -> Option<Option<SourceMover>> {
     let flag = |word: &str| flags.iter().find(|f| f.text == word).map(|f| f.loc);
@@ -185,10 +201,9 @@ pub(crate) fn mover_options(
     }
     let speed = keys.take("speed");
     let wait = keys.take("wait");
-    let tag_token = keys.take("tag");
     let (touch, locked) = (flag("touch"), flag("locked"));
     let Some(&(kind, _, loc, height)) = words.first() else {
-        for (key, token) in [("speed", speed), ("wait", wait), ("tag", tag_token)] {
+        for (key, token) in [("speed", speed), ("wait", wait)] {
             if let Some(token) = token {
                 errors.push((
                     token.loc,
@@ -197,6 +212,12 @@ pub(crate) fn mover_options(
                     ),
                 ));
             }
+        }
+        if let Some(token) = tag_token.filter(|_| !switched) {
+            errors.push((
+                token.loc,
+                "tag= applies to a moving sector or a switched light; add a mover word (door, lift=LOW, platform=OTHER, crusher=LOW) or switched=LOW, or remove tag=".to_string(),
+            ));
         }
         if let Some(at) = touch {
             errors.push((
@@ -259,7 +280,6 @@ pub(crate) fn mover_options(
     };
     let speed = number(speed, "speed", 1, MOVER_SPEED_MAX, default_speed);
     let wait = number(wait, "wait", 0, i64::from(u16::MAX), default_wait);
-    let tag = tag_token.and_then(|t| tag(t, "tag").map_err(|e| errors.push(e)).ok());
     let height = height.and_then(|t| {
         integer(t, &format!("{} height", kind.name()))
             .map(|value| Spanned::new(value, t.loc))
@@ -277,6 +297,119 @@ pub(crate) fn mover_options(
         tag,
     };
     (errors.len() == before).then_some(Some(mover))
+}
+
+/// The light effect words of a sector line (`glow=LOW`, ...) and the [`Light::kind`] each
+/// gives.
+///
+/// [`Light::kind`]: portalcast_format::Light::kind
+const LIGHT_WORDS: [(&str, u8); 4] = [
+    ("glow", LIGHT_GLOW),
+    ("strobe", LIGHT_STROBE),
+    ("flicker", LIGHT_FLICKER),
+    ("switched", LIGHT_SWITCHED),
+];
+
+/// Shortest `period=` of a glow and a flicker, ticks: a glow needs a tick down and a tick up.
+const PERIOD_MIN: i64 = 2;
+
+/// `period=` of a glow, a strobe and a flicker when the sector gives none, ticks: a glow's
+/// two-second breath, Doom's slow strobe (5 ticks lit, 35 dark), a flicker drawn every 4.
+fn default_period(kind: u8) -> u16 {
+    match kind {
+        LIGHT_GLOW => 120,
+        LIGHT_STROBE => 40,
+        LIGHT_FLICKER => 4,
+        _ => 0,
+    }
+}
+
+/// The light effect of a sector line: its word (`glow=LOW`, `strobe=LOW`, `flicker=LOW`,
+/// `switched=LOW`, taken from `keys`) and `period=`. `tag_token` is the line's `tag=` and `tag`
+/// its value parsed (the caller takes and parses it once: a mover uses it too); a switched
+/// light needs it. `Some(None)` for a sector whose light stays, `None` if something is wrong
+/// (each error reported once, at its word). The low level is checked against the sector's
+/// light by `map_build`, which knows both.
+pub(crate) fn light_options(
+    keys: &mut KeyValues<'_>,
+    (tag_token, tag): (Option<Token<'_>>, Option<Spanned<u16>>),
+    errors: &mut Vec<Located>,
+) -> Option<Option<SourceLight>> {
+    // Every effect word written, in the order written: the first is the effect, the others
+    // are errors.
+    let mut words: Vec<(&'static str, u8, Token<'_>)> = LIGHT_WORDS
+        .iter()
+        .filter_map(|&(word, kind)| Some((word, kind, keys.take(word)?)))
+        .collect();
+    words.sort_by_key(|word| word.2.loc);
+    let before = errors.len();
+    for extra in words.iter().skip(1) {
+        errors.push((
+            extra.2.loc,
+            format!(
+                "'{}=' after '{}=': a sector has one light effect; keep one of glow=LOW, strobe=LOW, flicker=LOW, switched=LOW",
+                extra.0, words[0].0
+            ),
+        ));
+    }
+    let period = keys.take("period");
+    let Some(&(word, kind, low_token)) = words.first() else {
+        if let Some(token) = period {
+            errors.push((
+                token.loc,
+                "period= applies to a light effect; add glow=LOW, strobe=LOW or flicker=LOW, or remove period=".to_string(),
+            ));
+        }
+        return (errors.len() == before).then_some(None);
+    };
+    let low = integer_in(low_token, &format!("{word} low level"), 0, 255)
+        .map(|value| Spanned::new(value as u8, low_token.loc))
+        .map_err(|e| errors.push(e))
+        .ok();
+    let period = match (kind, period) {
+        (LIGHT_SWITCHED, Some(token)) => {
+            errors.push((
+                token.loc,
+                "period= applies to a glow, a strobe or a flicker: a switched light changes when a switch or line of its tag fires; remove period=".to_string(),
+            ));
+            None
+        }
+        (LIGHT_STROBE, Some(token)) => {
+            // The flash must leave some dark in each period, or the strobe would not blink.
+            let min = i64::from(STROBE_FLASH_TICKS) + 1;
+            integer_in(token, "strobe period", min, i64::from(u16::MAX))
+                .map(|value| value as u16)
+                .map_err(|(loc, message)| {
+                    errors.push((
+                        loc,
+                        format!("{message} (a strobe is lit {STROBE_FLASH_TICKS} ticks of each period, dark the rest)"),
+                    ))
+                })
+                .ok()
+        }
+        (_, Some(token)) => {
+            integer_in(token, &format!("{word} period"), PERIOD_MIN, i64::from(u16::MAX))
+                .map(|value| value as u16)
+                .map_err(|e| errors.push(e))
+                .ok()
+        }
+        (_, None) => Some(default_period(kind)),
+    };
+    let switched = kind == LIGHT_SWITCHED;
+    if switched && tag_token.is_none() {
+        errors.push((
+            low_token.loc,
+            "switched= needs tag=N on the same line: the switches and walk-over lines of tag N turn the light down and up; add tag=N".to_string(),
+        ));
+    }
+    let light = SourceLight {
+        kind,
+        word,
+        low: low?,
+        period: period?,
+        tag: if switched { tag } else { None },
+    };
+    (errors.len() == before).then_some(Some(light))
 }
 
 /// Takes the bare option words (`flags`) out of `words`, the words after a directive's name:

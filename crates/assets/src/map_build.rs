@@ -8,8 +8,8 @@
 use std::collections::HashMap;
 
 use portalcast_format::limits::{
-    HEIGHT_MAX, HEIGHT_MIN, MOVERS_MAX, PORTAL_DEPTH_MAX, TEXTURE_COORD_MAX, THINGS_MAX,
-    TRIGGERS_MAX, WORLD_COORD_MAX,
+    HEIGHT_MAX, HEIGHT_MIN, LIGHTS_MAX, MOVERS_MAX, PORTAL_DEPTH_MAX, TEXTURE_COORD_MAX,
+    THINGS_MAX, TRIGGERS_MAX, WORLD_COORD_MAX,
 };
 use portalcast_format::{
     Light, MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall, MOVER_CRUSHER,
@@ -790,16 +790,21 @@ fn check_values(source: &SourceMap, catalog: &Catalog, errors: &mut Vec<Located>
     let wall_total: usize = source.sectors.iter().map(|s| s.walls.len()).sum();
     count_limit("walls", wall_total, usize::from(u16::MAX), errors);
 
-    // The tags of the map's movers, which every switch and line must name one of.
-    let mut mover_tags: Vec<u16> = source
+    // The tags of the map's movers and switched lights, which every switch and line must name
+    // one of.
+    let mut target_tags: Vec<u16> = source
         .sectors
         .iter()
-        .filter_map(|sector| Some(sector.mover.as_ref()?.tag.as_ref()?.value))
+        .flat_map(|sector| {
+            let mover = sector.mover.as_ref().and_then(|m| m.tag.as_ref());
+            let light = sector.light_effect.as_ref().and_then(|l| l.tag.as_ref());
+            mover.into_iter().chain(light).map(|tag| tag.value)
+        })
         .collect();
-    mover_tags.sort_unstable();
-    mover_tags.dedup();
+    target_tags.sort_unstable();
+    target_tags.dedup();
     for (index, sector) in source.sectors.iter().enumerate() {
-        check_sector_values(source, index, sector, catalog, &mover_tags, errors);
+        check_sector_values(source, index, sector, catalog, &target_tags, errors);
     }
     if let Some(extra) = source
         .sectors
@@ -812,6 +817,24 @@ fn check_values(source: &SourceMap, catalog: &Catalog, errors: &mut Vec<Located>
             extra.loc,
             format!(
                 "the map has {count} movers, more than the {MOVERS_MAX} a map may hold (this is the first beyond); remove some or split the map"
+            ),
+        ));
+    }
+    if let Some(extra) = source
+        .sectors
+        .iter()
+        .filter_map(|sector| sector.light_effect.as_ref())
+        .nth(LIGHTS_MAX as usize)
+    {
+        let count = source
+            .sectors
+            .iter()
+            .filter(|s| s.light_effect.is_some())
+            .count();
+        errors.push((
+            extra.low.loc,
+            format!(
+                "the map has {count} light effects, more than the {LIGHTS_MAX} a map may hold (this is the first beyond); remove some or split the map"
             ),
         ));
     }
@@ -921,12 +944,12 @@ fn check_mover_heights(sector: &SourceSector, mover: &SourceMover, errors: &mut 
 }
 
 /// Checks a wall's trigger words as written on its line: `switch=TEX tag=N` on a solid wall,
-/// `trigger=N` on a portal, and the tag of each names some mover of the map (`mover_tags`,
-/// sorted).
+/// `trigger=N` on a portal, and the tag of each names some mover or switched light of the map
+/// (`target_tags`, sorted): a trigger that starts nothing is a mistake in the map.
 fn check_trigger_words(
     wall: &SourceWall,
     catalog: &Catalog,
-    mover_tags: &[u16],
+    target_tags: &[u16],
     errors: &mut Vec<Located>,
 ) {
     let mut tag = None;
@@ -962,11 +985,11 @@ fn check_trigger_words(
         }
     }
     if let Some(tag) = tag {
-        if mover_tags.binary_search(&tag.value).is_err() {
+        if target_tags.binary_search(&tag.value).is_err() {
             errors.push((
                 tag.loc,
                 format!(
-                    "no mover has tag {0}; give a moving sector tag={0} (door, lift=, platform=, crusher=), or use the tag of one",
+                    "no mover or switched light has tag {0}; give a moving sector (door, lift=, platform=, crusher=) or a switched light (switched=LOW) tag={0}, or use the tag of one",
                     tag.value
                 ),
             ));
@@ -979,7 +1002,7 @@ fn check_sector_values(
     index: usize,
     sector: &SourceSector,
     catalog: &Catalog,
-    mover_tags: &[u16],
+    target_tags: &[u16],
     errors: &mut Vec<Located>,
 ) {
     for (what, height) in [("floor", &sector.floor), ("ceiling", &sector.ceil)] {
@@ -1016,6 +1039,17 @@ fn check_sector_values(
         )),
         CeilingSource::Sky => {}
     }
+    if let Some(light) = &sector.light_effect {
+        if light.low.value >= sector.light {
+            errors.push((
+                light.low.loc,
+                format!(
+                    "{}: {}={} is not below the sector's light {}: the effect goes from light= down to this level; lower it, or raise light=",
+                    sector.label, light.word, light.low.value, sector.light
+                ),
+            ));
+        }
+    }
     if let Some(mover) = &sector.mover {
         check_mover_heights(sector, mover, errors);
     }
@@ -1039,7 +1073,7 @@ fn check_sector_values(
             catalog.texture(texture, errors);
         }
         check_middle_words(wall, catalog, errors);
-        check_trigger_words(wall, catalog, mover_tags, errors);
+        check_trigger_words(wall, catalog, target_tags, errors);
         match &wall.portal {
             Some(portal) => {
                 if portal.value == index {
@@ -1874,6 +1908,7 @@ fn tables(
     let mut sectors = Vec::new();
     let mut triggers = Vec::new();
     let mut movers = Vec::new();
+    let mut lights = Vec::new();
     for ((sector, outline), middles) in source.sectors.iter().zip(outlines).zip(middles) {
         let first_wall = walls.len() as u16;
         for (wall, middle) in outline.walls.iter().zip(middles) {
@@ -1937,6 +1972,15 @@ fn tables(
         if let Some(mover) = mover(sector, (sectors.len() - 1) as u16) {
             movers.push(mover);
         }
+        if let Some(light) = &sector.light_effect {
+            lights.push(Light {
+                sector: (sectors.len() - 1) as u16,
+                kind: light.kind,
+                low: light.low.value,
+                period: light.period,
+                tag: light.tag.as_ref().map_or(0, |tag| tag.value),
+            });
+        }
     }
     let place = |p: &SourcePlace| (p.x_fx8.value as i32, p.y_fx8.value as i32, p.angle);
     let (x_fx8, y_fx8, angle) = place(&source.player);
@@ -1979,7 +2023,7 @@ fn tables(
         sector_things,
         movers,
         triggers,
-        lights: Vec::new(),
+        lights,
         player_start: PlayerStart {
             x_fx8,
             y_fx8,

@@ -461,6 +461,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             ceiling: kind.ceiling.clone(),
             light: kind.light,
             mover: kind.mover.clone(),
+            light_effect: None,
             walls,
         });
     }

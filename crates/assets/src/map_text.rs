@@ -26,6 +26,11 @@ const SECTOR_KEYS: &[&str] = &[
     "speed",
     "wait",
     "tag",
+    "glow",
+    "strobe",
+    "flicker",
+    "switched",
+    "period",
 ];
 const WALL_KEYS: &[&str] = &[
     "tex", "portal", "upper", "lower", "mid", "switch", "tag", "trigger", "xoff", "yoff",
@@ -255,6 +260,7 @@ fn placeholder_sector(loc: Loc) -> SourceSector {
         ceiling: CeilingSource::Sky,
         light: DEFAULT_LIGHT,
         mover: None,
+        light_effect: None,
         walls: Vec::new(),
     }
 }
@@ -336,7 +342,14 @@ fn parse_sector_values(
         Some(t) => record(lex::integer_in(t, "light", 0, 255), errors).map(|v| v as u8),
         None => Some(DEFAULT_LIGHT),
     };
-    let mover = lex::mover_options(flags, keys, errors);
+    // `tag=` serves the mover and a switched light alike: parsed once, here.
+    let tag_token = keys.take("tag");
+    let tag = tag_token.and_then(|t| record(lex::tag(t, "tag"), errors));
+    // Whether `tag=` has a switched light to serve, asked of the word alone: a bad value after
+    // `switched=` is its own error, and should not make `tag=` one too.
+    let switched = keys.has("switched");
+    let light_effect = lex::light_options(keys, (tag_token, tag.clone()), errors);
+    let mover = lex::mover_options(flags, keys, (tag_token, tag), switched, errors);
     Some(SourceSector {
         label: format!("sector '{}'", name?),
         loc: directive.loc,
@@ -346,6 +359,7 @@ fn parse_sector_values(
         ceiling: ceiling?,
         light: light?,
         mover: mover?,
+        light_effect: light_effect?,
         walls: Vec::new(),
     })
 }

@@ -51,6 +51,9 @@ pub(crate) struct SourceSector {
     /// The sector's mover word and its settings, if it moves (`door`, `lift=`, `platform=`,
     /// `crusher=`).
     pub mover: Option<SourceMover>,
+    /// The sector's light effect, if its light changes (`glow=`, `strobe=`, `flicker=`,
+    /// `switched=`).
+    pub light_effect: Option<SourceLight>,
     pub walls: Vec<SourceWall>,
 }
 
@@ -93,6 +96,22 @@ impl MoverKind {
             MoverKind::Crusher => (1, 30),
         }
     }
+}
+
+/// A sector's light effect as written, checked for syntax and ranges by the parser; its low
+/// level is checked against the sector's `light=` by `map_build`.
+#[derive(Clone, Debug)]
+pub(crate) struct SourceLight {
+    /// `portalcast_format::LIGHT_GLOW`, `LIGHT_STROBE`, `LIGHT_FLICKER` or `LIGHT_SWITCHED`.
+    pub kind: u8,
+    /// The word as written (`glow=`, ...), for messages.
+    pub word: &'static str,
+    /// The low level written after the word.
+    pub low: Spanned<u8>,
+    /// Ticks a cycle (`period=`, else the kind's default; 0 for a switched light).
+    pub period: u16,
+    /// A switched light's `tag=N`.
+    pub tag: Option<Spanned<u16>>,
 }
 
 /// A sector's mover as written: its word and settings, checked for syntax and ranges by the

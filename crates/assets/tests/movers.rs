@@ -10,8 +10,9 @@ use common::{pattern, valid_assets};
 use portalcast_assets::{compile_dir, compile_map_str, Catalog, CompiledMap};
 use portalcast_format::limits::{MOVERS_MAX, TRIGGERS_MAX};
 use portalcast_format::{
-    MapTables, Mover, Trigger, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
-    MOVER_PLATFORM, NO_TEXTURE, TRIGGER_LINE, TRIGGER_SWITCH, TRIGGER_THROWN, WALL_SWITCH,
+    Light, MapTables, Mover, Trigger, LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE, LIGHT_SWITCHED,
+    MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM,
+    NO_TEXTURE, TRIGGER_LINE, TRIGGER_SWITCH, TRIGGER_THROWN, WALL_SWITCH,
 };
 
 /// Catalog indices (sorted names).
@@ -653,13 +654,13 @@ fn trigger_words_in_the_wrong_place_are_refused_at_the_word() {
             west_wall_with("switch=used tag=6"),
             10,
             "tag",
-            "no mover has tag 6;",
+            "no mover or switched light has tag 6;",
         ),
         (
             east_side_with("upper=door trigger=9"),
             23,
             "trigger",
-            "no mover has tag 9;",
+            "no mover or switched light has tag 9;",
         ),
         (
             west_wall_with("switch=lever tag=5"),
@@ -685,7 +686,7 @@ fn trigger_words_in_the_wrong_place_are_refused_at_the_word() {
     assert_error(
         rooms,
         value_of(&rooms.text(), 10, "tag"),
-        "no mover has tag 1; give a moving sector tag=1",
+        "no mover or switched light has tag 1; give a moving sector",
     );
 }
 
@@ -1122,4 +1123,112 @@ fn only_error_in(file_name: &str, text: &str) -> (u32, u32, String) {
     assert_eq!(errors.0.len(), 1, "{errors}\n---\n{text}");
     let error = &errors.0[0];
     (error.loc.line, error.loc.col, error.message.clone())
+}
+
+/// A room's heights and textures with its light at 200.
+const LIT_ROOM: &str = "floor=0 ceil=96 floor_tex=stone ceil_tex=stone light=200";
+
+#[test]
+fn light_effects_compile_to_lights_in_sector_order_with_their_defaults() {
+    let map = Rooms {
+        west: &format!("{LIT_ROOM} strobe=20 period=30"),
+        mid: &format!("{LIT_ROOM} door tag=4 switched=50"),
+        east: &format!("{LIT_ROOM} glow=100"),
+        west_wall: "switch=used tag=4",
+        west_side: "upper=door",
+        east_side: "upper=door",
+        ..Rooms::default()
+    }
+    .compile();
+    let light = |sector, kind, low, period, tag| Light {
+        sector,
+        kind,
+        low,
+        period,
+        tag,
+    };
+    assert_eq!(
+        map.lights,
+        [
+            light(0, LIGHT_STROBE, 20, 30, 0),
+            light(1, LIGHT_SWITCHED, 50, 0, 4),
+            light(2, LIGHT_GLOW, 100, 120, 0),
+        ]
+    );
+    // The door shares the tag with the switched light.
+    assert_eq!(map.movers[0].tag, 4);
+    let flicker = Rooms {
+        east: &format!("{LIT_ROOM} flicker=0"),
+        ..Rooms::default()
+    }
+    .compile();
+    assert_eq!(flicker.lights, [light(2, LIGHT_FLICKER, 0, 4, 0)]);
+    // A switch may name a switched light alone.
+    let switch_for_light = Rooms {
+        east: &format!("{LIT_ROOM} switched=10 tag=9"),
+        west_wall: "switch=used tag=9",
+        ..Rooms::default()
+    }
+    .compile();
+    assert_eq!(
+        switch_for_light.lights,
+        [light(2, LIGHT_SWITCHED, 10, 0, 9)]
+    );
+    assert!(switch_for_light.movers.is_empty());
+    assert_eq!(switch_for_light.triggers[0].tag, 9);
+}
+
+#[test]
+fn bad_light_effects_are_refused_where_they_are_written() {
+    let cases: [(String, &str, &str); 8] = [
+        (
+            format!("{LIT_ROOM} glow=10 strobe=20"),
+            "strobe",
+            "one light effect",
+        ),
+        (
+            format!("{LIT_ROOM} glow=200"),
+            "glow",
+            "not below the sector's light 200",
+        ),
+        (format!("{LIT_ROOM} glow=300"), "glow", "out of range"),
+        (
+            format!("{LIT_ROOM} period=30"),
+            "period",
+            "applies to a light effect",
+        ),
+        (
+            format!("{LIT_ROOM} strobe=5 period=5"),
+            "period",
+            "out of range; use 6..=",
+        ),
+        (
+            format!("{LIT_ROOM} switched=5 period=10"),
+            "period",
+            "a switched light changes",
+        ),
+        (format!("{LIT_ROOM} switched=5"), "switched", "needs tag=N"),
+        (
+            format!("{LIT_ROOM} tag=3"),
+            "tag",
+            "a moving sector or a switched light",
+        ),
+    ];
+    for (words, key, message) in &cases {
+        let rooms = Rooms {
+            mid: words,
+            ..Rooms::default()
+        };
+        assert_error(rooms, value_of(&rooms.text(), 14, key), message);
+    }
+    // A switch whose tag names nothing.
+    let rooms = Rooms {
+        west_wall: "switch=used tag=8",
+        ..Rooms::default()
+    };
+    assert_error(
+        rooms,
+        value_of(&rooms.text(), 10, "tag"),
+        "no mover or switched light has tag 8",
+    );
 }

@@ -552,7 +552,7 @@ fn examples_in_the_format_doc_compile() {
         true,
     )
     .with_sprite_size("torch", 16, 48);
-    let (mut examples, mut movers, mut triggers) = (0, 0, 0);
+    let (mut examples, mut movers, mut triggers, mut lights) = (0, 0, 0, 0);
     for section in doc.split("### Example").skip(1) {
         let block = section
             .split("```")
@@ -567,6 +567,7 @@ fn examples_in_the_format_doc_compile() {
             Ok(map) => {
                 movers += map.movers.len();
                 triggers += map.triggers.len();
+                lights += map.lights.len();
             }
             Err(errors) => {
                 panic!("the {file} example in docs/MAP_FORMAT.md does not compile:\n{errors}")
@@ -575,6 +576,7 @@ fn examples_in_the_format_doc_compile() {
         examples += 1;
     }
     assert_eq!(examples, 3);
-    // The movers' example: a door and a lift, a switch and a walk-over line; the grid's door.
-    assert_eq!((movers, triggers), (3, 2));
+    // The movers' example: a door and a lift, a switch and a walk-over line, a flicker and a
+    // switched light; the grid's door.
+    assert_eq!((movers, triggers, lights), (3, 2, 2));
 }

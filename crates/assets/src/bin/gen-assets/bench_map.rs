@@ -332,6 +332,16 @@ const MOVERS: &[MoverSpec] = &[
     },
 ];
 
+/// Light effects (issue 18): (sector, the words on its line). The pool's water shimmers, the
+/// shrine's candle breathes, the far corridor's lamp is failing, and the switch that opens the
+/// corridor's door (tag 1) also dims the hall's east bay.
+const LIGHTS: &[(&str, &str)] = &[
+    ("hall_e", "switched=90 tag=1"),
+    ("pool", "glow=150 period=180"),
+    ("shrine", "glow=12 period=90"),
+    ("corridor_3", "flicker=60 period=6"),
+];
+
 /// Switches (issue 18): (sector, the wall's start and end, the words on that solid wall).
 const SWITCHES: &[(&str, Point, Point, &str)] =
     &[("hall_e", (768, 256), (768, 352), "switch=trim tag=1")];
@@ -424,7 +434,9 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
          # of the courtyard, an antechamber leads into a dark octagonal shrine. South of the\n\
          # hall, a crawlway (40 high: crouch) leads to a den, next to a ledge 24 up (jump).\n\
          # Movers: a door at the corridor's mouth (walk into it, use it, or the switch on the hall's wall\n\
-         # north of it) and a lift beside the staircase, between the two landings' floors.\n"
+         # north of it) and a lift beside the staircase, between the two landings' floors.\n\
+         # Light effects: the pool glows, the shrine's candle breathes, a corridor lamp flickers,\n\
+         # and the door's switch dims the hall's east bay.\n"
     );
     for point in &order {
         let _ = writeln!(text, "vertex {} {} {}", names[point], point.0, point.1);
@@ -439,6 +451,9 @@ pub fn bench_map() -> (String, (usize, usize, usize)) {
         );
         for mover in MOVERS.iter().filter(|mover| mover.sector == area.name) {
             let _ = write!(text, " {}", mover.words);
+        }
+        for (_, words) in LIGHTS.iter().filter(|(sector, _)| *sector == area.name) {
+            let _ = write!(text, " {words}");
         }
         let _ = writeln!(text);
         for (i, &a) in area.outline.iter().enumerate() {
