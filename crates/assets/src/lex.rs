@@ -387,12 +387,15 @@ pub(crate) fn light_options(
                 })
                 .ok()
         }
-        (_, Some(token)) => {
-            integer_in(token, &format!("{word} period"), PERIOD_MIN, i64::from(u16::MAX))
-                .map(|value| value as u16)
-                .map_err(|e| errors.push(e))
-                .ok()
-        }
+        (_, Some(token)) => integer_in(
+            token,
+            &format!("{word} period"),
+            PERIOD_MIN,
+            i64::from(u16::MAX),
+        )
+        .map(|value| value as u16)
+        .map_err(|e| errors.push(e))
+        .ok(),
         (_, None) => Some(default_period(kind)),
     };
     let switched = kind == LIGHT_SWITCHED;

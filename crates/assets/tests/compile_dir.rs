@@ -403,6 +403,47 @@ fn write_to_emits_source_and_blobs() {
 }
 
 #[test]
+fn a_map_with_light_effects_alone_gets_the_live_sector_table() {
+    // The game keeps a live copy of the sectors of a map whose lights change, as of one whose
+    // floors and ceilings move: the largest such map sizes it.
+    let live_sectors = |map: &str| {
+        let scratch = valid_assets("live_lights", "stone");
+        scratch.write("maps/room.map", map.as_bytes());
+        let compiled = compile_dir(&scratch.dir).unwrap_or_else(|e| panic!("{e}"));
+        let out = Scratch::new("live_lights_out");
+        compiled.write_to(&out.dir).expect("write");
+        let source = std::fs::read_to_string(out.path("assets.rs")).expect("assets.rs");
+        let lights = source
+            .lines()
+            .skip_while(|l| !l.starts_with("static MAP_0_LIGHTS"))
+            .take_while(|l| *l != "];")
+            .collect::<Vec<_>>()
+            .join("\n");
+        let count = source
+            .lines()
+            .find_map(|l| l.strip_prefix("pub const LIVE_SECTORS: usize = "))
+            .expect("LIVE_SECTORS")
+            .trim_end_matches(';')
+            .to_string();
+        (count, lights)
+    };
+    let glowing = room_map("stone").replace("ceil_tex=stone", "ceil_tex=stone glow=10");
+    let (count, lights) = live_sectors(&glowing);
+    assert_eq!(count, "1");
+    assert_eq!(
+        lights,
+        "static MAP_0_LIGHTS: [::portalcast_format::Light; 1] = [\n    \
+         ::portalcast_format::Light { sector: 0, kind: 0, low: 10, period: 120, tag: 0 },"
+    );
+    let (count, lights) = live_sectors(&room_map("stone"));
+    assert_eq!(count, "0");
+    assert_eq!(
+        lights,
+        "static MAP_0_LIGHTS: [::portalcast_format::Light; 0] = ["
+    );
+}
+
+#[test]
 fn missing_optional_folders_are_not_watched() {
     let scratch = valid_assets("nosky", "stone");
     std::fs::remove_dir_all(scratch.path("sky")).expect("remove sky folder");

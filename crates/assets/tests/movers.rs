@@ -1,14 +1,15 @@
 //! Movers and triggers (issue 18): the mover words of a `sector` line (`door`, `lift=`,
 //! `platform=`, `crusher=`, `touch`, `locked`, `speed=`, `wait=`, `tag=`) and the trigger words of
 //! a `wall` line (`switch=TEX tag=N`, `trigger=N`) compile to the exact `Mover` and `Trigger`
-//! records; the strips moving heights expose need their textures; and every error is reported
-//! once, at its word.
+//! records; the strips moving heights expose need their textures; the light effect words of a
+//! `sector` line (`glow=`, `strobe=`, `flicker=`, `switched=`, `period=`) compile to the exact
+//! `Light` records; and every error is reported once, at its word.
 
 mod common;
 
 use common::{pattern, valid_assets};
 use portalcast_assets::{compile_dir, compile_map_str, Catalog, CompiledMap};
-use portalcast_format::limits::{MOVERS_MAX, TRIGGERS_MAX};
+use portalcast_format::limits::{LIGHTS_MAX, MOVERS_MAX, TRIGGERS_MAX};
 use portalcast_format::{
     Light, MapTables, Mover, Trigger, LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE, LIGHT_SWITCHED,
     MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM,
@@ -1128,107 +1129,330 @@ fn only_error_in(file_name: &str, text: &str) -> (u32, u32, String) {
 /// A room's heights and textures with its light at 200.
 const LIT_ROOM: &str = "floor=0 ceil=96 floor_tex=stone ceil_tex=stone light=200";
 
+/// A `Light` record, by its fields in order.
+fn light(sector: u16, kind: u8, low: u8, period: u16, tag: u16) -> Light {
+    Light {
+        sector,
+        kind,
+        low,
+        period,
+        tag,
+    }
+}
+
+/// The lights of the three rooms with `west`, `mid` and `east` written after [`LIT_ROOM`], the
+/// middle room's portals given their strips (a door there needs them).
+fn lights(west: &str, mid: &str, east: &str) -> Vec<Light> {
+    let (west, mid, east) = (
+        format!("{LIT_ROOM} {west}"),
+        format!("{LIT_ROOM} {mid}"),
+        format!("{LIT_ROOM} {east}"),
+    );
+    Rooms {
+        west: &west,
+        mid: &mid,
+        east: &east,
+        west_side: "upper=door",
+        east_side: "upper=door",
+        ..Rooms::default()
+    }
+    .compile()
+    .lights
+}
+
 #[test]
-fn light_effects_compile_to_lights_in_sector_order_with_their_defaults() {
+fn each_light_effect_compiles_with_its_default_period() {
+    assert_eq!(
+        lights("glow=100", "strobe=20", "flicker=0"),
+        [
+            light(0, LIGHT_GLOW, 100, 120, 0),
+            light(1, LIGHT_STROBE, 20, 40, 0),
+            light(2, LIGHT_FLICKER, 0, 4, 0),
+        ]
+    );
+    // A switched light has no period, and its tag; the word may come after tag=.
+    assert_eq!(
+        lights("", "tag=7 switched=199", ""),
+        [light(1, LIGHT_SWITCHED, 199, 0, 7)]
+    );
+    // With the default light= (128), 127 is the highest low level.
+    let rooms = Rooms {
+        east: "floor=0 ceil=96 floor_tex=stone ceil_tex=stone glow=127",
+        ..Rooms::default()
+    };
+    assert_eq!(rooms.compile().lights, [light(2, LIGHT_GLOW, 127, 120, 0)]);
+}
+
+#[test]
+fn each_light_effect_takes_its_period() {
+    assert_eq!(
+        lights(
+            "glow=0 period=2",
+            "strobe=20 period=6",
+            "flicker=50 period=65535"
+        ),
+        [
+            light(0, LIGHT_GLOW, 0, 2, 0),
+            light(1, LIGHT_STROBE, 20, 6, 0),
+            light(2, LIGHT_FLICKER, 50, 65535, 0),
+        ]
+    );
+    assert_eq!(
+        lights("period=300 glow=10", "", "strobe=1 period=65535"),
+        [
+            light(0, LIGHT_GLOW, 10, 300, 0),
+            light(2, LIGHT_STROBE, 1, 65535, 0),
+        ]
+    );
+}
+
+#[test]
+fn a_door_and_a_switched_light_share_their_sector_and_its_tag() {
     let map = Rooms {
-        west: &format!("{LIT_ROOM} strobe=20 period=30"),
         mid: &format!("{LIT_ROOM} door tag=4 switched=50"),
-        east: &format!("{LIT_ROOM} glow=100"),
         west_wall: "switch=used tag=4",
         west_side: "upper=door",
         east_side: "upper=door",
         ..Rooms::default()
     }
     .compile();
-    let light = |sector, kind, low, period, tag| Light {
-        sector,
-        kind,
-        low,
-        period,
-        tag,
-    };
-    assert_eq!(
-        map.lights,
-        [
-            light(0, LIGHT_STROBE, 20, 30, 0),
-            light(1, LIGHT_SWITCHED, 50, 0, 4),
-            light(2, LIGHT_GLOW, 100, 120, 0),
-        ]
-    );
-    // The door shares the tag with the switched light.
+    assert_eq!(map.lights, [light(1, LIGHT_SWITCHED, 50, 0, 4)]);
+    assert_eq!((map.movers[0].sector, map.movers[0].tag), (1, 4));
+    assert_eq!(map.triggers[0].tag, 4);
+    // A glowing door: tag= is the door's alone, the glow's record has none.
+    let map = Rooms {
+        mid: &format!("{LIT_ROOM} door glow=90 tag=4"),
+        west_wall: "switch=used tag=4",
+        west_side: "upper=door",
+        east_side: "upper=door",
+        ..Rooms::default()
+    }
+    .compile();
+    assert_eq!(map.lights, [light(1, LIGHT_GLOW, 90, 120, 0)]);
     assert_eq!(map.movers[0].tag, 4);
-    let flicker = Rooms {
-        east: &format!("{LIT_ROOM} flicker=0"),
-        ..Rooms::default()
-    }
-    .compile();
-    assert_eq!(flicker.lights, [light(2, LIGHT_FLICKER, 0, 4, 0)]);
-    // A switch may name a switched light alone.
-    let switch_for_light = Rooms {
-        east: &format!("{LIT_ROOM} switched=10 tag=9"),
-        west_wall: "switch=used tag=9",
-        ..Rooms::default()
-    }
-    .compile();
-    assert_eq!(
-        switch_for_light.lights,
-        [light(2, LIGHT_SWITCHED, 10, 0, 9)]
-    );
-    assert!(switch_for_light.movers.is_empty());
-    assert_eq!(switch_for_light.triggers[0].tag, 9);
 }
 
 #[test]
-fn bad_light_effects_are_refused_where_they_are_written() {
-    let cases: [(String, &str, &str); 8] = [
+fn a_switch_or_a_line_may_name_a_switched_light_alone() {
+    let map = Rooms {
+        east: &format!("{LIT_ROOM} switched=10 tag=9"),
+        west_wall: "switch=used tag=9",
+        mid_east: "trigger=9",
+        ..Rooms::default()
+    }
+    .compile();
+    assert_eq!(map.lights, [light(2, LIGHT_SWITCHED, 10, 0, 9)]);
+    assert!(map.movers.is_empty());
+    let kinds: Vec<(u8, u16)> = map.triggers.iter().map(|t| (t.kind, t.tag)).collect();
+    assert_eq!(kinds, [(TRIGGER_SWITCH, 9), (TRIGGER_LINE, 9)]);
+}
+
+#[test]
+fn bad_light_effects_are_refused_at_the_word() {
+    // (the middle room's words after its heights and textures, the key whose value the error
+    // is at, what the message says)
+    let cases: [(&str, &str, &str); 20] = [
         (
-            format!("{LIT_ROOM} glow=10 strobe=20"),
+            "light=200 glow=10 strobe=20",
             "strobe",
-            "one light effect",
+            "'strobe=' after 'glow=': a sector has one light effect; keep one of",
         ),
         (
-            format!("{LIT_ROOM} glow=200"),
+            "light=200 switched=5 tag=1 flicker=9",
+            "flicker",
+            "'flicker=' after 'switched=': a sector has one light effect",
+        ),
+        (
+            "light=200 glow=200",
             "glow",
-            "not below the sector's light 200",
+            "sector 'mid': glow=200 is not below the sector's light 200",
         ),
-        (format!("{LIT_ROOM} glow=300"), "glow", "out of range"),
         (
-            format!("{LIT_ROOM} period=30"),
+            "flicker=128",
+            "flicker",
+            "sector 'mid': flicker=128 is not below the sector's light 128",
+        ),
+        (
+            "light=200 glow=256",
+            "glow",
+            "glow low level 256 is out of range; use 0..=255",
+        ),
+        (
+            "light=200 strobe=-1",
+            "strobe",
+            "strobe low level -1 is out of range; use 0..=255",
+        ),
+        (
+            "light=200 flicker=dim",
+            "flicker",
+            "flicker low level 'dim' is not an integer",
+        ),
+        (
+            "light=200 period=30",
             "period",
-            "applies to a light effect",
+            "period= applies to a light effect; add glow=LOW, strobe=LOW or flicker=LOW, or remove period=",
         ),
         (
-            format!("{LIT_ROOM} strobe=5 period=5"),
+            "light=200 glow=10 period=1",
             "period",
-            "out of range; use 6..=",
+            "glow period 1 is out of range; use 2..=65535",
         ),
         (
-            format!("{LIT_ROOM} switched=5 period=10"),
+            "light=200 flicker=10 period=65536",
             "period",
-            "a switched light changes",
+            "flicker period 65536 is out of range; use 2..=65535",
         ),
-        (format!("{LIT_ROOM} switched=5"), "switched", "needs tag=N"),
         (
-            format!("{LIT_ROOM} tag=3"),
+            "light=200 strobe=10 period=5",
+            "period",
+            "strobe period 5 is out of range; use 6..=65535 (a strobe is lit 5 ticks of each period, dark the rest)",
+        ),
+        (
+            "light=200 strobe=10 period=fast",
+            "period",
+            "strobe period 'fast' is not an integer",
+        ),
+        (
+            "light=200 switched=5 tag=2 period=10",
+            "period",
+            "period= applies to a glow, a strobe or a flicker: a switched light changes when",
+        ),
+        (
+            "light=200 switched=5",
+            "switched",
+            "switched= needs tag=N on the same line",
+        ),
+        (
+            "light=200 tag=3",
             "tag",
-            "a moving sector or a switched light",
+            "tag= applies to a moving sector or a switched light; add a mover word (door, lift=LOW, platform=OTHER, crusher=LOW) or switched=LOW, or remove tag=",
+        ),
+        (
+            "light=200 glow=10 tag=3",
+            "tag",
+            "tag= applies to a moving sector or a switched light",
+        ),
+        // A bad switched= is one error: its tag= is not also refused for want of a light.
+        (
+            "light=200 switched=300 tag=2",
+            "switched",
+            "switched low level 300 is out of range",
+        ),
+        // A bad tag= is one error: the switched light is not also refused for want of a tag.
+        (
+            "light=200 switched=5 tag=0",
+            "tag",
+            "tag 0 is out of range; use 1..=65535",
+        ),
+        // A light effect is no mover: it does not make speed= right, nor a mover period=.
+        (
+            "light=200 glow=10 speed=2",
+            "speed",
+            "speed= applies to a moving sector",
+        ),
+        (
+            "light=200 door period=20",
+            "period",
+            "period= applies to a light effect",
         ),
     ];
-    for (words, key, message) in &cases {
+    for (words, key, message) in cases {
+        let mid = format!("floor=0 ceil=96 floor_tex=stone ceil_tex=stone {words}");
         let rooms = Rooms {
-            mid: words,
+            mid: &mid,
+            west_side: "upper=door",
+            east_side: "upper=door",
             ..Rooms::default()
         };
-        assert_error(rooms, value_of(&rooms.text(), 14, key), message);
+        let (line, col, found) = rooms.only_error();
+        assert_eq!(
+            (line, col),
+            value_of(&rooms.text(), 14, key),
+            "{words}: {found}"
+        );
+        assert!(
+            found.contains(message),
+            "{words}: {found:?} lacks {message:?}"
+        );
     }
-    // A switch whose tag names nothing.
-    let rooms = Rooms {
-        west_wall: "switch=used tag=8",
-        ..Rooms::default()
+    // A switch or a line whose tag names no mover and no switched light (a glow's does not
+    // count: only a switched light is turned by a tag).
+    for (west_wall, mid_east, key) in [
+        ("switch=used tag=8", "", "tag"),
+        ("", "trigger=8", "trigger"),
+    ] {
+        let rooms = Rooms {
+            mid: &format!("{LIT_ROOM} glow=10"),
+            west_wall,
+            mid_east,
+            ..Rooms::default()
+        };
+        let line = if west_wall.is_empty() { 16 } else { 10 };
+        assert_error(
+            rooms,
+            value_of(&rooms.text(), line, key),
+            "no mover or switched light has tag 8; give a moving sector (door, lift=, platform=, crusher=) or a switched light (switched=LOW) tag=8, or use the tag of one",
+        );
+    }
+}
+
+/// `count` boxes 64 wide in rows of 20, 100 apart (so that `LIGHTS_MAX` of them stay within
+/// the world's limits), each its own sector with solid walls, box `i` with the sector words
+/// `sector(i)`; the player in box 0.
+fn box_rows(count: usize, sector: impl Fn(usize) -> String) -> String {
+    let mut text = String::new();
+    for i in 0..count {
+        let (x, y) = ((i % 20) * 100, (i / 20) * 100);
+        text.push_str(&format!(
+            "vertex a{i} {x} {y}\nvertex b{i} {} {y}\nvertex c{i} {} {}\nvertex d{i} {x} {}\n",
+            x + 64,
+            x + 64,
+            y + 64,
+            y + 64
+        ));
+    }
+    for i in 0..count {
+        text.push_str(&format!(
+            "sector s{i} {ROOM} {}\nwall a{i} b{i} tex=brick\nwall b{i} c{i} tex=brick\nwall c{i} d{i} tex=brick\nwall d{i} a{i} tex=brick\n",
+            sector(i)
+        ));
+    }
+    text.push_str("player 32 32\n");
+    text
+}
+
+#[test]
+fn more_light_effects_than_a_map_holds_is_one_error_at_the_first_beyond() {
+    // Box 0 keeps its light; every other box glows.
+    let glows = |count: usize| {
+        box_rows(count + 1, |i| {
+            if i == 0 {
+                String::new()
+            } else {
+                "glow=10".to_string()
+            }
+        })
     };
-    assert_error(
-        rooms,
-        value_of(&rooms.text(), 10, "tag"),
-        "no mover or switched light has tag 8",
+    let map = compile_map_str("boxes.map", &glows(LIGHTS_MAX as usize), &catalog())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(map.lights.len(), LIGHTS_MAX as usize);
+    assert!(map
+        .lights
+        .iter()
+        .enumerate()
+        .all(|(i, l)| usize::from(l.sector) == i + 1));
+    let text = glows(LIGHTS_MAX as usize + 2);
+    let (line, col, message) = only_error(&text);
+    // Box LIGHTS_MAX + 1 (box 0 has none) holds the first beyond.
+    let beyond = format!("sector s{} ", LIGHTS_MAX + 1);
+    let sector_line = text
+        .lines()
+        .position(|l| l.starts_with(&beyond))
+        .expect("the box's sector line")
+        + 1;
+    assert_eq!((line, col), value_of(&text, sector_line as u32, "glow"));
+    assert_eq!(
+        message,
+        format!("the map has {} light effects, more than the {LIGHTS_MAX} a map may hold (this is the first beyond); remove some or split the map", LIGHTS_MAX + 2)
     );
 }

@@ -552,7 +552,8 @@ fn examples_in_the_format_doc_compile() {
         true,
     )
     .with_sprite_size("torch", 16, 48);
-    let (mut examples, mut movers, mut triggers, mut lights) = (0, 0, 0, 0);
+    let (mut examples, mut movers, mut triggers) = (0, 0, 0);
+    let mut lights = Vec::new();
     for section in doc.split("### Example").skip(1) {
         let block = section
             .split("```")
@@ -567,7 +568,7 @@ fn examples_in_the_format_doc_compile() {
             Ok(map) => {
                 movers += map.movers.len();
                 triggers += map.triggers.len();
-                lights += map.lights.len();
+                lights.extend(map.lights.iter().map(|l| (l.kind, l.low, l.period, l.tag)));
             }
             Err(errors) => {
                 panic!("the {file} example in docs/MAP_FORMAT.md does not compile:\n{errors}")
@@ -576,7 +577,16 @@ fn examples_in_the_format_doc_compile() {
         examples += 1;
     }
     assert_eq!(examples, 3);
-    // The movers' example: a door and a lift, a switch and a walk-over line, a flicker and a
-    // switched light; the grid's door.
-    assert_eq!((movers, triggers, lights), (3, 2, 2));
+    // The movers' example: a door and a lift, a switch and a walk-over line; the grid's door.
+    assert_eq!((movers, triggers), (3, 2));
+    // The movers' example's light effects: the hall's glow, the corridor's flicker (its default
+    // period) and the ledge's switched light, turned by the lift's tag.
+    assert_eq!(
+        lights,
+        [
+            (portalcast_format::LIGHT_GLOW, 100, 240, 0),
+            (portalcast_format::LIGHT_FLICKER, 40, 4, 0),
+            (portalcast_format::LIGHT_SWITCHED, 40, 0, 1),
+        ]
+    );
 }
