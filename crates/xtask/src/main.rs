@@ -148,7 +148,7 @@ fn play() -> TaskResult<()> {
             "--",
         ])
         .arg(&gba)
-        .args(["--frames", "600", "--png-every", "60", "--summary", "--out"])
+        .args(["--frames", "1200", "--png-every", "60", "--summary", "--out"])
         .arg(&out)
         .arg("--keys")
         .arg(&script);
