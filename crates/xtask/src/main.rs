@@ -6,6 +6,10 @@ use std::process::{Command, ExitCode};
 
 mod report;
 
+/// Frames `cargo play` runs the demo headless: its walk through the bench map's door and its
+/// lift ride (assets/demo/play.keys).
+const PLAY_FRAMES: &str = "1200";
+
 const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math | cargo bench-tick | cargo bench-logging | cargo generated-maps DIR";
 
 fn main() -> ExitCode {
@@ -148,7 +152,8 @@ fn play() -> TaskResult<()> {
             "--",
         ])
         .arg(&gba)
-        .args(["--frames", "1200", "--png-every", "60", "--summary", "--out"])
+        .args(["--frames", PLAY_FRAMES])
+        .args(["--png-every", "60", "--summary", "--out"])
         .arg(&out)
         .arg("--keys")
         .arg(&script);
