@@ -3,12 +3,16 @@
 //! inside the sector the player tracks, its path crossed no solid wall and no portal the body
 //! could not enter, the eye keeps its room to floor and ceiling, and the disc does not sink
 //! into solid walls or enter a solid thing's disc. The same on test maps of solid things set
-//! in corners, against walls and by portals, and of a cluster of them.
+//! in corners, against walls and by portals, and of a cluster of them. The maps' movers run
+//! throughout (issue 18): each case starts them all, the moves' use button starts them again,
+//! and every tick is checked on the live map.
 
 mod common;
 
 use common::player::check_tick;
+use portalcast::game::GameWorld;
 use portalcast::math::{point_in_convex_polygon, Angle, Containment, Fx24_8, WorldPoint};
+use portalcast::player::collide::HEADROOM;
 use portalcast::player::input::Intent;
 use portalcast::player::Player;
 use portalcast_format::MapTables;
@@ -105,13 +109,36 @@ fn random_moves_keep_the_invariants_on(map: &MapTables, cases: u32) {
         };
         prop_assume!(player.is_some());
         let mut player = player.unwrap();
+        // The map's movers running (issue 18): every door opens, every lift goes down, as the
+        // use button would start them, for a second before the moves (the player standing
+        // where it starts, in a door or on a lift as often as anywhere); the use button
+        // (`activate`) in the moves starts them again. Doors then close on the body at their
+        // time, lifts carry it.
+        let mut world = GameWorld::start(map);
+        for index in 0..map.movers.len() {
+            world.use_mover(map, index);
+        }
+        for _ in 0..60 {
+            world.tick(map, &player);
+        }
+        let live = world.map(map);
+        prop_assume!(player.body().admits(&live.sectors[usize::from(player.sector)]));
+        player.feet_z = Fx24_8::from_int(live.sectors[usize::from(player.sector)].floor_z);
         for (index, step) in moves.iter().enumerate() {
             for tick in 0..step.ticks {
                 let before = player;
-                player.tick(&step.intent, map);
-                if let Err(problem) = check_tick(map, &before, &player) {
+                world.tick_with_player(map, &mut player, &step.intent);
+                let live = world.map(map);
+                if let Err(problem) = check_tick(&live, &before, &player) {
                     prop_assert!(false, "move {index} tick {tick} ({:?}): {problem}", step.intent);
                 }
+                // Never crushed: a ceiling that came down keeps the headroom over the eye.
+                let ceiling = live.sectors[usize::from(player.sector)].ceil_z;
+                prop_assert!(
+                    player.eye_z().to_bits() + HEADROOM * 256 <= ceiling * 256,
+                    "move {index} tick {tick}: the eye {} under the ceiling {ceiling}",
+                    player.eye_z().to_bits()
+                );
             }
         }
     });
