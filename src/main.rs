@@ -176,9 +176,9 @@ mod rom {
                     let map = game.map();
                     log::info(format_args!(
                         "world frame={frame} heights={} thrown={} lights={}",
-                        MoverHeights(game.world.movers()),
-                        Thrown(game.world.triggers()),
-                        Levels(&map)
+                        Joined(game.world.movers().iter().map(|mover| mover.height)),
+                        Joined(game.world.triggers().iter().map(|trigger| trigger.thrown)),
+                        Joined(game.world.lights(&map))
                     ));
                 }
                 rate.frame_lines_cycles += meter::cycles_since(started);
@@ -263,49 +263,21 @@ mod rom {
             ));
     }
 
-    /// The movers' heights as `h0,h1,…`: the `world …` line that follows a frame's `player`
-    /// line on a map with movers, so the tests draw the frame the ROM drew.
-    struct MoverHeights<'w>(&'w [portalcast::world::MoverState]);
+    /// Items written as `a,b,c` (nothing where there are none): the `world …` line's lists
+    /// (movers' heights, switches thrown, light effects' levels), so the tests draw the frame
+    /// the ROM drew.
+    struct Joined<I>(I);
 
-    impl core::fmt::Display for MoverHeights<'_> {
+    impl<I: Clone + Iterator> core::fmt::Display for Joined<I>
+    where
+        I::Item: core::fmt::Display,
+    {
         fn fmt(&self, f: &mut core::fmt::Formatter) -> core::fmt::Result {
-            for (index, mover) in self.0.iter().enumerate() {
+            for (index, item) in self.0.clone().enumerate() {
                 if index > 0 {
                     f.write_str(",")?;
                 }
-                write!(f, "{}", mover.height)?;
-            }
-            Ok(())
-        }
-    }
-
-    /// The light of each light effect's sector, as `l0,l1,…` (empty where the map has none): the
-    /// `world …` line's `lights=`.
-    struct Levels<'m>(&'m portalcast_format::MapTables<'m>);
-
-    impl core::fmt::Display for Levels<'_> {
-        fn fmt(&self, f: &mut core::fmt::Formatter) -> core::fmt::Result {
-            for (index, light) in self.0.lights.iter().enumerate() {
-                if index > 0 {
-                    f.write_str(",")?;
-                }
-                write!(f, "{}", self.0.sectors[usize::from(light.sector)].light)?;
-            }
-            Ok(())
-        }
-    }
-
-    /// Each trigger's switch thrown (`1`) or not (`0`), as `0,1,…` (empty where the map has no
-    /// triggers): the `world …` line's `thrown=`.
-    struct Thrown<'w>(&'w [portalcast_format::Trigger]);
-
-    impl core::fmt::Display for Thrown<'_> {
-        fn fmt(&self, f: &mut core::fmt::Formatter) -> core::fmt::Result {
-            for (index, trigger) in self.0.iter().enumerate() {
-                if index > 0 {
-                    f.write_str(",")?;
-                }
-                write!(f, "{}", trigger.thrown)?;
+                write!(f, "{item}")?;
             }
             Ok(())
         }

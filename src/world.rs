@@ -277,7 +277,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
     }
 
     /// The live level of each light effect's sector, in the order of `MapTables::lights`.
-    pub fn lights<'s>(&'s self, map: &'s MapTables) -> impl Iterator<Item = u8> + 's {
+    pub fn lights<'s>(&'s self, map: &'s MapTables) -> impl Iterator<Item = u8> + Clone + 's {
         map.lights
             .iter()
             .map(move |light| self.sectors[usize::from(light.sector)].light)
