@@ -52,7 +52,7 @@ mod rom {
         // After the sampler starts, so its VBlank count is the emulator's frame count whatever
         // the boot checks cost (the player's emulator tests rely on it).
         log::info(format_args!(
-            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} ewram_used={} division_digest=0x{:08x} game_bytes={} live_sectors={} sector_bytes={} live_movers={} mover_state_bytes={}",
+            "portalcast boot waitcnt=0x{:04x} iwram_used={} stack_room={} ewram_used={} division_digest=0x{:08x} game_bytes={} live_sectors={} sector_bytes={} live_movers={} mover_state_bytes={} live_triggers={} trigger_bytes={}",
             hw::WAITCNT_SETTING,
             memory::iwram_used(),
             memory::stack_room(),
@@ -63,6 +63,8 @@ mod rom {
             core::mem::size_of::<portalcast_format::Sector>(),
             assets::LIVE_MOVERS,
             core::mem::size_of::<portalcast::world::MoverState>(),
+            assets::LIVE_TRIGGERS,
+            core::mem::size_of::<portalcast_format::Trigger>(),
         ));
 
         let held_at_boot = hw::keys_held();

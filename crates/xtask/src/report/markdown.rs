@@ -964,16 +964,24 @@ fn sizes(doc: &mut String, measurements: &Measurements) {
         boot("live_movers"),
         boot("mover_state_bytes"),
     ) {
+        let (triggers, trigger) = (
+            boot("live_triggers").unwrap_or(0),
+            boot("trigger_bytes").unwrap_or(0),
+        );
         let _ = write!(
             doc,
-            "\nThe game's state (`Game`, in EWRAM) takes {} bytes. Of them, the live heights of \
-             moving sectors (`portalcast::world`, issue 18): the ROM's largest map with movers \
+            "\nThe game's state (`Game`, in EWRAM) takes {} bytes. Of them, the live world \
+             (`portalcast::world`, issue 18): the ROM's largest map with movers or light effects \
              gets a copy of its sector table, {sector} bytes a sector ({sectors} sectors: {} \
-             bytes), and each of its movers {mover} bytes of state ({movers} movers: {} bytes); a \
-             map without movers keeps none.\n",
+             bytes), which holds the moving heights and the effects' light levels; each mover \
+             {mover} bytes of state ({movers} movers: {} bytes); and a copy of its switches and \
+             walk-over lines, whose switches it throws, {trigger} bytes each ({triggers}: {} \
+             bytes). A map with neither movers nor light effects keeps none. The bench scene \
+             keeps a world of the same size of its own for its fly-through.\n",
             group_digits(game),
             group_digits(sectors * sector),
             group_digits(movers * mover),
+            group_digits(triggers * trigger),
         );
     }
     let _ = write!(
