@@ -6,18 +6,22 @@
 //!
 //! Every demo also checks that each pose the ROM logs is the pose the host's game reaches after
 //! the same ticks of the same script (`common::demos::replay`): the ROM and the host run the
-//! same integer code, so a demo is a key sequence and gives the same positions everywhere.
+//! same integer code, so a demo is a key sequence and gives the same positions everywhere. And
+//! `cargo play`'s demo, through the door and on the lift, is compared frame by frame: each VRAM
+//! page the ROM draws is the host's render of its logged pose and world.
 
 mod common;
 
 use common::demos::{replay, PlayerLine, WorldLine};
 use common::player::sector_index;
+use common::rom_frames::{boot_until_playing, host_frame_matching, play_frames};
 use common::*;
 use portalcast::game::Game;
 use portalcast::player::vertical::{CROUCH_EYE, JUMP_RISE, STAND_EYE};
+use portalcast::render::walk::Renderer;
 use portalcast::world::Phase;
 use portalcast_format::TRIGGER_THROWN;
-use portalcast_harness::KeyScript;
+use portalcast_harness::{KeyScript, Keys};
 
 /// What one run of a demo in the ROM left behind.
 struct RomRun {
@@ -542,4 +546,35 @@ fn the_switch_opens_the_door_and_the_closing_door_turns_back_at_the_body() {
     assert!(door
         .iter()
         .all(|(tick, _)| *tick < 300 || door_height_ok(&run, *tick)));
+}
+
+#[test]
+fn the_demo_through_the_door_and_on_the_lift_draws_the_host_s_frames() {
+    // The demo (`cargo play`'s walk): every frame the ROM draws, its VRAM page identical to the
+    // host's render of its logged pose and live world; among them frames with the door and the
+    // lift mid-way and the body on the lift.
+    let script = KeyScript::load(&portalcast_xtask::workspace_root().join("assets/demo/play.keys"))
+        .unwrap_or_else(|error| panic!("{error}"));
+    let mut emulator = boot_until_playing();
+    let mut renderer = Renderer::new();
+    let keys: Vec<Keys> = (0..1150).map(|frame| script.keys_at(frame)).collect();
+    let lift = sector_index("bench.map", "lift");
+    let (mut compared, mut door_moving, mut lift_moving, mut on_lift) = (0, 0, 0, 0);
+    play_frames(
+        &mut emulator,
+        &keys,
+        |emulator, (player, world), render_line| {
+            host_frame_matching(emulator, &mut renderer, (player, world), render_line);
+            compared += 1;
+            let heights = &world.expect("the bench map logs its world").heights;
+            door_moving += usize::from(0 < heights[0] && heights[0] < 96);
+            lift_moving += usize::from(0 < heights[1] && heights[1] < 128);
+            on_lift += usize::from(player.sector == lift);
+        },
+    );
+    assert!(compared > 500, "{compared} frames compared");
+    assert!(
+        door_moving > 5 && lift_moving > 20 && on_lift > 100,
+        "door mid-way in {door_moving} frames, lift in {lift_moving}, the body on it in {on_lift}"
+    );
 }

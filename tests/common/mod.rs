@@ -4,6 +4,7 @@
 
 pub mod demos;
 pub mod player;
+pub mod rom_frames;
 
 use portalcast::frame::{shown_index, Resolution, PAGE_HALFWORDS, PAGE_HEIGHT, PAGE_WIDTH};
 use portalcast::raster::HostPage;
