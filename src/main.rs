@@ -405,7 +405,7 @@ mod rom {
     fn bench_scene(display: &mut Display, guard_only: bool) -> ! {
         let renderer = memory::renderer_in_ewram(meter::now);
         let world = memory::bench_world_in_ewram();
-        for (map, settings) in bench::guard_runs() {
+        let mut run = |(map, settings): (&MapTables, Settings), kernels: bool| {
             let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
             bench_run(
                 display,
@@ -414,35 +414,14 @@ mod rom {
                 &render_assets,
                 map,
                 &settings,
-                true,
+                kernels,
             );
-        }
+        };
+        bench::guard_runs().for_each(|guarded| run(guarded, true));
         log::info(format_args!("{}", bench::GUARD_DONE));
         if !guard_only {
-            for (map, settings) in bench::report_runs() {
-                let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-                bench_run(
-                    display,
-                    renderer,
-                    world,
-                    &render_assets,
-                    map,
-                    &settings,
-                    true,
-                );
-            }
-            for (map, settings) in bench::setup_runs() {
-                let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
-                bench_run(
-                    display,
-                    renderer,
-                    world,
-                    &render_assets,
-                    map,
-                    &settings,
-                    false,
-                );
-            }
+            bench::report_runs().for_each(|reported| run(reported, true));
+            bench::setup_runs().for_each(|set_up| run(set_up, false));
         }
         log_stack();
         log::info(format_args!("{}", bench::BENCH_DONE));

@@ -437,24 +437,20 @@ fn checked_mover_heights(run: &RomRun) -> Vec<(u32, Vec<i32>)> {
     heights
 }
 
+/// `cargo play`'s demo, `assets/demo/play.keys`: through the bench map's door and on its lift.
+fn demo_script() -> KeyScript {
+    KeyScript::load(&portalcast_xtask::workspace_root().join("assets/demo/play.keys"))
+        .unwrap_or_else(|error| panic!("{error}"))
+}
+
 #[test]
 fn a_walk_opens_the_door_passes_it_and_rides_the_lift_up_and_down() {
-    // The stairs walk's way east (run on, onto the dais, a turn east): the corridor's door
-    // opens as the body walks into it, and the walk goes through, to the lower landing's east
-    // side. There, L + R lowers the lift in front; a few steps onto it; it comes back up with
-    // the body after its wait; L + R again, standing on it: down, and up once more.
-    let script = "
-10-13: SELECT
-11-12: B
-20-32: R
-20-72: UP
-100-135: RIGHT
-150-420: UP
-425-428: L+R
-505-525: UP
-760-763: L+R
-";
-    let run = play(script, 1150);
+    // The demo (`assets/demo/play.keys`, what `cargo play` presses): the stairs walk's way east
+    // (run on, onto the dais, a turn east); the corridor's door opens as the body walks into it,
+    // and the walk goes through, to the lower landing's east side. There, L + R lowers the lift
+    // in front; a few steps onto it; it comes back up with the body after its wait; L + R
+    // again, standing on it: down, and up once more.
+    let run = play_script(&demo_script(), 1150);
     let heights = checked_mover_heights(&run);
     let corridor = sector_index("bench.map", "corridor_1");
     let lift = sector_index("bench.map", "lift");
@@ -553,8 +549,7 @@ fn the_demo_through_the_door_and_on_the_lift_draws_the_host_s_frames() {
     // The demo (`cargo play`'s walk): every frame the ROM draws, its VRAM page identical to the
     // host's render of its logged pose and live world; among them frames with the door and the
     // lift mid-way and the body on the lift.
-    let script = KeyScript::load(&portalcast_xtask::workspace_root().join("assets/demo/play.keys"))
-        .unwrap_or_else(|error| panic!("{error}"));
+    let script = demo_script();
     let mut emulator = boot_until_playing();
     let mut renderer = Renderer::new();
     let keys: Vec<Keys> = (0..1150).map(|frame| script.keys_at(frame)).collect();
