@@ -260,7 +260,9 @@ extern "C" {
 
 /// The run routines of `pc_sprite` by `[translucent][packing]` (packing doubled, even, odd).
 fn sprite_run(translucent: bool, packing: usize) -> usize {
-    let runs: [[unsafe extern "C" fn(); 3]; 2] = [
+    // A static table: built in the function, its six addresses were stored on the stack on
+    // every sprite column.
+    static RUNS: [[unsafe extern "C" fn(); 3]; 2] = [
         [pc_sprite_run_dbl, pc_sprite_run_even, pc_sprite_run_odd],
         [
             pc_sprite_run_blend_dbl,
@@ -268,7 +270,7 @@ fn sprite_run(translucent: bool, packing: usize) -> usize {
             pc_sprite_run_blend_odd,
         ],
     ];
-    runs[usize::from(translucent)][packing] as usize
+    RUNS[usize::from(translucent)][packing] as usize
 }
 
 /// The sky's unlit column kernels by packing (doubled, even, odd), at the sky's height: outside

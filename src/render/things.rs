@@ -34,6 +34,42 @@ pub const VISIBLE_THINGS_MAX: usize = 64;
 /// visit take one each); a thing that finds no room is left out and counted.
 pub const THING_CLIP_COLUMNS: usize = 1024;
 
+/// Thing projections a frame keeps for later visits of their sectors (a sector seen through several
+/// portals projects each of its things once); the things of a sector that finds no room are
+/// projected on each visit.
+pub const PROJECTIONS_MAX: usize = 64;
+
+/// Sectors whose things' projections a frame keeps at most.
+pub const PROJECTED_SECTORS_MAX: usize = 32;
+
+/// [`VisibleThing::sprite`] of a projection whose image is not chosen yet.
+const IMAGE_UNKNOWN: u16 = u16::MAX;
+
+/// A projection of a thing that is not on screen: no columns.
+const OFF_SCREEN: VisibleThing = VisibleThing {
+    visit: 0,
+    translucent: false,
+    depth: 0,
+    thing: 0,
+    sprite: IMAGE_UNKNOWN,
+    first: 0,
+    end: 0,
+    clips_at: 0,
+    light_row: 0,
+    u_first: 0,
+    iscale_x: 0,
+    y_top: 0,
+    scale: 0,
+    iscale: 0,
+};
+
+/// Where the projections of one sector's things start in [`Things::projections`].
+#[derive(Clone, Copy, Debug, Default)]
+struct ProjectedSector {
+    sector: u16,
+    at: u16,
+}
+
 /// Visible portal middles a frame draws at most; more are left out and counted.
 pub const VISIBLE_MIDDLES_MAX: usize = 32;
 
@@ -149,6 +185,12 @@ pub struct Things {
     middle_columns: [MiddleColumn; MIDDLE_COLUMNS_MAX],
     middle_columns_used: usize,
     order: [Drawn; VISIBLE_THINGS_MAX + VISIBLE_MIDDLES_MAX],
+    /// This frame's projections of the things of the sectors in `projected_sectors`, over the
+    /// whole width, a sector's things in the map's order.
+    projections: [VisibleThing; PROJECTIONS_MAX],
+    projections_used: usize,
+    projected_sectors: [ProjectedSector; PROJECTED_SECTORS_MAX],
+    projected_sector_count: usize,
     stats: ThingStats,
 }
 
@@ -230,6 +272,10 @@ impl Things {
             }; MIDDLE_COLUMNS_MAX],
             middle_columns_used: 0,
             order: [Drawn::Thing(0); VISIBLE_THINGS_MAX + VISIBLE_MIDDLES_MAX],
+            projections: [OFF_SCREEN; PROJECTIONS_MAX],
+            projections_used: 0,
+            projected_sectors: [ProjectedSector { sector: 0, at: 0 }; PROJECTED_SECTORS_MAX],
+            projected_sector_count: 0,
             stats: ThingStats {
                 drawn: 0,
                 dropped: 0,
@@ -245,6 +291,8 @@ impl Things {
         self.clips_used = 0;
         self.middle_count = 0;
         self.middle_columns_used = 0;
+        self.projections_used = 0;
+        self.projected_sector_count = 0;
         self.stats = ThingStats::default();
     }
 
@@ -263,27 +311,40 @@ impl Things {
         let (map, assets) = (frame.map, frame.assets);
         let (first, end) = (columns.start, columns.end);
         let range = map.things_range(sector_index);
+        if range.is_empty() {
+            return;
+        }
+        let cached = self.projections_of(frame, sector_index, range.clone());
         let sector = &map.sectors[usize::from(sector_index)];
-        for (index, thing) in range.clone().zip(&map.things[range]) {
-            // Every image of a set has one size (the asset compiler's rule), so the set's first
-            // places the sprite; which image it shows (the rotation, the animation frame: a
-            // sine, products and two divides) is found only for the things in the visit's
-            // columns.
-            let Some(set) = assets.sprite_sets.get(usize::from(thing.sprite)) else {
-                continue;
-            };
-            let Some(shape) = assets.sprites.get(usize::from(set.first)) else {
-                continue;
-            };
-            let Some(mut seen) = project(frame, sector, thing, shape) else {
-                continue;
+        for (offset, (index, thing)) in range.clone().zip(&map.things[range]).enumerate() {
+            let mut seen = match cached {
+                Some(at) => self.projections[at + offset],
+                None => match project_thing(frame, sector, thing) {
+                    Some(seen) => seen,
+                    None => continue,
+                },
             };
             let columns_first = (seen.first as i32).max(first);
             let columns_end = (seen.end as i32).min(end);
             if columns_first >= columns_end {
                 continue;
             }
-            let image = image_of(frame, thing, set);
+            // Which image it shows (the rotation, the animation frame: a sine, products and
+            // two divides) is found only for the things in a visit's columns, once a frame.
+            let image = match seen.sprite {
+                IMAGE_UNKNOWN => {
+                    let Some(set) = assets.sprite_sets.get(usize::from(thing.sprite)) else {
+                        continue;
+                    };
+                    let image = image_of(frame, thing, set);
+                    if let Some(at) = cached {
+                        self.projections[at + offset].sprite =
+                            u16::try_from(image).unwrap_or(IMAGE_UNKNOWN);
+                    }
+                    image
+                }
+                known => usize::from(known),
+            };
             if assets.sprites.get(image).is_none() {
                 continue;
             }
@@ -310,6 +371,40 @@ impl Things {
             self.visible[self.count] = seen;
             self.count += 1;
         }
+    }
+
+    /// Where the projections of the things of `sector_index` (its `range` of the map's things)
+    /// start in [`Things::projections`]: made on the frame's first visit of the sector, kept
+    /// for its later ones (a sector seen through several portals projects each thing once).
+    /// `None` if there is no room left: the caller projects them itself.
+    fn projections_of(
+        &mut self,
+        frame: &ThingView,
+        sector_index: u16,
+        range: core::ops::Range<usize>,
+    ) -> Option<usize> {
+        let sectors = &self.projected_sectors[..self.projected_sector_count];
+        if let Some(known) = sectors.iter().find(|known| known.sector == sector_index) {
+            return Some(usize::from(known.at));
+        }
+        let (at, count) = (self.projections_used, range.len());
+        if self.projected_sector_count == PROJECTED_SECTORS_MAX || at + count > PROJECTIONS_MAX {
+            return None;
+        }
+        let sector = &frame.map.sectors[usize::from(sector_index)];
+        for (slot, thing) in self.projections[at..at + count]
+            .iter_mut()
+            .zip(&frame.map.things[range])
+        {
+            *slot = project_thing(frame, sector, thing).unwrap_or(OFF_SCREEN);
+        }
+        self.projected_sectors[self.projected_sector_count] = ProjectedSector {
+            sector: sector_index,
+            at: at as u16,
+        };
+        self.projected_sector_count += 1;
+        self.projections_used = at + count;
+        Some(at)
     }
 
     /// Collects the middle image of the portal `seen` shows (if it has one); `opening` holds the
@@ -434,15 +529,26 @@ impl Things {
     #[inline(never)]
     pub(crate) fn draw(&mut self, assets: &RenderAssets, canvas: &mut impl Canvas) -> ThingStats {
         let drawn = self.count + self.middle_count;
-        let order = &mut self.order[..drawn];
-        for (slot, index) in order.iter_mut().zip(0..self.count) {
-            *slot = Drawn::Thing(index as u8);
-        }
-        for (slot, index) in order[self.count..].iter_mut().zip(0..self.middle_count) {
-            *slot = Drawn::Middle(index as u8);
-        }
-        // Insertion sort: a frame's few things, often already nearly in order.
         let (visible, middles) = (&self.visible, &self.middles);
+        // Both lists are in the walk's order of visits, and the drawing goes the other way:
+        // merged from their ends (a visit's middles before its things), only the things of one
+        // visit are left out of order, and the insertion sort below has little to do.
+        let order = &mut self.order[..drawn];
+        let (mut things_left, mut middles_left) = (self.count, self.middle_count);
+        for slot in order.iter_mut() {
+            let middle_next = match (things_left, middles_left) {
+                (_, 0) => false,
+                (0, _) => true,
+                (t, m) => middles[m - 1].visit >= visible[t - 1].visit,
+            };
+            *slot = if middle_next {
+                middles_left -= 1;
+                Drawn::Middle(middles_left as u8)
+            } else {
+                things_left -= 1;
+                Drawn::Thing(things_left as u8)
+            };
+        }
         for next in 1..order.len() {
             let mut at = next;
             while at > 0 && drawn_before(visible, middles, order[at], order[at - 1]) {
@@ -607,6 +713,19 @@ fn drawn_before(visible: &[VisibleThing], middles: &[VisibleMiddle], a: Drawn, b
     }
 }
 
+/// [`project`] of `thing` with its sprite set's first image (every image of a set has one size,
+/// the asset compiler's rule, so it places the sprite), its image not yet chosen
+/// ([`IMAGE_UNKNOWN`]); `None` where the set or the image is missing, or as `project`.
+fn project_thing(
+    frame: &ThingView,
+    sector: &portalcast_format::Sector,
+    thing: &Thing,
+) -> Option<VisibleThing> {
+    let set = frame.assets.sprite_sets.get(usize::from(thing.sprite))?;
+    let shape = frame.assets.sprites.get(usize::from(set.first))?;
+    project(frame, sector, thing, shape)
+}
+
 /// Where `thing`'s sprite lies on the screen of `frame`, with its columns over the whole width;
 /// `None` if it is nearer than [`THING_DEPTH_MIN`] or off the screen.
 fn project(
@@ -669,7 +788,7 @@ fn project(
         translucent: false,
         depth,
         thing: 0,
-        sprite: 0,
+        sprite: IMAGE_UNKNOWN,
         first: first as i16,
         end: end as i16,
         clips_at: 0,
