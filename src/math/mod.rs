@@ -80,4 +80,6 @@ pub use geometry::{
 pub use projection::{
     clip_to_near_plane, ClippedSegment, ExactEyePoint, EyeFrame, EyePoint, Viewport, NEAR_DEPTH,
 };
-pub use recip::{recip_pow2, recip_pow2_exact, recip_small, RECIP_SMALL_MAX};
+pub use recip::{
+    recip_pow2, recip_pow2_exact, recip_small, recip_with_bit_length, RECIP_SMALL_MAX,
+};

@@ -110,6 +110,18 @@ pub const fn recip_pow2(n: u32, k: u32) -> u32 {
     }
 }
 
+/// `n`'s bit length less one, `p` (`2^p ≤ n < 2^(p+1)`), and `2^(30+p) / n`, in `(2^29, 2^30]`:
+/// [`recip_pow2`]`(n, 30 + p)`, the same value, from one normalisation where counting the
+/// leading zeros first took a library call (the ARM7TDMI has no `CLZ`) and a second one.
+#[inline]
+#[track_caller]
+pub const fn recip_with_bit_length(n: u32) -> (u32, u32) {
+    debug_assert!(n > 0, "reciprocal of zero");
+    let (mantissa, shift) = normalise(n);
+    // recip_pow2's rounding with its right shift by 62 − (30 + p) − shift = 1.
+    ((mantissa_reciprocal(mantissa) + 1) >> 1, 31 - shift)
+}
+
 /// `2^k / n` correctly rounded (ties toward +∞), through the integer divide: the reference path.
 /// Same preconditions as [`recip_pow2`].
 #[inline]
@@ -186,6 +198,25 @@ impl Fx16_16 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn recip_with_bit_length_is_recip_pow2_at_the_bit_length() {
+        // Every power of two and its neighbours, and a spread of values between.
+        let spread = (0..=31u32)
+            .flat_map(|bit| {
+                let power = 1u32 << bit;
+                [power - 1, power, power + 1, power | (power >> 1)]
+            })
+            .chain((1..20_000u32).map(|i| i.wrapping_mul(2_654_435_761) | 1));
+        for n in spread.filter(|&n| n > 0) {
+            let p = 31 - n.leading_zeros();
+            assert_eq!(
+                recip_with_bit_length(n),
+                (recip_pow2(n, 30 + p), p),
+                "n {n}"
+            );
+        }
+    }
 
     #[test]
     fn normalise_puts_the_top_bit_at_31() {

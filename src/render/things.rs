@@ -473,8 +473,8 @@ impl Things {
             if denominator == 0 {
                 continue;
             }
-            let p = 31 - denominator.leading_zeros();
-            let reciprocal = i64::from(crate::math::recip_pow2(denominator, 30 + p));
+            let (reciprocal, p) = crate::math::recip_with_bit_length(denominator);
+            let reciprocal = i64::from(reciprocal);
             // The reciprocal is within a unit or two of the quotient: made the exact floor of
             // `n·2^30 / d` (a column's ray exactly on a texel edge takes the texel right of it,
             // the oracle's tie rule).
