@@ -1,6 +1,6 @@
 @ Affine texture span kernels for a 64x64 row-major 8bpp texture (the test picture; the renderer's
-@ lit span kernels build on the same shape). ARM code in IWRAM: 1-cycle fetches, no Thumb
-@ register starvation. The Rust twins are in src/raster/span.rs; tests require identical pixels.
+@ lit span kernels build on the same shape). ARM code in the cartridge: only the test picture
+@ draws with them, and IWRAM's bytes go to the renderer's hot code. The Rust twins are in src/raster/span.rs; tests require identical pixels.
 @
 @ Both take one argument, r0 = *const SpanJob:
 @   +0  dst        *mut u16   halfword-aligned destination in Mode 4 VRAM (or any RAM)
@@ -14,7 +14,7 @@
 @ Mode 4 VRAM ignores nothing on halfword stores, so both kernels write whole halfwords: one
 @ texel twice (120-column modes, each logical pixel 2 screen pixels wide) or two texels (240).
 
-    .section .iwram.pc_span, "ax", %progbits
+    .section .text.pc_span, "ax", %progbits
     .arm
     .align 2
 

@@ -12,6 +12,8 @@
 @   +24 colormap  *const u8  256-entry light row (an identity row draws unlit)
 @   +28 blend     *const u8  the 256×256 table (behind·256 + front) the blending runs read
 @   +32 run       address    the run routine that draws each post's rows (below)
+@   +36 posts_end *const u8  one past the column's last byte: a post that would pass it ends
+@                            the column (the Rust twin's rule), so no read leaves the column
 @
 @ pc_sprite walks the posts and finds each one's rows in the window and its first texel; a run
 @ routine draws them. One post loop for every way of drawing keeps IWRAM small. Run routines
@@ -34,8 +36,9 @@
 pc_sprite:
     push    {r4-r11, lr}
     add     r8, r0, #28
-    ldmia   r8, {r8, r9}
-    push    {r8, r9}                @ [sp]: the blend table, [sp, #4]: the run routine
+    ldmia   r8, {r8, r9, r10}
+    push    {r8, r9, r10}           @ [sp]: the blend table, [sp, #4]: the run routine,
+                                    @ [sp, #8]: the column's end
     ldmia   r0, {r1-r7}             @ dst, posts, y_top, scale, iscale, clip, colormap
     mov     r8, r6, lsl #16
     mov     r8, r8, asr #16         @ r8 = clip top
@@ -44,11 +47,17 @@ pc_sprite:
 1:
     subs    r9, r9, #1
     bmi     9f
+    ldr     r12, [sp, #8]           @ the column's end
+    add     r10, r2, #2
+    cmp     r10, r12
+    bhi     9f                      @ the post's header would pass it
     ldrb    r10, [r2]               @ top
     ldrb    r11, [r2, #1]           @ length
     add     r2, r2, #2              @ r2 = the post's texels
     add     lr, r2, r11
     add     lr, lr, #1              @ lr = the next post
+    cmp     lr, r12
+    bhi     9f                      @ its texels and pad would pass it
     mla     r12, r10, r4, r3        @ r12 = y0 = y_top + top·scale
     mla     r10, r11, r4, r12       @ r10 = y1 = y0 + length·scale
     add     r0, r12, #0x8000
@@ -83,10 +92,104 @@ pc_sprite:
     mov     r2, lr
     b       1b
 9:
-    add     sp, sp, #8
+    add     sp, sp, #12
     pop     {r4-r11, lr}
     bx      lr
     .size pc_sprite, . - pc_sprite
+
+@ pc_sprite_columns, r0 = *const SpriteBatchJob: the columns of one sprite image, each drawn as
+@ pc_sprite draws it (src/raster/sprite.rs: SpriteBatch, its twin Canvas::sprite_columns):
+@   +0  columns   *const BatchColumn  (20 bytes each: +0 x, +1 image column, +2 light row
+@                                      (255: unlit), +4 clip, +8 y_top, +12 scale, +16 iscale)
+@   +4  count     u32
+@   +8  posts     *const u8  the image: its columns' offsets (4 bytes each), then their posts
+@   +12 posts_len u32
+@   +16 colormap  *const u8  light row 0 (rows of 256)
+@   +20 identity  *const u8  the unlit row
+@   +24 blend     *const u8
+@   +28 page      *mut u8    row 0 of the page
+@   +32 runs      3 addresses, the run routines for 120 wide, and 240 wide even and odd
+@   +44 native    u32        0: 120 wide, 1: 240 wide
+@ A column whose offset entry or offset lies outside the image, or whose light row is not one
+@ of the 32, is skipped, as the twin skips it.
+    .equ LIGHT_ROWS, 32
+    .equ BATCH_COLUMN_BYTES, 20
+
+    .global pc_sprite_columns
+    .type pc_sprite_columns, %function
+    .align 2
+pc_sprite_columns:
+    push    {r4-r11, lr}
+    sub     sp, sp, #40             @ pc_sprite's job for each column
+    mov     r11, r0
+    ldr     r10, [r11]              @ r10 = the next column
+    ldr     r9, [r11, #4]           @ r9 = columns left
+1:
+    subs    r9, r9, #1
+    bmi     9f
+    ldrb    r4, [r10, #1]           @ image column
+    ldr     r6, [r11, #8]           @ r6 = the image's bytes
+    ldr     r5, [r11, #12]          @ r5 = their count
+    add     r7, r6, r4, lsl #2      @ r7 = the column's offset entry
+    add     r0, r7, #4
+    add     r1, r6, r5              @ r1 = the image's end
+    cmp     r0, r1
+    bhi     8f
+    ldrb    r0, [r7]
+    ldrb    r2, [r7, #1]
+    ldrb    r3, [r7, #2]
+    ldrb    r12, [r7, #3]
+    orr     r0, r0, r2, lsl #8
+    orr     r0, r0, r3, lsl #16
+    orr     r0, r0, r12, lsl #24    @ r0 = the column's offset
+    cmp     r0, r5
+    bhs     8f
+    add     r0, r6, r0
+    str     r0, [sp, #4]            @ posts
+    str     r1, [sp, #36]           @ posts_end
+    ldrb    r1, [r10, #2]
+    cmp     r1, #255
+    ldreq   r2, [r11, #20]
+    beq     2f
+    cmp     r1, #LIGHT_ROWS
+    bhs     8f
+    ldr     r2, [r11, #16]
+    add     r2, r2, r1, lsl #8
+2:
+    str     r2, [sp, #24]           @ colormap
+    ldr     r1, [r10, #4]           @ clip
+    add     r0, r10, #8
+    ldmia   r0, {r2, r3, r4}        @ y_top, scale, iscale
+    add     r0, sp, #8
+    stmia   r0, {r2, r3, r4}
+    str     r1, [sp, #20]
+    ldr     r1, [r11, #24]
+    str     r1, [sp, #28]           @ blend
+    ldrb    r1, [r10]               @ x
+    ldr     r2, [r11, #28]          @ the page
+    ldr     r3, [r11, #44]
+    cmp     r3, #0
+    addeq   r2, r2, r1, lsl #1      @ 120 wide: both bytes of halfword x
+    ldreq   r3, [r11, #32]
+    beq     3f
+    bic     r0, r1, #1
+    add     r2, r2, r0              @ 240 wide: the halfword holding pixel x
+    tst     r1, #1
+    ldreq   r3, [r11, #36]
+    ldrne   r3, [r11, #40]
+3:
+    str     r2, [sp]                @ dst
+    str     r3, [sp, #32]           @ run
+    mov     r0, sp
+    bl      pc_sprite
+8:
+    add     r10, r10, #BATCH_COLUMN_BYTES
+    b       1b
+9:
+    add     sp, sp, #40
+    pop     {r4-r11, lr}
+    bx      lr
+    .size pc_sprite_columns, . - pc_sprite_columns
 
     @ Looks up the lit texel of the row into r10 and steps v.
     .macro LIT_TEXEL

@@ -90,6 +90,74 @@ const fn sprite_posts() -> ([u8; SPRITE_POSTS_LEN], [usize; SPRITE_RUNS.len()]) 
 
 static SPRITE_POSTS: ([u8; SPRITE_POSTS_LEN], [usize; SPRITE_RUNS.len()]) = sprite_posts();
 
+/// Columns of the check's sprite image ([`SPRITE_IMAGE`]): the five of [`SPRITE_POSTS`], one
+/// whose offset lies past the image's end, and one whose second post runs past it; a batch
+/// also names a column beyond these, whose offset entry is missing.
+const IMAGE_COLUMNS: usize = SPRITE_RUNS.len() + 2;
+
+/// The truncated last column: two posts, the second cut after its first texel.
+const TRUNCATED_COLUMN: [u8; 10] = [2, 0, 3, 11, 12, 13, 13, 10, 5, 14];
+
+/// Bytes of [`SPRITE_IMAGE`].
+const SPRITE_IMAGE_LEN: usize = 4 * IMAGE_COLUMNS + SPRITE_POSTS_LEN + TRUNCATED_COLUMN.len();
+
+/// The check's sprite image in the layout of `Sprite::posts`: the columns' offsets, then their
+/// posts (the batch kernel's input, with every way a column can be cut short).
+static SPRITE_IMAGE: [u8; SPRITE_IMAGE_LEN] = {
+    let (posts, starts) = sprite_posts();
+    let mut image = [0u8; SPRITE_IMAGE_LEN];
+    let mut offsets = [0u32; IMAGE_COLUMNS];
+    let mut column = 0;
+    while column < SPRITE_RUNS.len() {
+        offsets[column] = (4 * IMAGE_COLUMNS + starts[column]) as u32;
+        column += 1;
+    }
+    offsets[SPRITE_RUNS.len()] = SPRITE_IMAGE_LEN as u32;
+    offsets[SPRITE_RUNS.len() + 1] = (4 * IMAGE_COLUMNS + SPRITE_POSTS_LEN) as u32;
+    let mut at = 0;
+    while at < IMAGE_COLUMNS {
+        let bytes = offsets[at].to_le_bytes();
+        let mut byte = 0;
+        while byte < 4 {
+            image[4 * at + byte] = bytes[byte];
+            byte += 1;
+        }
+        at += 1;
+    }
+    let mut at = 0;
+    while at < SPRITE_POSTS_LEN {
+        image[4 * IMAGE_COLUMNS + at] = posts[at];
+        at += 1;
+    }
+    let mut at = 0;
+    while at < TRUNCATED_COLUMN.len() {
+        image[4 * IMAGE_COLUMNS + SPRITE_POSTS_LEN + at] = TRUNCATED_COLUMN[at];
+        at += 1;
+    }
+    image
+};
+
+/// The light rows of the check's batches: every entry a function of its row and index.
+static CHECK_LIGHT_ROWS: portalcast_format::Colormap = {
+    let mut rows = [[0u8; 256]; portalcast_format::LIGHT_LEVELS];
+    let mut row = 0;
+    while row < portalcast_format::LIGHT_LEVELS {
+        let mut index = 0;
+        while index < 256 {
+            rows[row][index] = ((index * 7 + row * 13 + 3) & 0xff) as u8;
+            index += 1;
+        }
+        row += 1;
+    }
+    rows
+};
+
+/// Sprite batches drawn per call, each of up to [`BATCH_COLUMNS_MAX`] columns.
+const BATCHES: u32 = JOBS_PER_KIND / 4;
+
+/// The most columns a check batch has.
+const BATCH_COLUMNS_MAX: usize = 8;
+
 /// A blend table for the check: every entry a function of both indices, so a wrong pixel
 /// behind or a wrong texel shows.
 static CHECK_BLEND: portalcast_format::BlendTable = {
@@ -227,5 +295,36 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             blend: (job % 4 == 1).then_some(&CHECK_BLEND),
         };
         canvas.sprite_column(rng.below(width) as usize, &sprite);
+    }
+    let mut records = [crate::raster::sprite::BatchColumn::default(); BATCH_COLUMNS_MAX];
+    for batch in 0..BATCHES {
+        let count = 1 + rng.below(BATCH_COLUMNS_MAX as u32) as usize;
+        for record in &mut records[..count] {
+            let scale = (1 << 14) + rng.below(8 << 16) as i32;
+            let top = rng.below(height) as i16;
+            let bottom = top + 1 + rng.below(height - top as u32) as i16;
+            *record = crate::raster::sprite::BatchColumn {
+                x: rng.below(width) as u8,
+                // One column past the image's: its offset entry is missing.
+                column: rng.below(IMAGE_COLUMNS as u32 + 1) as u8,
+                // Unlit, each light row, and one past them (skipped).
+                light_row: match rng.below(portalcast_format::LIGHT_LEVELS as u32 + 2) {
+                    0 => u8::MAX,
+                    row => (row - 1) as u8,
+                },
+                clip: crate::raster::Window { top, bottom },
+                y_top: ((rng.next() % (2 * height)) as i32 - height as i32) << 16
+                    | rng.below(1 << 16) as i32,
+                scale,
+                iscale: ((1u64 << 32) / scale as u64) as u32,
+            };
+        }
+        canvas.sprite_columns(&crate::raster::sprite::SpriteBatch {
+            posts: &SPRITE_IMAGE,
+            columns: &records[..count],
+            colormap: &CHECK_LIGHT_ROWS,
+            // One batch in three translucent.
+            blend: (batch % 3 == 2).then_some(&CHECK_BLEND),
+        });
     }
 }

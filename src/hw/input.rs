@@ -10,6 +10,9 @@ use gba::RUST_IRQ_HANDLER;
 /// are overwritten (and their ticks skipped). The slowest setting takes about 12.
 pub const RING_SAMPLES: u32 = 64;
 
+// In EWRAM (copied in at boot with its zeros): the VBlank handler writes a sample a frame and
+// the game reads a few, and IWRAM's bytes go to the renderer's hot code.
+#[link_section = ".ewram"]
 static RING: [GbaCell<u16>; RING_SAMPLES as usize] = [const { GbaCell::new(0) }; 64];
 /// Samples written since [`start`]; the next goes to `RING[WRITTEN % RING_SAMPLES]`.
 static WRITTEN: GbaCell<u32> = GbaCell::new(0);

@@ -131,7 +131,7 @@ restore_code_mode!();
 use crate::frame::Resolution;
 use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
 use crate::raster::flat::{FlatTexture, FLAT_LOG2_SIDES};
-use crate::raster::sprite::SpriteColumn;
+use crate::raster::sprite::{steps_fit, BatchColumn, SpriteBatch, SpriteColumn};
 use crate::raster::wall_run::{StripRun, WallRun, WallRunEnd};
 use crate::raster::{Canvas, IDENTITY_ROW};
 
@@ -195,6 +195,25 @@ struct SpriteJob {
     blend: *const u8,
     /// The run routine's address (`SPRITE_RUNS`).
     run: usize,
+    /// One past the column's last byte: the kernel ends the column at a post that would pass it.
+    posts_end: *const u8,
+}
+
+/// The argument block of the sprite batch kernel (`asm/sprite.s`, `pc_sprite_columns`).
+#[repr(C)]
+struct SpriteBatchJob {
+    columns: *const BatchColumn,
+    count: u32,
+    posts: *const u8,
+    posts_len: u32,
+    colormap: *const u8,
+    identity: *const u8,
+    blend: *const u8,
+    page: *mut u8,
+    /// The run routines for 120 wide, and 240 wide even and odd (`sprite_run`).
+    runs: [usize; 3],
+    /// 0: 120 wide, 1: 240 wide.
+    native: u32,
 }
 
 /// The argument block of the flat kernels (`asm/flat.s`).
@@ -248,6 +267,7 @@ static FLAT_KERNELS: [[[FlatKernel; 4]; 2]; 2] = [
 
 extern "C" {
     fn pc_sprite(job: *const SpriteJob);
+    fn pc_sprite_columns(job: *const SpriteBatchJob);
     // Run routines of `pc_sprite`, with its own register convention (asm/sprite.s): never
     // called from Rust, only their addresses handed to it.
     fn pc_sprite_run_dbl();
@@ -489,9 +509,9 @@ impl Canvas for VramCanvas {
 
     #[inline(never)]
     fn sprite_column(&mut self, x: usize, column: &SpriteColumn) {
-        // Every bound the kernel trusts, in one test: the window inside the page, and every
-        // byte it may read inside the column's (`SpriteColumn::reads_inside`, which walks the
-        // posts with the kernel's integers: a sprite's columns are few, its pixels many).
+        // Every bound the kernel trusts but the posts' end (it tests that itself), in one test:
+        // the window inside the page, the post count there, and the steps inside a post
+        // (`SpriteColumn::reads_inside`).
         let clip = column.clip;
         assert!(
             x < self.resolution.width()
@@ -499,6 +519,7 @@ impl Canvas for VramCanvas {
                 && clip.bottom as usize <= self.resolution.height()
                 && column.reads_inside()
         );
+        let posts = column.posts.as_ptr_range();
         let byte_column = match self.resolution.pixels_per_halfword() {
             1 => 2 * x,
             _ => x & !1,
@@ -509,7 +530,7 @@ impl Canvas for VramCanvas {
         };
         let job = SpriteJob {
             dst: self.row_address(0).wrapping_add(byte_column),
-            posts: column.posts.as_ptr(),
+            posts: posts.start,
             y_top: column.y_top,
             scale: column.scale,
             iscale: column.iscale,
@@ -519,15 +540,55 @@ impl Canvas for VramCanvas {
                 .blend
                 .map_or(core::ptr::null(), |blend| blend.as_ptr().cast()),
             run: sprite_run(column.blend.is_some(), packing),
+            posts_end: posts.end,
         };
         if self.kernels && !clip.is_empty() {
             // SAFETY: the window's rows lie inside the page (checked above), so every store
-            // does; every post header, texel and pad the kernel reads lies inside
-            // `column.posts` (`reads_inside` walked the kernel's runs); the colormap has 256
-            // entries, and the blend table, which only the translucent runs read, 65,536 (every
-            // behind·256 + front); the run routine is one of `pc_sprite`'s, for this packing.
-            // The kernel is in IWRAM outside the banks.
+            // does; the kernel reads the post count (`posts` is not empty: `reads_inside`) and
+            // every post header, texel and pad only below `posts_end`, and steps no row past its
+            // post (`reads_inside`'s steps); the colormap has 256 entries, and the blend table,
+            // which only the translucent runs read, 65,536 (every behind·256 + front); the run
+            // routine is one of `pc_sprite`'s, for this packing. The kernel is in IWRAM outside
+            // the banks.
             unsafe { pc_sprite(&job) };
+        }
+    }
+
+    #[inline(never)]
+    fn sprite_columns(&mut self, batch: &SpriteBatch) {
+        // Every bound the kernel trusts but the ones it tests itself (the offsets, the posts'
+        // end, the light rows: `SpriteBatch::column`'s), in one pass over the columns.
+        let (width, height) = (self.resolution.width(), self.resolution.height() as i16);
+        assert!(batch.columns.iter().all(|record| {
+            usize::from(record.x) < width
+                && record.clip.top >= 0
+                && record.clip.bottom <= height
+                && steps_fit(record.y_top, record.scale, record.iscale)
+        }));
+        let translucent = batch.blend.is_some();
+        let job = SpriteBatchJob {
+            columns: batch.columns.as_ptr(),
+            count: batch.columns.len() as u32,
+            posts: batch.posts.as_ptr(),
+            posts_len: batch.posts.len() as u32,
+            colormap: batch.colormap.as_ptr().cast(),
+            identity: IDENTITY_ROW.as_ptr(),
+            blend: batch
+                .blend
+                .map_or(core::ptr::null(), |blend| blend.as_ptr().cast()),
+            page: self.row_address(0),
+            runs: [0, 1, 2].map(|packing| sprite_run(translucent, packing)),
+            native: u32::from(self.resolution.pixels_per_halfword() == 2),
+        };
+        if self.kernels {
+            // SAFETY: every column's window lies inside the page and its x inside the row
+            // (checked above), so every store does; the kernel reads a column's offset entry and
+            // its post count only inside `posts` (it tests both), and every post only below its
+            // end, stepping no row past its post (each column's steps checked above); a light
+            // row is one of the colormap's 32 rows of 256 (tested by the kernel) or the identity
+            // row; the blend table, read only by the translucent runs, has 65,536 entries; the
+            // run routines are `pc_sprite`'s. The kernel is in IWRAM outside the banks.
+            unsafe { pc_sprite_columns(&job) };
         }
     }
 

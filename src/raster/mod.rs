@@ -113,6 +113,16 @@ pub trait Canvas {
     /// Draws the runs of sprite column `column` at logical column `x` (rows inside its clip
     /// window, which lies inside the screen).
     fn sprite_column(&mut self, x: usize, column: &sprite::SpriteColumn);
+    /// Draws the columns of `batch` in order, each as [`Canvas::sprite_column`] draws it, and
+    /// skips those [`sprite::SpriteBatch::column`] skips. A canvas with a batch kernel (the
+    /// GBA's) draws them with one call.
+    fn sprite_columns(&mut self, batch: &sprite::SpriteBatch) {
+        for record in batch.columns {
+            if let Some(column) = batch.column(record) {
+                self.sprite_column(usize::from(record.x), &column);
+            }
+        }
+    }
     /// Draws `count` logical pixels of row `row`, from logical column `x` rightwards.
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture);
     /// Whether the next flats are drawn at half horizontal resolution where a VRAM halfword

@@ -55,16 +55,23 @@ impl<'a> SpriteColumn<'a> {
     /// The runs of rows the kernel draws, top to bottom.
     pub fn runs(&self) -> impl Iterator<Item = SpriteRun<'a>> + '_ {
         let posts = self.posts;
-        let count = posts[0];
+        let count = posts.first().copied().unwrap_or(0);
         let mut at = 1;
         let mut done = false;
         (0..count).filter_map(move |_| {
             if done {
                 return None;
             }
-            let top = i32::from(posts[at]);
-            let len = usize::from(posts[at + 1]);
-            let texels = &posts[at + 2..at + 2 + len + 1];
+            // A post that would end past the column's bytes ends the column, as in the kernel.
+            let (Some(&top), Some(&len)) = (posts.get(at), posts.get(at + 1)) else {
+                done = true;
+                return None;
+            };
+            let (top, len) = (i32::from(top), usize::from(len));
+            let Some(texels) = posts.get(at + 2..at + 2 + len + 1) else {
+                done = true;
+                return None;
+            };
             at += 2 + len + 1;
             let y0 = self.y_top.wrapping_add(top.wrapping_mul(self.scale));
             let y1 = y0.wrapping_add((len as i32).wrapping_mul(self.scale));
@@ -89,36 +96,18 @@ impl<'a> SpriteColumn<'a> {
         })
     }
 
-    /// Whether the kernel reads only inside [`SpriteColumn::posts`]: every post header, texel
-    /// and pad lies inside it, and no row steps past its post. The GBA's canvas checks this
-    /// before it runs the kernel.
+    /// Whether the kernel reads only inside [`SpriteColumn::posts`] and steps no row past its
+    /// post: the column has its post count, and the steps fit. The kernel bounds its walk of
+    /// the posts by the column's end itself (a post that would end past it ends the column, as
+    /// [`SpriteColumn::runs`] does), so the posts need no walk here.
     ///
     /// The rows: a post's rows end at `end = (y1 + 0x7fff) >> 16`, so every row `r` has
     /// `(r << 16) + 0x8000 − y0 < y1 − y0 = len·scale`, and its texel position is at most that
     /// times `iscale`, over 2^16: below `len` texels where `scale·iscale ≤ 2^32` (a row of the
     /// post never steps beyond a texel per row's worth of rows), with no wrap-around where
-    /// `y_top` and `256·scale` stay far inside i32. Those are the checks; the posts' layout
-    /// is walked (a few bytes a post).
+    /// `y_top` and `256·scale` stay far inside i32.
     pub fn reads_inside(&self) -> bool {
-        let steps_fit = self.scale >= 0
-            && (self.scale as u64) * u64::from(self.iscale) <= 1 << 32
-            && self.scale < 1 << 22
-            && self.y_top.unsigned_abs() < 1 << 30;
-        steps_fit && self.posts_fit()
-    }
-
-    fn posts_fit(&self) -> bool {
-        let Some(&count) = self.posts.first() else {
-            return false;
-        };
-        let mut at = 1;
-        for _ in 0..count {
-            let Some(&len) = self.posts.get(at + 1) else {
-                return false;
-            };
-            at += 2 + usize::from(len) + 1;
-        }
-        at <= self.posts.len()
+        !self.posts.is_empty() && steps_fit(self.y_top, self.scale, self.iscale)
     }
 
     /// The palette index a pixel that held `behind` gets from the lit texel `front`.
@@ -139,6 +128,75 @@ impl<'a> SpriteColumn<'a> {
             let texel = run.texels[(v >> 16) as usize];
             v = v.wrapping_add(iscale);
             colormap[usize::from(texel)]
+        })
+    }
+}
+
+/// Whether the sprite kernel's steps stay inside a post (see [`SpriteColumn::reads_inside`]).
+#[inline(always)]
+pub fn steps_fit(y_top: i32, scale: i32, iscale: u32) -> bool {
+    scale >= 0
+        && (scale as u64) * u64::from(iscale) <= 1 << 32
+        && scale < 1 << 22
+        && y_top.unsigned_abs() < 1 << 30
+}
+
+/// One column of a [`SpriteBatch`]: the fields of a [`SpriteColumn`] that vary from column to
+/// column, compact (the ARM batch kernel reads them in this layout, `asm/sprite.s`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(C)]
+pub struct BatchColumn {
+    /// The logical screen column.
+    pub x: u8,
+    /// The image's column.
+    pub column: u8,
+    /// The colormap row (`u8::MAX`: unlit, the identity row).
+    pub light_row: u8,
+    /// The rows the column may draw.
+    pub clip: Window,
+    /// Screen row of the image's top edge, 16.16.
+    pub y_top: i32,
+    /// Screen rows per texel, 16.16.
+    pub scale: i32,
+    /// Texels per screen row, 16.16.
+    pub iscale: u32,
+}
+
+/// Columns of one sprite image drawn by one call ([`super::Canvas::sprite_columns`]): a thing's
+/// columns, or a portal middle's.
+#[derive(Clone, Copy, Debug)]
+pub struct SpriteBatch<'a> {
+    /// The image's columns' offsets and posts ([`portalcast_format::Sprite::posts`]).
+    pub posts: &'a [u8],
+    /// The columns drawn, in order.
+    pub columns: &'a [BatchColumn],
+    /// The light rows the columns' `light_row`s name.
+    pub colormap: &'a portalcast_format::Colormap,
+    /// For a translucent image, the blend table (as [`SpriteColumn::blend`]).
+    pub blend: Option<&'a portalcast_format::BlendTable>,
+}
+
+impl<'a> SpriteBatch<'a> {
+    /// Column `record` as the sprite kernel draws it; `None` (the column is skipped, by the
+    /// batch kernel too) where the image's offset table or its offset lies outside the posts.
+    pub fn column(&self, record: &BatchColumn) -> Option<SpriteColumn<'a>> {
+        let at = 4 * usize::from(record.column);
+        let offset = u32::from_le_bytes(self.posts.get(at..at + 4)?.try_into().ok()?);
+        let posts = self
+            .posts
+            .get(offset as usize..)
+            .filter(|p| !p.is_empty())?;
+        Some(SpriteColumn {
+            posts,
+            y_top: record.y_top,
+            scale: record.scale,
+            iscale: record.iscale,
+            clip: record.clip,
+            colormap: match record.light_row {
+                u8::MAX => &super::IDENTITY_ROW,
+                row => self.colormap.get(usize::from(row))?,
+            },
+            blend: self.blend,
         })
     }
 }

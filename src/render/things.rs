@@ -22,8 +22,8 @@ use super::surface::{Surface, THING_DEPTH_MIN};
 use super::view::View;
 use super::RenderAssets;
 use crate::math::{EyePoint, Fx16_16, Fx24_8, WorldPoint};
-use crate::raster::sprite::SpriteColumn;
-use crate::raster::{Canvas, Window, IDENTITY_ROW};
+use crate::raster::sprite::{BatchColumn, SpriteBatch};
+use crate::raster::{Canvas, Window};
 use portalcast_format::MapTables;
 
 /// Things a frame draws at most (a thing seen through two portals counts twice); more are left
@@ -76,6 +76,20 @@ pub const VISIBLE_MIDDLES_MAX: usize = 32;
 /// Columns of portal middles a frame keeps at most.
 pub const MIDDLE_COLUMNS_MAX: usize = 240;
 
+/// Columns of a thing handed to the canvas in one call at most.
+const THING_BATCH_COLUMNS: usize = 64;
+
+/// A batch column that draws nothing (the arrays' filling).
+const BATCH_COLUMN_EMPTY: BatchColumn = BatchColumn {
+    x: 0,
+    column: 0,
+    light_row: u8::MAX,
+    clip: Window::EMPTY,
+    y_top: 0,
+    scale: 0,
+    iscale: 0,
+};
+
 /// A thing as one visit sees it: where its sprite lies on screen (16.16 columns and rows) and
 /// which columns of the visit it covers.
 #[derive(Clone, Copy, Debug, Default)]
@@ -101,24 +115,6 @@ struct VisibleThing {
     /// Texels per column, 16.16.
     iscale_x: u32,
     /// Screen row of the sprite's top edge, 16.16.
-    y_top: i32,
-    /// Rows per texel, 16.16.
-    scale: i32,
-    /// Texels per row, 16.16.
-    iscale: u32,
-}
-
-/// One column of a portal's middle image.
-#[derive(Clone, Copy, Debug, Default)]
-struct MiddleColumn {
-    x: u8,
-    /// The image's column.
-    u: u8,
-    /// The colormap row (`u8::MAX`: unlit).
-    light_row: u8,
-    /// The opening's rows.
-    clip: Window,
-    /// Screen row of the image's top edge, 16.16.
     y_top: i32,
     /// Rows per texel, 16.16.
     scale: i32,
@@ -182,8 +178,10 @@ pub struct Things {
     clips_used: usize,
     middles: [VisibleMiddle; VISIBLE_MIDDLES_MAX],
     middle_count: usize,
-    middle_columns: [MiddleColumn; MIDDLE_COLUMNS_MAX],
+    middle_columns: [BatchColumn; MIDDLE_COLUMNS_MAX],
     middle_columns_used: usize,
+    /// The columns of the thing being drawn, handed to the canvas a batch at a time.
+    thing_batch: [BatchColumn; THING_BATCH_COLUMNS],
     order: [Drawn; VISIBLE_THINGS_MAX + VISIBLE_MIDDLES_MAX],
     /// This frame's projections of the things of the sectors in `projected_sectors`, over the
     /// whole width, a sector's things in the map's order.
@@ -261,15 +259,8 @@ impl Things {
                 columns: 0,
             }; VISIBLE_MIDDLES_MAX],
             middle_count: 0,
-            middle_columns: [MiddleColumn {
-                x: 0,
-                u: 0,
-                light_row: 0,
-                clip: Window::EMPTY,
-                y_top: 0,
-                scale: 0,
-                iscale: 0,
-            }; MIDDLE_COLUMNS_MAX],
+            middle_columns: [BATCH_COLUMN_EMPTY; MIDDLE_COLUMNS_MAX],
+            thing_batch: [BATCH_COLUMN_EMPTY; THING_BATCH_COLUMNS],
             middle_columns_used: 0,
             order: [Drawn::Thing(0); VISIBLE_THINGS_MAX + VISIBLE_MIDDLES_MAX],
             projections: [OFF_SCREEN; PROJECTIONS_MAX],
@@ -446,11 +437,22 @@ impl Things {
         let twice_focal = 2 * i64::from(viewport.focal_x);
         let (xa, za) = (i64::from(a.x.to_bits()), i64::from(a.z.to_bits()));
         let (dx, dz) = (i64::from(b.x.to_bits()) - xa, i64::from(b.z.to_bits()) - za);
-        let above_eye = i64::from(view.eye_z.to_bits()) - i64::from(top << 8);
+        // The eye's height over the image's top edge, times d_y: a column's top row is this over
+        // its depth, from the centre row.
+        let above_eye_focal =
+            (i64::from(view.eye_z.to_bits()) - i64::from(top << 8)) * i64::from(viewport.focal_y);
         let width = u32::from(sprite.width);
         let start = self.middle_columns_used;
         let mut used = start;
+        // The numerator and the denominator of `t` below are affine in the column: stepped from
+        // the column before the first, exactly.
+        let q_before = i64::from(2 * columns.start - 1 - viewport.width);
+        let mut numerator = q_before * za - twice_focal * xa;
+        let mut denominator = twice_focal * dx - q_before * dz;
+        let (numerator_step, denominator_step) = (2 * za, -2 * dz);
         for x in columns {
+            numerator += numerator_step;
+            denominator += denominator_step;
             let window = opening[x as usize];
             if window.is_empty() {
                 continue;
@@ -461,9 +463,7 @@ impl Things {
             // surface (transparent or not), so a ray exactly on a texel edge must take the
             // texel right of it, as the oracle's does (measured: the stepper lost every third
             // bar of the bench's grate seen square on, 0.8 % of a frame's surfaces).
-            let q = i64::from(2 * x + 1 - viewport.width);
-            let numerator = q * za - twice_focal * xa;
-            let denominator = twice_focal * dx - q * dz;
+            // `numerator = q·z_a − 2d_x·x_a`, `denominator = 2d_x·(x_b − x_a) − q·(z_b − z_a)`.
             // A column the wall owns sees its front: the denominator is positive (and below
             // 2^32: the module `limits`' world). `t = n/d` through the reciprocal: with
             // `2^p ≤ d < 2^(p+1)`, `2^(30+p)/d` lies in (2^29, 2^30].
@@ -495,13 +495,13 @@ impl Things {
             let depth = (za + ((t * dz) >> 30)).max(i64::from(THING_DEPTH_MIN) << 8);
             let u_fx8 = i64::from(wall.x_offset) * 256 + ((t * i64::from(wall.length_fx8)) >> 30);
             let inverse_depth = i64::from(Fx24_8::from_bits(depth as i32).recip_fx2_30().to_bits());
-            let y_top = (i64::from(viewport.horizon_y) << 16)
-                + ((above_eye * inverse_depth * i64::from(viewport.focal_y)) >> 22);
+            let y_top =
+                (i64::from(viewport.horizon_y) << 16) + ((above_eye_focal * inverse_depth) >> 22);
             let rows_per_texel = (inverse_depth * i64::from(viewport.focal_y)) >> 14;
             let light = light_row(sector.light, (depth >> 8) as i32, view.lighting);
-            self.middle_columns[used] = MiddleColumn {
+            self.middle_columns[used] = BatchColumn {
                 x: x as u8,
-                u: wrap_column(u_fx8, width),
+                column: wrap_column(u_fx8, width),
                 light_row: light.map_or(u8::MAX, |row| row as u8),
                 clip: window,
                 y_top: y_top.clamp(-(1 << 30), 1 << 30) as i32,
@@ -575,32 +575,46 @@ impl Things {
         self.stats
     }
 
-    fn draw_thing(&self, assets: &RenderAssets, canvas: &mut impl Canvas, index: usize) {
-        let seen = &self.visible[index];
+    fn draw_thing(&mut self, assets: &RenderAssets, canvas: &mut impl Canvas, index: usize) {
+        let seen = self.visible[index];
         let sprite = &assets.sprites[usize::from(seen.sprite)];
-        let colormap = colormap_row(assets, seen.light_row);
         let blend = if seen.translucent { assets.blend } else { None };
         canvas.set_surface(Surface::Thing(seen.thing));
         let last_column = usize::from(sprite.width) - 1;
         let mut u = seen.u_first;
         let clips = &self.clips[usize::from(seen.clips_at)..];
+        let mut filled = 0;
         for (x, clip) in (seen.first..seen.end).zip(clips) {
             if !clip.is_empty() {
-                let column = ((u >> 16) as usize).min(last_column);
-                canvas.sprite_column(
-                    x as usize,
-                    &SpriteColumn {
-                        posts: &sprite.posts[sprite.column_offset(column)..],
-                        y_top: seen.y_top,
-                        scale: seen.scale,
-                        iscale: seen.iscale,
-                        clip: *clip,
-                        colormap,
+                self.thing_batch[filled] = BatchColumn {
+                    x: x as u8,
+                    column: ((u >> 16) as usize).min(last_column) as u8,
+                    light_row: seen.light_row,
+                    clip: *clip,
+                    y_top: seen.y_top,
+                    scale: seen.scale,
+                    iscale: seen.iscale,
+                };
+                filled += 1;
+                if filled == THING_BATCH_COLUMNS {
+                    canvas.sprite_columns(&SpriteBatch {
+                        posts: sprite.posts,
+                        columns: &self.thing_batch,
+                        colormap: assets.colormap,
                         blend,
-                    },
-                );
+                    });
+                    filled = 0;
+                }
             }
             u = u.wrapping_add(seen.iscale_x);
+        }
+        if filled > 0 {
+            canvas.sprite_columns(&SpriteBatch {
+                posts: sprite.posts,
+                columns: &self.thing_batch[..filled],
+                colormap: assets.colormap,
+                blend,
+            });
         }
     }
 
@@ -614,20 +628,12 @@ impl Things {
         };
         canvas.set_surface(Surface::Middle(middle.wall));
         let at = usize::from(middle.columns_at);
-        for column in &self.middle_columns[at..at + usize::from(middle.columns)] {
-            canvas.sprite_column(
-                usize::from(column.x),
-                &SpriteColumn {
-                    posts: &sprite.posts[sprite.column_offset(usize::from(column.u))..],
-                    y_top: column.y_top,
-                    scale: column.scale,
-                    iscale: column.iscale,
-                    clip: column.clip,
-                    colormap: colormap_row(assets, column.light_row),
-                    blend,
-                },
-            );
-        }
+        canvas.sprite_columns(&SpriteBatch {
+            posts: sprite.posts,
+            columns: &self.middle_columns[at..at + usize::from(middle.columns)],
+            colormap: assets.colormap,
+            blend,
+        });
     }
 }
 
@@ -641,14 +647,6 @@ fn wrap_column(u_fx8: i64, width: u32) -> u8 {
         (column as u32 & (width - 1)) as u8
     } else {
         column.rem_euclid(width as i32) as u8
-    }
-}
-
-/// The light row `row` of the assets' colormap, or the identity row for unlit (`u8::MAX`).
-fn colormap_row<'a>(assets: &RenderAssets<'a>, row: u8) -> &'a [u8; 256] {
-    match row {
-        u8::MAX => &IDENTITY_ROW,
-        row => &assets.colormap[usize::from(row)],
     }
 }
 
