@@ -121,6 +121,17 @@ pub struct World<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usiz
     /// The box, world units, outside which the body's centre cannot be within
     /// [`TOUCH_REACH`] of [`World::touch_door`]'s sector: most ticks end the touch test at it.
     touch_box: TouchBox,
+    /// Each live sector's first door that opens on touch through one of its portals
+    /// ([`NONE`]: none): found once a map, for the ticks that cross into the sector.
+    touch_doors: [u16; SECTORS],
+    /// Each mover's sector's box, as [`World::touch_box`].
+    touch_boxes: [TouchBox; MOVERS],
+}
+
+/// The index in `map.movers` of `sector`'s mover, if it moves (the movers are in the order of
+/// their sectors).
+fn mover_of(map: &MapTables, sector: u16) -> Option<usize> {
+    map.movers.binary_search_by_key(&sector, |m| m.sector).ok()
 }
 
 /// An axis-aligned box, world units: `min_x, min_y, max_x, max_y`, bounds included.
@@ -172,6 +183,8 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
             touch_sector: NONE,
             touch_door: NONE,
             touch_box: [0; 4],
+            touch_doors: [NONE; SECTORS],
+            touch_boxes: [[0; 4]; MOVERS],
         }
     }
 
@@ -228,6 +241,17 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
                 timer: 0,
             };
             self.set_height(mover, mover.start);
+            self.touch_boxes[index] = reach_box(map, &map.sectors[usize::from(mover.sector)]);
+        }
+        for (slot, sector) in self.touch_doors.iter_mut().zip(map.sectors) {
+            *slot = map
+                .sector_walls(sector)
+                .iter()
+                .find_map(|wall| {
+                    let index = mover_of(map, wall.neighbour()?)?;
+                    (map.movers[index].flags & MOVER_ON_TOUCH != 0).then_some(index as u16)
+                })
+                .unwrap_or(NONE);
         }
     }
 
@@ -547,7 +571,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
     /// is looked for when the player's sector changes, as this runs every tick.
     pub fn touch(&mut self, map: &MapTables, player: &Player) {
         if player.sector != self.touch_sector {
-            self.look_for_touch_door(map, player.sector);
+            self.look_for_touch_door(player.sector);
         }
         let index = usize::from(self.touch_door);
         if self.touch_door == NONE || self.movers[index].phase != Phase::Resting {
@@ -564,23 +588,19 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         self.touch_near(map, player);
     }
 
-    /// [`World::touch_door`] and its box for the player in `sector`. Not inlined: it runs
-    /// only when the player's sector changes.
+    /// [`World::touch_door`] and its box for the player in `sector`, from the tables
+    /// [`World::restart`] made. Not inlined: it runs only when the player's sector changes.
     #[inline(never)]
-    fn look_for_touch_door(&mut self, map: &MapTables, sector: u16) {
+    fn look_for_touch_door(&mut self, sector: u16) {
         self.touch_sector = sector;
-        self.touch_door = map
-            .sectors
+        self.touch_door = self.touch_doors[..self.live]
             .get(usize::from(sector))
-            .and_then(|here| {
-                map.sector_walls(here).iter().find_map(|wall| {
-                    let index = self.mover_index(map, wall.neighbour()?)?;
-                    (map.movers[index].flags & MOVER_ON_TOUCH != 0).then_some(index as u16)
-                })
-            })
+            .copied()
             .unwrap_or(NONE);
-        if let Some(door) = map.movers.get(usize::from(self.touch_door)) {
-            self.touch_box = reach_box(map, &map.sectors[usize::from(door.sector)]);
+        if let Some(touch_box) =
+            self.touch_boxes[..self.mover_count].get(usize::from(self.touch_door))
+        {
+            self.touch_box = *touch_box;
         }
     }
 
@@ -656,7 +676,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
 
     /// The index in `MapTables::movers` of `sector`'s mover, if it moves.
     pub fn mover_index(&self, map: &MapTables, sector: u16) -> Option<usize> {
-        map.movers.binary_search_by_key(&sector, |m| m.sector).ok()
+        mover_of(map, sector)
     }
 }
 
