@@ -427,6 +427,10 @@ fn track_through_portals(
     to: WorldPoint,
     body: &Body,
 ) -> Track {
+    debug_assert!(
+        strictly_inside(map, &map.sectors[usize::from(sector)], from),
+        "track's path must start strictly inside its sector"
+    );
     let start = sector;
     let mut current = sector;
     let mut came_through: Option<usize> = None;
@@ -453,10 +457,14 @@ fn track_through_portals(
             }
             // Both ends strictly on one side of the wall's line: disjoint (a point of the wall
             // on the path would lie on that side too), for two of segment_contact's products.
-            let (from_side, to_side) = (
-                cross_near(start_bits, b_bits, from_bits),
-                cross_near(start_bits, b_bits, to_bits),
-            );
+            // In the first sector `from` is strictly inside (track's precondition): right of
+            // every wall, so its side needs no product (any positive value stands for it).
+            let from_side = if hop == 0 {
+                1
+            } else {
+                cross_near(start_bits, b_bits, from_bits)
+            };
+            let to_side = cross_near(start_bits, b_bits, to_bits);
             if (from_side > 0 && to_side > 0) || (from_side < 0 && to_side < 0) {
                 continue;
             }
