@@ -1,4 +1,4 @@
-@ Wall and sky column kernels: one texture column stepped down one screen column.
+@ Column kernels (walls, strips, the sky): one texture column stepped down one screen column.
 @ ARM code in IWRAM. Rust twins: src/raster/column.rs (identical pixels, tested).
 @
 @ r0 = *const ColumnJob:
@@ -10,8 +10,8 @@
 @   +16 count     u32        rows to draw, at least 1
 @   +20 colormap  *const u8  256-entry light row (lit variants only)
 @
-@ Variants, for each texture height 8..256 (the shift must be an immediate), and the unlit ones
-@ once more for the sky's height (pc_col_*_unlit_sky):
+@ Variants, for each texture height 8..256 (the shift must be an immediate); the sky's unlit
+@ columns take the lit ones through the identity row in a lit frame:
 @   pc_col_dbl_{unlit,lit}_hN   120-wide modes: STRB to VRAM writes the byte to both halves of
 @                               the halfword, so one store draws a logical pixel 2 screen pixels
 @                               wide. dst = page + row*240 + 2*x.
@@ -106,14 +106,6 @@
     COLUMN_KERNEL pc_col_odd_unlit_h\log2h, odd, (32 - \log2h), 0, 2
     .endr
 
-    @ The sky's unlit columns, at its height only (PC_SKY_SHIFT = 32 − log2 of it, set by
-    @ src/hw/kernels.rs from the compiled assets), outside the banks: a lit frame draws its sky
-    @ without loading the unlit bank.
-    .section .iwram.pc_column_sky, "ax", %progbits
-    .arm
-    COLUMN_KERNEL pc_col_dbl_unlit_sky, dbl, PC_SKY_SHIFT, 0, 2
-    COLUMN_KERNEL pc_col_even_unlit_sky, even, PC_SKY_SHIFT, 0, 2
-    COLUMN_KERNEL pc_col_odd_unlit_sky, odd, PC_SKY_SHIFT, 0, 2
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

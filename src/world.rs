@@ -255,6 +255,15 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         }
     }
 
+    /// `map`'s sectors as they are now: the live table, or the cartridge's where the map has
+    /// no movers or light effects.
+    pub fn sectors_of<'s>(&'s self, map: &MapTables<'s>) -> &'s [Sector] {
+        match self.live {
+            0 => map.sectors,
+            live => &self.sectors[..live],
+        }
+    }
+
     /// `map` as it is now: its tables with the live sector and trigger tables in place of the
     /// cartridge's (the same tables where the map has no movers).
     pub fn map<'s>(&'s self, map: &MapTables<'s>) -> MapTables<'s> {
@@ -262,7 +271,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
             return *map;
         }
         MapTables {
-            sectors: &self.sectors[..self.live],
+            sectors: self.sectors_of(map),
             triggers: &self.triggers[..self.trigger_count],
             ..*map
         }
@@ -352,7 +361,8 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         self.touch(map, player);
         self.tick(map, player);
         let before = player.sector;
-        player.tick(intent, &self.map(map));
+        // The cartridge's walls among the live sectors: no copy of the map's tables.
+        player.tick_among(intent, map, self.sectors_of(map));
         if player.sector != before {
             self.crossed(map, before, player.sector);
         }
@@ -469,7 +479,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         } else {
             moved.ceil_z = height;
         }
-        let mut body = player.body();
+        let mut body = player.body(live.sectors);
         let carried = moves_floor(mover)
             && player.sector == index
             && !player.fly

@@ -122,7 +122,7 @@ fn random_moves_keep_the_invariants_on(map: &MapTables, cases: u32) {
             world.tick(map, &player);
         }
         let live = world.map(map);
-        prop_assume!(player.body().admits(&live.sectors[usize::from(player.sector)]));
+        prop_assume!(player.body(live.sectors).admits_sector(player.sector));
         player.feet_z = Fx24_8::from_int(live.sectors[usize::from(player.sector)].floor_z);
         for (index, step) in moves.iter().enumerate() {
             for tick in 0..step.ticks {

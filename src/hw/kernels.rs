@@ -105,11 +105,6 @@ impl SpanTarget for VramPage {
     }
 }
 
-// The sky's height, for its column kernels in asm/column.s (set before the file is assembled).
-core::arch::global_asm!(
-    ".equ PC_SKY_SHIFT, {shift}",
-    shift = const 32 - crate::assets::SKY_LOG2_HEIGHT,
-);
 core::arch::global_asm!(include_str!("../../asm/column.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
@@ -293,11 +288,6 @@ fn sprite_run(translucent: bool, packing: usize) -> usize {
     RUNS[usize::from(translucent)][packing] as usize
 }
 
-/// The sky's unlit column kernels by packing (doubled, even, odd), at the sky's height: outside
-/// the kernel banks.
-static SKY_COLUMN_KERNELS: [ColumnKernel; 3] =
-    kernel_table!(ColumnJob; pc_col_dbl_unlit_sky, pc_col_even_unlit_sky, pc_col_odd_unlit_sky);
-
 extern "C" {
     static __kernels_lit_start: u8;
     static __kernels_lit_end: u8;
@@ -479,17 +469,15 @@ impl Canvas for VramCanvas {
             1 => (0, 2 * x),
             _ => (1 + x % 2, x & !1),
         };
-        let sky =
-            texture.colormap.is_none() && texture.log2_height == crate::assets::SKY_LOG2_HEIGHT;
-        let (kernel, colormap) = if sky || !self.kernels {
-            (
-                SKY_COLUMN_KERNELS[packing],
-                colormap_pointer(texture.colormap),
-            )
+        // An unlit column (the sky's) in a lit frame takes the lit kernel through the identity
+        // row (`KernelBank::for_colormap`): the same pixels, without loading the other bank.
+        let (bank, colormap) = if self.kernels {
+            KernelBank::for_colormap(texture.colormap)
         } else {
-            let (bank, colormap) = KernelBank::for_colormap(texture.colormap);
-            (COLUMN_KERNELS[packing][bank][height_index], colormap)
+            let lit = texture.colormap.is_some();
+            (usize::from(lit), colormap_pointer(texture.colormap))
         };
+        let kernel = COLUMN_KERNELS[packing][bank][height_index];
         let job = ColumnJob {
             dst: self.row_address(row).wrapping_add(byte_column),
             texels: texture.texels.as_ptr(),
@@ -501,8 +489,8 @@ impl Canvas for VramCanvas {
         if self.kernels {
             // SAFETY: the column lies inside the page (checked above), the texel column holds
             // 2^log2_height bytes and every index the kernel forms is below that; the
-            // colormap, if used, has 256 entries; the kernel is the sky's (for its height) or
-            // its bank's, which `KernelBank::for_colormap` brought in.
+            // colormap, if used, has 256 entries; the kernel is its bank's, which
+            // `KernelBank::for_colormap` brought in.
             unsafe { kernel(&job) };
         }
     }

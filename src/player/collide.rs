@@ -133,16 +133,26 @@ fn vertex_bits(map: &MapTables, index: u16) -> Bits {
     (vertex.x * 256, vertex.y * 256)
 }
 
-/// The vertical extent of the body, which decides the sectors it may enter.
+/// The vertical extent of the body, which decides the sectors it may enter, and the sectors'
+/// heights as they are now.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Body {
+pub struct Body<'s> {
     /// Height of the feet (the floor, when standing).
     pub feet: Fx24_8,
     /// Height of the eye above the feet.
     pub eye_height: Fx24_8,
+    /// The map's sectors with their heights now ([`Body::admits_sector`]): the live table of a
+    /// map with movers (`crate::world`), the cartridge's otherwise. Only their heights are read
+    /// here; the walls come from the map's own table.
+    pub sectors: &'s [Sector],
 }
 
-impl Body {
+impl Body<'_> {
+    /// [`Body::admits`] of sector `index` of [`Body::sectors`].
+    pub fn admits_sector(&self, index: u16) -> bool {
+        self.admits(&self.sectors[usize::from(index)])
+    }
+
     /// Whether the body may move into `sector`: its floor at most [`STEP_UP_MAX`] above the
     /// feet, and its ceiling at least [`HEADROOM`] above the eye once the feet stand at least
     /// on its floor.
@@ -229,6 +239,10 @@ fn slide_step(
     step: Delta,
     body: &Body,
 ) -> (WorldPoint, u16) {
+    debug_assert!(
+        strictly_inside(map, &map.sectors[usize::from(sector)], from),
+        "a step must start strictly inside its sector"
+    );
     let reach = 2 * RADIUS_BITS + 256;
     let bounds = Bounds::around(from, step, reach);
     let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
@@ -243,8 +257,10 @@ fn slide_step(
     // Only a step near things looks for solid ones (a list of them is large: it is filled
     // only then, and stays out of `Obstacles`, which every step copies).
     if obstacles.things_near(map) {
-        if let Some(discs) = Discs::near(map, &obstacles, bounds) {
-            return try_moves(map, sector, from, step, body, &obstacles, Some(&discs));
+        // By reference: bound by value, the list (136 bytes) was copied out of the option
+        // with a library call.
+        if let Some(discs) = &Discs::near(map, &obstacles, bounds) {
+            return try_moves(map, sector, from, step, body, &obstacles, Some(discs));
         }
     }
     // Nothing to push against and the step ends strictly inside its sector: what try_moves'
@@ -501,9 +517,7 @@ fn track_through_portals(
         let Some(next) = wall.neighbour() else {
             return Track::Blocked;
         };
-        if wall.flags & WALL_MIDDLE_BLOCKS != 0
-            || (next != start && !body.admits(&map.sectors[usize::from(next)]))
-        {
+        if wall.flags & WALL_MIDDLE_BLOCKS != 0 || (next != start && !body.admits_sector(next)) {
             return Track::Blocked;
         }
         let Some(twin) = twin_wall(map, wall, current, next) else {
@@ -697,19 +711,22 @@ impl<'a, 'm> Obstacles<'a, 'm> {
                 let b = vertex_bits(map, wall.end);
                 let (wall_a, wall_b) = (a, b);
                 a = b;
-                if first_sector {
-                    // strictly_inside(sector, target), on the walls this reads anyway (target is
-                    // a step from a point of the world: cross_near is exact).
-                    target_inside &= cross_near(wall_a, wall_b, target) > 0;
-                }
                 if !bounds.meets(wall_a, wall_b) {
                     continue;
+                }
+                if first_sector {
+                    // strictly_inside(sector, target) (target is a step from a point of the
+                    // world: cross_near is exact), on the walls near the step alone: the step
+                    // starts strictly inside the convex sector, so if it ends outside, it leaves
+                    // through a wall it meets, whose box meets the bounds, and ends on or beyond
+                    // that wall's line.
+                    target_inside &= cross_near(wall_a, wall_b, target) > 0;
                 }
                 match wall.neighbour() {
                     // A portal whose middle blocks is a wall to the body.
                     Some(next)
                         if wall.flags & WALL_MIDDLE_BLOCKS == 0
-                            && (next == sector || body.admits(&map.sectors[usize::from(next)])) =>
+                            && (next == sector || body.admits_sector(next)) =>
                     {
                         if !sectors[..found].contains(&next) && found < MAX_NEARBY_SECTORS {
                             sectors[found] = next;
@@ -1414,10 +1431,14 @@ mod tests {
         }
     }
 
-    const STANDING: Body = Body {
-        feet: Fx24_8::ZERO,
-        eye_height: Fx24_8::from_int(32),
-    };
+    /// Standing on the floor of the test rooms (every sector at heights 0..128).
+    fn standing(sectors: &[Sector]) -> Body<'_> {
+        Body {
+            feet: Fx24_8::ZERO,
+            eye_height: Fx24_8::from_int(32),
+            sectors,
+        }
+    }
 
     #[test]
     fn more_segments_than_the_short_list_holds_take_the_long_one() {
@@ -1431,13 +1452,28 @@ mod tests {
         );
         let mut few = [&NO_SEGMENT; FEW_SEGMENTS];
         let mut reached = [0; MAX_NEARBY_SECTORS];
-        let near = Obstacles::near(&map, 0, &bounds, &STANDING, &mut few, &mut reached, (0, 0));
+        let near = Obstacles::near(
+            &map,
+            0,
+            &bounds,
+            &standing(map.sectors),
+            &mut few,
+            &mut reached,
+            (0, 0),
+        );
         assert!(near.is_none());
         let mut many = [&NO_SEGMENT; MAX_SEGMENTS];
         let mut reached = [0; MAX_NEARBY_SECTORS];
-        let obstacles =
-            Obstacles::near(&map, 0, &bounds, &STANDING, &mut many, &mut reached, (0, 0))
-                .expect("room for every segment");
+        let obstacles = Obstacles::near(
+            &map,
+            0,
+            &bounds,
+            &standing(map.sectors),
+            &mut many,
+            &mut reached,
+            (0, 0),
+        )
+        .expect("room for every segment");
         let in_wall_order: Vec<&Wall> = walls.iter().collect();
         assert_eq!(obstacles.ends, &in_wall_order[..]);
         assert!(obstacles.target_inside);
@@ -1448,7 +1484,7 @@ mod tests {
             0,
             WorldPoint::from_int(12, 0),
             Delta { x: 8 * 256, y: 0 },
-            &STANDING,
+            &standing(map.sectors),
         );
         assert_eq!((to, sector), (WorldPoint::from_int(30 - RADIUS, 0), 0));
     }
@@ -1477,8 +1513,9 @@ mod tests {
             };
             let bounds = Bounds::around(from, step, 2 * RADIUS_BITS + 256);
             let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
-            let short = slide_step(&map, 0, from, step, &STANDING);
-            let long = slide_step_among_many(&map, 0, from, step, &STANDING, &bounds, target);
+            let short = slide_step(&map, 0, from, step, &standing(map.sectors));
+            let long =
+                slide_step_among_many(&map, 0, from, step, &standing(map.sectors), &bounds, target);
             assert_eq!(short, long, "from {from:?} by {step:?}");
             pushed += usize::from(short.0 != point_from_bits(target).expect("in the world"));
         }

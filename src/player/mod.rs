@@ -31,7 +31,7 @@ pub mod collide;
 pub mod input;
 pub mod vertical;
 
-use portalcast_format::MapTables;
+use portalcast_format::{MapTables, Sector};
 
 use crate::math::{Angle, Fx24_8, WorldPoint};
 use crate::render::view::{Camera, MAX_LOOK_LINES};
@@ -141,11 +141,12 @@ impl Player {
         self.eye_height < Fx24_8::from_int(STAND_EYE)
     }
 
-    /// The body's vertical extent, for the collision rules.
-    pub fn body(&self) -> Body {
+    /// The body's vertical extent, for the collision rules, among `sectors` (their heights now).
+    pub fn body<'s>(&self, sectors: &'s [Sector]) -> Body<'s> {
         Body {
             feet: self.feet_z,
             eye_height: self.eye_height,
+            sectors,
         }
     }
 
@@ -167,7 +168,14 @@ impl Player {
         self.vertical_speed = Fx24_8::ZERO;
     }
 
-    /// One tick (1/60 s) of `intent` on `map`.
+    /// One tick (1/60 s) of `intent` on `map`, its sectors at the heights its table gives.
+    pub fn tick(&mut self, intent: &Intent, map: &MapTables) {
+        self.tick_among(intent, map, map.sectors);
+    }
+
+    /// One tick (1/60 s) of `intent` on `map`'s walls, among `sectors`: the same sectors with
+    /// their heights now (a map with movers keeps them live, `crate::world`), so that the map's
+    /// tables need no live copy every tick.
     ///
     /// In IWRAM on the GBA, with what it inlines (the turn, the acceleration, the vertical
     /// motion): the cartridge's fetches made this part of every tick cost about three times as
@@ -175,7 +183,7 @@ impl Player {
     /// (pushes, portal crossings) stay in ROM.
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".iwram.player_tick")]
-    pub fn tick(&mut self, intent: &Intent, map: &MapTables) {
+    pub fn tick_among(&mut self, intent: &Intent, map: &MapTables, sectors: &[Sector]) {
         if intent.toggle_fly {
             self.toggle_fly();
         }
@@ -196,7 +204,7 @@ impl Player {
                 x: self.velocity.0,
                 y: self.velocity.1,
             },
-            &self.body(),
+            &self.body(sectors),
         );
         self.velocity = (
             position.x.to_bits() - self.position.x.to_bits(),
@@ -205,7 +213,7 @@ impl Player {
         self.position = position;
         self.sector = sector;
 
-        vertical::tick(self, intent, &map.sectors[usize::from(sector)]);
+        vertical::tick(self, intent, &sectors[usize::from(sector)]);
     }
 
     fn turn(&mut self, direction: i8) {

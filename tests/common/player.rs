@@ -156,6 +156,7 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
         let body = Body {
             feet: before.feet_z,
             eye_height: before.eye_height,
+            sectors: map.sectors,
         };
         for wall in map.walls {
             let Some(next) = wall.neighbour() else {

@@ -184,16 +184,11 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
                 "pub static SKY: Option<{FORMAT}::Sky<'static>> = Some({FORMAT}::Sky {{ width_log2: {}, height: {}, texels: &SKY_BLOB.0 }});\n",
                 sky.width_log2, sky.height
             );
-            let _ = writeln!(
-                s,
-                "/// log2 of the sky's height: the IWRAM keeps unlit column kernels for this height.\npub const SKY_LOG2_HEIGHT: u32 = {};\n",
-                sky.height.trailing_zeros()
-            );
         }
         None => {
             let _ = writeln!(
                 s,
-                "pub static SKY: Option<{FORMAT}::Sky<'static>> = None;\n/// log2 of the stand-in sky's height (8 texels).\npub const SKY_LOG2_HEIGHT: u32 = 3;\n"
+                "pub static SKY: Option<{FORMAT}::Sky<'static>> = None;\n"
             );
         }
     }
