@@ -543,6 +543,7 @@ impl Canvas for VramCanvas {
     }
 
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".iwram.vram_canvas_sprite_columns")]
     fn sprite_columns(&mut self, batch: &SpriteBatch) {
         // Every bound the kernel trusts but the ones it tests itself (the offsets, the posts'
         // end, the light rows: `SpriteBatch::column`'s), in one pass over the columns.
