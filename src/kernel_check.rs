@@ -138,19 +138,27 @@ static SPRITE_IMAGE: [u8; SPRITE_IMAGE_LEN] = {
 };
 
 /// The light rows of the check's batches: every entry a function of its row and index.
-static CHECK_LIGHT_ROWS: portalcast_format::Colormap = {
-    let mut rows = [[0u8; 256]; portalcast_format::LIGHT_LEVELS];
+static CHECK_LIGHT_ROWS: portalcast_format::Colormap = mixed_table(13, 7, 3);
+
+/// A table whose entry `[row][index]` is `row·row_factor + index·index_factor + offset`, modulo
+/// 256: a wrong row or a wrong index shows in what is read from it.
+const fn mixed_table<const ROWS: usize>(
+    row_factor: usize,
+    index_factor: usize,
+    offset: usize,
+) -> [[u8; 256]; ROWS] {
+    let mut table = [[0u8; 256]; ROWS];
     let mut row = 0;
-    while row < portalcast_format::LIGHT_LEVELS {
+    while row < ROWS {
         let mut index = 0;
         while index < 256 {
-            rows[row][index] = ((index * 7 + row * 13 + 3) & 0xff) as u8;
+            table[row][index] = ((row * row_factor + index * index_factor + offset) & 0xff) as u8;
             index += 1;
         }
         row += 1;
     }
-    rows
-};
+    table
+}
 
 /// Sprite batches drawn per call, each of up to [`BATCH_COLUMNS_MAX`] columns.
 const BATCHES: u32 = JOBS_PER_KIND / 4;
@@ -160,19 +168,7 @@ const BATCH_COLUMNS_MAX: usize = 8;
 
 /// A blend table for the check: every entry a function of both indices, so a wrong pixel
 /// behind or a wrong texel shows.
-static CHECK_BLEND: portalcast_format::BlendTable = {
-    let mut table = [[0u8; 256]; 256];
-    let mut behind = 0;
-    while behind < 256 {
-        let mut front = 0;
-        while front < 256 {
-            table[behind][front] = ((behind * 3 + front * 5 + 7) & 0xff) as u8;
-            front += 1;
-        }
-        behind += 1;
-    }
-    table
-};
+static CHECK_BLEND: portalcast_format::BlendTable = mixed_table(3, 5, 7);
 
 static COLORMAP: [u8; 256] = check_colormap();
 

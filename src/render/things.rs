@@ -231,22 +231,7 @@ impl Things {
     /// Empty.
     pub const fn new() -> Things {
         Things {
-            visible: [VisibleThing {
-                visit: 0,
-                translucent: false,
-                depth: 0,
-                thing: 0,
-                sprite: 0,
-                first: 0,
-                end: 0,
-                clips_at: 0,
-                light_row: 0,
-                u_first: 0,
-                iscale_x: 0,
-                y_top: 0,
-                scale: 0,
-                iscale: 0,
-            }; VISIBLE_THINGS_MAX],
+            visible: [OFF_SCREEN; VISIBLE_THINGS_MAX],
             count: 0,
             clips: [Window::EMPTY; THING_CLIP_COLUMNS],
             clips_used: 0,
