@@ -11,6 +11,10 @@
 //! side-of-line tests of [`crate::math`], and a pose that lands on a wall line (the middle of a
 //! portal, at the end of a leg) moves on by one 1/256 step until it is strictly inside.
 //!
+//! Like a player, the path keeps clear of solid things: a sector's centre inside a solid thing's
+//! clearance (its radius and the player's) gives way to a point on the near side of the thing,
+//! and a leg that would pass through one goes round it by one more waypoint.
+//!
 //! The camera moves [`SPEED`] along the path each frame (about Doom's running speed per tic),
 //! eye [`EYE_HEIGHT`] above the floor of its sector, and turns smoothly towards the direction of
 //! its leg: a quarter of the remaining angle per frame, at most [`MAX_TURN_PER_FRAME`].
@@ -18,9 +22,10 @@
 //! Everything is integer arithmetic on the map's own formats (24.8 positions, binary angles), so
 //! a frame's pose is the same on every machine.
 
-use portalcast_format::{MapTables, Sector, Wall};
+use portalcast_format::{MapTables, Sector, Thing, Wall, THING_SOLID};
 
 use crate::math::{div_round_nearest, side_of_line, Angle, Fx24_8, Side, WorldPoint};
+use crate::player::collide::RADIUS;
 use crate::render::view::Camera;
 
 /// Distance flown per frame, in world units.
@@ -105,6 +110,99 @@ fn centre(map: &MapTables, sector: &Sector) -> WorldPoint {
         Fx24_8::from_bits(div_round_nearest(x, count) as i32),
         Fx24_8::from_bits(div_round_nearest(y, count) as i32),
     )
+}
+
+/// How near the eye may come to a solid thing's centre, in 24.8 bits: the thing's radius and the
+/// player's, the distance a player's centre keeps (`crate::player::collide`).
+fn clearance_bits(thing: &Thing) -> i64 {
+    (i64::from(thing.radius) + i64::from(RADIUS)) << Fx24_8::FRAC_BITS
+}
+
+/// The solid things of sector `sector`.
+fn solid_things<'a>(map: &MapTables<'a>, sector: u16) -> impl Iterator<Item = &'a Thing> + 'a {
+    map.things_in(sector)
+        .iter()
+        .filter(|thing| thing.flags & THING_SOLID != 0)
+}
+
+/// `(x, y)` of a point in 24.8 bits, wide.
+fn bits(p: WorldPoint) -> (i64, i64) {
+    (i64::from(p.x.to_bits()), i64::from(p.y.to_bits()))
+}
+
+/// The point `length` (24.8 bits) from `centre` towards `(dx, dy)`, rounded to 24.8 bits; `None`
+/// for a zero direction.
+fn towards(centre: (i64, i64), (dx, dy): (i64, i64), length: i64) -> Option<WorldPoint> {
+    let norm = (dx * dx + dy * dy).unsigned_abs().isqrt() as i64;
+    if norm == 0 {
+        return None;
+    }
+    let at = |c: i64, d: i64| Fx24_8::from_bits((c + div_round_nearest(d * length, norm)) as i32);
+    Some(WorldPoint::new(at(centre.0, dx), at(centre.1, dy)))
+}
+
+/// Where the tour stands in `sector`, coming from `from`: its centre, or, where a solid thing
+/// stands there (a statue in the middle of a room), the point a quarter of the thing's
+/// clearance beyond it on the side `from` is, if that is inside the sector. A player's centre
+/// never comes that near a solid thing, so neither does the benchmark's eye.
+fn stand_point(map: &MapTables, sector: u16, from: WorldPoint) -> WorldPoint {
+    let centre = centre(map, &map.sectors[usize::from(sector)]);
+    let (cx, cy) = bits(centre);
+    let Some(thing) = solid_things(map, sector).find(|thing| {
+        let (dx, dy) = (cx - i64::from(thing.x_fx8), cy - i64::from(thing.y_fx8));
+        let clearance = clearance_bits(thing);
+        dx * dx + dy * dy < clearance * clearance
+    }) else {
+        return centre;
+    };
+    let at = (i64::from(thing.x_fx8), i64::from(thing.y_fx8));
+    let (fx, fy) = bits(from);
+    towards(at, (fx - at.0, fy - at.1), clearance_bits(thing) * 5 / 4)
+        .filter(|&point| strictly_inside(map, sector, point))
+        .unwrap_or(centre)
+}
+
+/// Units added to a solid thing's clearance when deciding whether a way passes near it: the
+/// decision is taken in whole units.
+const DETOUR_MARGIN: i64 = 2;
+
+/// A point to go round by on the way from `from` to `to` in `sector`, if the straight way passes
+/// nearer a solid thing's centre than its clearance: twice the clearance from the thing, square
+/// to the way, on the side the way passes (the left one if it passes through the centre), or on
+/// the other side if that one is outside the sector. `None` where the way is clear or no such
+/// point is inside the sector. One detour a leg: `tests/live_flight.rs` checks that the shipped
+/// maps' paths keep the clearance.
+fn detour(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint) -> Option<WorldPoint> {
+    let ((fx, fy), (tx, ty)) = (bits(from), bits(to));
+    let (dx, dy) = (tx - fx, ty - fy);
+    if dx == 0 && dy == 0 {
+        return None;
+    }
+    // Whether the way passes near: in whole units (products within 64 bits), with a margin of
+    // [`DETOUR_MARGIN`] units for their rounding.
+    let unit = |bits: i64| bits >> Fx24_8::FRAC_BITS;
+    let (ux, uy, udx, udy) = (unit(fx), unit(fy), unit(tx) - unit(fx), unit(ty) - unit(fy));
+    let length_squared = (udx * udx + udy * udy).max(1);
+    let thing = solid_things(map, sector).find(|thing| {
+        let (cx, cy) = (unit(i64::from(thing.x_fx8)), unit(i64::from(thing.y_fx8)));
+        // The nearest point of the way to the thing, rounded to units.
+        let along = ((cx - ux) * udx + (cy - uy) * udy).clamp(0, length_squared);
+        let (qx, qy) = (
+            ux + div_round_nearest(udx * along, length_squared),
+            uy + div_round_nearest(udy * along, length_squared),
+        );
+        let reach = (clearance_bits(thing) >> Fx24_8::FRAC_BITS) + DETOUR_MARGIN;
+        (cx - qx) * (cx - qx) + (cy - qy) * (cy - qy) < reach * reach
+    })?;
+    let at = (i64::from(thing.x_fx8), i64::from(thing.y_fx8));
+    // Left of the way is (−dy, dx); the thing is left of it where the cross product is positive.
+    let thing_left = dx * (at.1 - fy) - dy * (at.0 - fx) > 0;
+    let away = if thing_left { (dy, -dx) } else { (-dy, dx) };
+    let reach = clearance_bits(thing) * 2;
+    [away, (-away.0, -away.1)]
+        .into_iter()
+        .filter_map(|direction| towards(at, direction, reach))
+        .find(|&point| strictly_inside(map, sector, point))
 }
 
 /// The binary angle of the direction `(dx, dy)` (24.8 bits), rounded down to a unit; 0 for a
@@ -204,13 +302,14 @@ impl Tour {
                     self.depth += 1;
                     self.mark(there);
                     self.moved_since_start = true;
+                    let through = midpoint(map, wall);
                     return Some([
                         Waypoint {
-                            point: midpoint(map, wall),
+                            point: through,
                             sector: here,
                         },
                         Waypoint {
-                            point: centre(map, neighbour),
+                            point: stand_point(map, there, through),
                             sector: there,
                         },
                     ]);
@@ -228,13 +327,14 @@ impl Tour {
             let (parent, after_entry) = self.chain[self.depth - 1];
             let parent_sector = &map.sectors[usize::from(parent)];
             let entry = &map.sector_walls(parent_sector)[usize::from(after_entry - 1)];
+            let through = midpoint(map, entry);
             return Some([
                 Waypoint {
-                    point: midpoint(map, entry),
+                    point: through,
                     sector: here,
                 },
                 Waypoint {
-                    point: centre(map, parent_sector),
+                    point: stand_point(map, parent, through),
                     sector: parent,
                 },
             ]);
@@ -296,6 +396,8 @@ pub struct Flight<'m> {
     camera: Camera,
     leg: Option<Leg>,
     queued: Option<Waypoint>,
+    /// The waypoint the path goes on to after a detour round a solid thing.
+    after_detour: Option<Waypoint>,
     tour: Tour,
 }
 
@@ -319,9 +421,10 @@ impl<'m> Flight<'m> {
             },
             leg: None,
             queued: None,
+            after_detour: None,
             tour: Tour::new(start.sector),
         };
-        flight.leg = flight.next_waypoint().map(|to| Leg::new(position, to));
+        flight.leg = flight.next_leg(position);
         flight
     }
 
@@ -334,7 +437,32 @@ impl<'m> Flight<'m> {
         Some(first)
     }
 
-    /// Moves `distance` (24.8 bits) along the path, onto the following legs as each ends.
+    /// The leg from `from` to the next waypoint, or to a point round a solid thing on the way
+    /// to it ([`detour`]), the waypoint then next.
+    fn next_leg(&mut self, from: WorldPoint) -> Option<Leg> {
+        if let Some(resumed) = self.after_detour.take() {
+            return Some(Leg::new(from, resumed));
+        }
+        let to = self.next_waypoint()?;
+        match detour(&self.map, to.sector, from, to.point) {
+            Some(round) => {
+                self.after_detour = Some(to);
+                Some(Leg::new(
+                    from,
+                    Waypoint {
+                        point: round,
+                        sector: to.sector,
+                    },
+                ))
+            }
+            None => Some(Leg::new(from, to)),
+        }
+    }
+
+    /// Moves `distance` (24.8 bits) along the path, onto the following legs as each ends, but
+    /// no further than the end of a leg after which the path goes on in another sector: every
+    /// sector on the path, however thin (a door), has a frame of its own, so the live world
+    /// sees the camera at its door.
     fn fly(&mut self, distance: i64) {
         let mut left = distance;
         while let Some(leg) = self.leg.as_mut() {
@@ -344,8 +472,11 @@ impl<'m> Flight<'m> {
                 return;
             }
             left -= remaining;
-            let end = leg.to;
-            self.leg = self.next_waypoint().map(|to| Leg::new(end, to));
+            let (end, sector) = (leg.to, leg.sector);
+            self.leg = self.next_leg(end);
+            if self.leg.is_some_and(|next| next.sector != sector) {
+                return;
+            }
         }
     }
 

@@ -8,8 +8,9 @@ use portalcast::assets;
 use portalcast::flight::EYE_HEIGHT;
 use portalcast::game::GameWorld;
 use portalcast::live_flight::{LiveFlight, MAX_WAIT_FRAMES};
+use portalcast::player::collide::RADIUS;
 use portalcast::world::Phase;
-use portalcast_format::{MOVER_DOOR, MOVER_LIFT};
+use portalcast_format::{MOVER_DOOR, MOVER_LIFT, THING_SOLID};
 
 /// Frames flown on each map: well past one tour of the bench map.
 const FRAMES: u32 = 2000;
@@ -71,14 +72,26 @@ fn on_the_bench_map_the_camera_opens_the_door_and_rides_the_lift() {
         .unwrap();
     let door_sector = map.movers[door].sector;
     let lift_sector = map.movers[lift].sector;
+    // The door sector is thin: the camera may cross it between two frames, from one of its
+    // neighbours straight into another.
+    let door_neighbours: Vec<u16> = map
+        .sector_walls(&map.sectors[usize::from(door_sector)])
+        .iter()
+        .filter_map(|wall| wall.neighbour())
+        .collect();
     let mut world = GameWorld::new();
     let mut flight = LiveFlight::new(map, &mut world);
     let (mut through_door, mut rode_down) = (None, false);
+    let mut previous = flight.camera().sector;
     for frame in 0..portalcast::bench::BENCH_MAP_FRAMES {
         let camera = flight.camera();
-        if camera.sector == door_sector && through_door.is_none() {
+        let crossed = camera.sector != previous
+            && door_neighbours.contains(&previous)
+            && door_neighbours.contains(&camera.sector);
+        if (camera.sector == door_sector || crossed) && through_door.is_none() {
             through_door = Some((frame, world.movers()[door].height));
         }
+        previous = camera.sector;
         if camera.sector == lift_sector {
             let floor = world.movers()[lift].height;
             assert_eq!(camera.eye_z.to_bits(), (floor + EYE_HEIGHT) * 256);
@@ -92,4 +105,33 @@ fn on_the_bench_map_the_camera_opens_the_door_and_rides_the_lift() {
         rode_down,
         "the camera did not ride the lift down within the bench's frames"
     );
+}
+
+/// Like a player's body, the camera keeps clear of solid things: its centre never nearer a solid
+/// thing's centre than the two radii (the bench map's statue stands at its dais' centre, where
+/// the tour used to stand inside it and draw a screen-filling sprite no player can see).
+#[test]
+fn the_camera_keeps_a_players_clearance_from_solid_things() {
+    for map in assets::MAPS {
+        let mut world = GameWorld::new();
+        let mut flight = LiveFlight::new(map, &mut world);
+        for frame in 0..FRAMES {
+            let camera = flight.camera();
+            for thing in map.things.iter().filter(|t| t.flags & THING_SOLID != 0) {
+                let dx = i64::from(camera.position.x.to_bits() - thing.x_fx8);
+                let dy = i64::from(camera.position.y.to_bits() - thing.y_fx8);
+                let clearance = (i64::from(thing.radius) + i64::from(RADIUS)) * 256;
+                assert!(
+                    dx * dx + dy * dy >= clearance * clearance,
+                    "{} frame {frame}: the camera at {:?} is within {} units of the solid thing at ({}, {})",
+                    map.name,
+                    camera.position,
+                    clearance / 256,
+                    thing.x_fx8 / 256,
+                    thing.y_fx8 / 256
+                );
+            }
+            flight.advance(&mut world);
+        }
+    }
 }

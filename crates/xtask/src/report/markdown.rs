@@ -379,7 +379,9 @@ fn method(doc: &mut String, measurements: &Measurements) {
          (`src/flight.rs`): from the player start, a depth-first tour of the sectors a walker can \
          pass between, through the middle of each portal to the next sector's centre and back out \
          of dead ends, at about Doom's running speed, the eye at standing height, turning smoothly \
-         towards where it goes. The path is derived from the map alone, so every map has one, and \
+         towards where it goes. Like a player, it keeps clear of solid things: where one stands at \
+         a sector's centre (the bench map's statue) the path stops short of it, and it goes round \
+         one in its way. The path is derived from the map alone, so every map has one, and \
          every pose is exact in the engine's formats, so the host replays the ROM's frames exactly. \
          The path is flown through the map's live world (`src/live_flight.rs`), a game tick a \
          frame: the camera waits at a shut door and opens it, rides a lift standing on it, \
