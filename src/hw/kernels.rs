@@ -164,6 +164,19 @@ const _: () = {
     assert!(offset_of!(SpriteJob, colormap) == 24);
     assert!(offset_of!(SpriteJob, blend) == 28);
     assert!(offset_of!(SpriteJob, run) == 32);
+    assert!(offset_of!(SpriteJob, posts_end) == 36);
+    // `pc_sprite_columns` (asm/sprite.s) reads the batch and its columns at these.
+    assert!(size_of::<BatchColumn>() == 20);
+    assert!(offset_of!(BatchColumn, column) == 1);
+    assert!(offset_of!(BatchColumn, light_row) == 2);
+    assert!(offset_of!(BatchColumn, clip) == 4);
+    assert!(offset_of!(BatchColumn, y_top) == 8);
+    assert!(offset_of!(BatchColumn, iscale) == 16);
+    assert!(offset_of!(SpriteBatchJob, posts_len) == 12);
+    assert!(offset_of!(SpriteBatchJob, identity) == 20);
+    assert!(offset_of!(SpriteBatchJob, page) == 28);
+    assert!(offset_of!(SpriteBatchJob, runs) == 32);
+    assert!(offset_of!(SpriteBatchJob, native) == 44);
 };
 
 /// The argument block of the column kernels (`asm/column.s`).
