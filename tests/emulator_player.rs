@@ -416,18 +416,7 @@ fn checked_mover_heights(run: &RomRun) -> Vec<(u32, Vec<i32>)> {
         } else if line.starts_with("world ") {
             let tick = tick.expect("a player line before the world line");
             let logged = WorldLine::parse(line);
-            let mut shown = run.host[tick as usize];
-            shown.show();
-            let host = WorldLine {
-                heights: shown.world.movers().iter().map(|m| m.height).collect(),
-                thrown: shown
-                    .world
-                    .triggers()
-                    .iter()
-                    .map(|t| t.thrown == TRIGGER_THROWN)
-                    .collect(),
-                lights: shown.world.lights(&shown.map()).collect(),
-            };
+            let host = WorldLine::of(&run.host[tick as usize]);
             assert_eq!(logged, host, "the world after tick {tick}: {line}");
             let logged = logged.heights;
             heights.push((tick, logged));

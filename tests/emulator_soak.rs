@@ -25,7 +25,7 @@
 
 mod common;
 
-use common::demos::PlayerLine;
+use common::demos::{PlayerLine, WorldLine};
 use common::player::check_tick;
 use common::{boot, field, number, FRAME_LINES_HOLD, FRAME_LINES_KEY};
 use portalcast::game::Game;
@@ -231,30 +231,15 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
                 sectors.insert(logged.sector);
                 last_tick = logged.tick;
             } else if let Some(rest) = text.strip_prefix("world ") {
-                // The live world the frame drew: the movers' heights and the switches as the
-                // host's game has them after the same tick.
+                // The live world the frame drew: the movers' heights, the switches and the
+                // light levels as the host's game has them after the same tick.
                 let host = plan
                     .state_after(last_tick)
                     .ok_or("a world line before any player")?;
-                let heights: Vec<String> = host
-                    .world
-                    .movers()
-                    .iter()
-                    .map(|m| m.height.to_string())
-                    .collect();
-                let thrown: Vec<String> = host
-                    .world
-                    .triggers()
-                    .iter()
-                    .map(|t| t.thrown.to_string())
-                    .collect();
-                if field(rest, "heights") != Some(heights.join(",").as_str())
-                    || field(rest, "thrown") != Some(thrown.join(",").as_str())
-                {
+                let (rom, expected) = (WorldLine::parse(rest), WorldLine::of(host));
+                if rom != expected {
                     return Err(format!(
-                        "the ROM's world and the host's differ after tick {last_tick}:\n  rom:  {text}\n  host: heights={} thrown={}\n{}",
-                        heights.join(","),
-                        thrown.join(","),
+                        "the ROM's world and the host's differ after tick {last_tick}:\n  rom:  {text}\n  host: {expected:?}\n{}",
                         context()
                     ));
                 }

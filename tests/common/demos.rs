@@ -205,6 +205,23 @@ impl WorldLine {
         }
     }
 
+    /// The line the ROM prints after drawing `game`'s frame: its world, the light effects at
+    /// the levels the frame shows them with (`Game::show`).
+    pub fn of(game: &Game) -> WorldLine {
+        let mut shown = *game;
+        shown.show();
+        WorldLine {
+            heights: shown.world.movers().iter().map(|m| m.height).collect(),
+            thrown: shown
+                .world
+                .triggers()
+                .iter()
+                .map(|t| t.thrown == portalcast_format::TRIGGER_THROWN)
+                .collect(),
+            lights: shown.world.lights(&shown.map()).collect(),
+        }
+    }
+
     /// `map`'s world as the line gives it (the map as it starts where `line` is `None`: the
     /// ROM prints no world line for a map without movers or light effects).
     pub fn world_of(
