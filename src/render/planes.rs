@@ -8,10 +8,10 @@ use super::light::light_row;
 use super::light::Lighting;
 use super::spans::{make_spans, Window};
 use super::surface::Surface;
-use super::view::View;
+use super::view::{PlaneRays, View};
 use super::walk::{is_sky, mip_level_of_ratio, mip_ratio, mip_ratios_of_level, FrameStats};
 use super::RenderAssets;
-use crate::math::{recip_small, Fx24_8};
+use crate::math::{recip_small, Fx24_8, Fx2_30};
 use crate::raster::column::ColumnTexture;
 use crate::raster::flat::{FlatTexture, PackedUv, FLAT_LOG2_SIDES};
 use crate::raster::Canvas;
@@ -115,12 +115,8 @@ struct PlaneSpans<'r> {
     smallest_kernel_level: u8,
     /// `1/d_y` in 2.30 bits, for the mip rule.
     inverse_focal_y: i64,
-    /// `1/(2·d_x)` in 2.30 bits.
-    inverse_twice_focal_x: i32,
-    /// The view direction's sine and cosine, 16.16 bits: 32-bit, so that their products with
-    /// 32-bit values take one multiply.
-    sin: i32,
-    cos: i32,
+    /// The frame's rays per unit of depth.
+    rays: PlaneRays,
     /// The eye's map position in 16.16.
     eye_x: i64,
     eye_y: i64,
@@ -193,9 +189,7 @@ impl<'r> PlaneSpans<'r> {
             texture,
             smallest_kernel_level: largest.saturating_sub(*FLAT_LOG2_SIDES.end() as u8),
             inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
-            inverse_twice_focal_x: recip_small(2 * view.viewport.focal_x as u32).to_bits(),
-            sin: view.eye.sin().to_bits(),
-            cos: view.eye.cos().to_bits(),
+            rays: view.plane_rays,
             eye_x: i64::from(view.eye.position.x.to_bits()) << 8,
             eye_y: i64::from(view.eye.position.y.to_bits()) << 8,
             light: sector.light,
@@ -244,31 +238,17 @@ impl<'r> PlaneSpans<'r> {
             ..
         } = self.level;
         let depth_bits = i64::from(depth.to_bits());
-        // w = z'/d_x in 16.16, through the 2.30 reciprocal of 2·d_x (a table entry, no divide).
-        let w = (depth_bits * i64::from(self.inverse_twice_focal_x)) >> 21;
-        // Lateral offset of the centre column's pixel centre, ½·w, in 16.16. The span's first
-        // pixel is `start − cx` packed steps from it, as the kernel steps: every pixel of a row
-        // gets the same coordinates whichever span it falls in, so how the walk splits a plane
-        // into visits (the scene preprocessing merges them) changes no texel. From the centre,
-        // the packed step's rounding drifts over at most half the row.
-        let lateral = w >> 1;
-        let (sin, cos) = (i64::from(self.sin), i64::from(self.cos));
-        // w·sin, w·cos, lateral·sin, lateral·cos: w fits 32 bits but on rows next to the
-        // horizon of a plane far above or below the eye, and there the products take one
-        // multiply each instead of three. The same products either way.
-        let [w_sin, w_cos, lateral_sin, lateral_cos] = match i32::try_from(w) {
-            Ok(w) => {
-                let (w, lateral) = (i64::from(w), i64::from(w >> 1));
-                [w * sin, w * cos, lateral * sin, lateral * cos]
-            }
-            Err(_) => [w * sin, w * cos, lateral * sin, lateral * cos],
-        };
-        // Map position in 16.16: e + z'·f + lateral·r, with r = (−sin, cos), f = (cos, sin).
-        let x = self.eye_x + ((depth_bits * cos) >> 8) - (lateral_sin >> 16);
-        let y = self.eye_y + ((depth_bits * sin) >> 8) + (lateral_cos >> 16);
-        // Per pixel: w·r.
-        let step_x = -(w_sin >> 16);
-        let step_y = w_cos >> 16;
+        // Map position of the centre column's pixel centre and the step per pixel, in 16.16:
+        // 24.8 × 2.30 is 26.38, 22 bits more than 16.16. Every pixel of a row gets the same
+        // coordinates whichever span it falls in (the span's first pixel is `start − cx` packed
+        // steps from the centre, as the kernel steps), so how the walk splits a plane into
+        // visits changes no texel; from the centre, the packed step's rounding drifts over at
+        // most half the row.
+        let ray = |factor: Fx2_30| (depth_bits * i64::from(factor.to_bits())) >> 22;
+        let x = self.eye_x + ray(self.rays.centre.0);
+        let y = self.eye_y + ray(self.rays.centre.1);
+        let step_x = ray(self.rays.step.0);
+        let step_y = ray(self.rays.step.1);
         // Texture coordinates wrap, so keeping the low 32 bits of each is exact.
         let at_level = |value: i64| (value >> level) as i32;
 

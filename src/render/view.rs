@@ -1,7 +1,7 @@
 //! The camera and the per-frame view derived from it.
 
 use crate::frame::Resolution;
-use crate::math::{Angle, EyeFrame, Fx24_8, Viewport, WorldPoint};
+use crate::math::{recip_small, Angle, EyeFrame, Fx24_8, Fx2_30, Viewport, WorldPoint};
 
 use super::light::Lighting;
 
@@ -41,6 +41,44 @@ pub struct Settings {
     pub floors: Floors,
     /// Whether things are drawn.
     pub things: ThingsShown,
+}
+
+/// The map offsets of a row's pixels per unit of depth, the same for every floor and ceiling of
+/// a frame (Doom's `basexscale`, `baseyscale`, and its `distscale` and `finecosine` folded into
+/// one factor): a span at depth `z'` shows the map point `e + z'·centre` at the centre column's
+/// pixel centre, and moves by `z'·step` per pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlaneRays {
+    /// `f + r/(2·d_x)`, with `f = (cos, sin)` the view direction and `r = (−sin, cos)` its right.
+    pub centre: (Fx2_30, Fx2_30),
+    /// `r/d_x`.
+    pub step: (Fx2_30, Fx2_30),
+}
+
+impl PlaneRays {
+    /// The rays of `eye` through `viewport`'s columns.
+    pub fn new(eye: &EyeFrame, viewport: &Viewport) -> PlaneRays {
+        let (sin, cos) = (
+            i64::from(eye.sin().to_bits()),
+            i64::from(eye.cos().to_bits()),
+        );
+        // sin/d_x and cos/d_x in 2.30, from the 16.16 sine and cosine and the 2.30 reciprocal of
+        // 2·d_x: 16.16 × 2.30 is 18.46, 15 bits more than 2.30 of twice the product.
+        let inverse_twice_focal_x = i64::from(recip_small(2 * viewport.focal_x as u32).to_bits());
+        let sin_over_focal = (sin * inverse_twice_focal_x) >> 15;
+        let cos_over_focal = (cos * inverse_twice_focal_x) >> 15;
+        // Each is at most √(1 + 1/(4·d_x²)) in size, under 2 for every viewport (d_x ≥ 1).
+        let factor = |bits: i64| {
+            Fx2_30::from_bits(i32::try_from(bits).expect("a plane ray's factor is under 2 in size"))
+        };
+        PlaneRays {
+            centre: (
+                factor((cos << 14) - (sin_over_focal >> 1)),
+                factor((sin << 14) + (cos_over_focal >> 1)),
+            ),
+            step: (factor(-sin_over_focal), factor(cos_over_focal)),
+        }
+    }
 }
 
 /// The things knob: things drawn or not, to measure what they cost.
@@ -237,6 +275,8 @@ pub struct View {
     pub tick: u32,
     /// Whether things are drawn.
     pub things: ThingsShown,
+    /// The rays of the floor and ceiling spans, per unit of depth.
+    pub plane_rays: PlaneRays,
 }
 
 impl View {
@@ -246,8 +286,10 @@ impl View {
         let mut viewport = Viewport::new(resolution.width() as i32, resolution.height() as i32);
         let look = camera.look_lines.clamp(-MAX_LOOK_LINES, MAX_LOOK_LINES);
         viewport.horizon_y += look * resolution.height() as i32 / 160;
+        let eye = EyeFrame::new(camera.position, camera.angle);
         View {
-            eye: EyeFrame::new(camera.position, camera.angle),
+            plane_rays: PlaneRays::new(&eye, &viewport),
+            eye,
             eye_z: camera.eye_z,
             viewport,
             sector: camera.sector,
