@@ -113,6 +113,8 @@ core::arch::global_asm!(include_str!("../../asm/sprite.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/wall.s"), options(raw));
 restore_code_mode!();
+core::arch::global_asm!(include_str!("../../asm/plane.s"), options(raw));
+restore_code_mode!();
 // The math benchmark's ARM routines: assembled here with the kernels, placed in the benchmark's
 // IWRAM overlay by their section, and called through `hw::math_bench`.
 core::arch::global_asm!(include_str!("../../asm/mathbench.s"), options(raw));
@@ -126,13 +128,16 @@ restore_code_mode!();
 use crate::frame::Resolution;
 use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
 use crate::raster::flat::{FlatTexture, FLAT_LOG2_SIDES};
+use crate::raster::plane_run::{PlaneRun, PlaneRunEnd};
 use crate::raster::sprite::{steps_fit, BatchColumn, SpriteBatch, SpriteColumn};
 use crate::raster::wall_run::{StripRun, WallRun, WallRunEnd};
 use crate::raster::{Canvas, IDENTITY_ROW};
 
 extern "C" {
     fn pc_wall_run(run: *mut WallRun) -> u32;
+    fn pc_plane_run(run: *mut PlaneRun) -> u32;
     fn pc_column_skip(job: *const ColumnJob);
+    fn pc_flat_skip(job: *const FlatJob);
 }
 
 // `asm/wall.s` reads the run at these offsets (its header lists them).
@@ -160,6 +165,24 @@ const _: () = {
     assert!(offset_of!(StripRun, kernel_odd) == 28);
     assert!(offset_of!(StripRun, kernel_both) == 32);
     assert!(size_of::<WallRun>() == 204);
+    // `asm/plane.s` reads the plane's run at these.
+    assert!(offset_of!(PlaneRun, inverse_focal_y) == 12);
+    assert!(offset_of!(PlaneRun, level) == 24);
+    assert!(offset_of!(PlaneRun, texels) == 32);
+    assert!(offset_of!(PlaneRun, rays) == 40);
+    assert!(offset_of!(PlaneRun, eye) == 56);
+    assert!(offset_of!(PlaneRun, light_mode) == 72);
+    assert!(offset_of!(PlaneRun, recip_small) == 84);
+    assert!(offset_of!(PlaneRun, page) == 88);
+    assert!(offset_of!(PlaneRun, kernels) == 100);
+    assert!(offset_of!(PlaneRun, width) == 112);
+    assert!(offset_of!(PlaneRun, miss_ratio) == 116);
+    assert!(offset_of!(PlaneRun, windows) == 120);
+    assert!(offset_of!(PlaneRun, x) == 128);
+    assert!(offset_of!(PlaneRun, mid) == 140);
+    assert!(offset_of!(PlaneRun, spans) == 144);
+    assert!(offset_of!(PlaneRun, pending) == 152);
+    assert!(size_of::<FlatJob>() == 24);
     assert!(offset_of!(SpriteJob, y_top) == 8);
     assert!(offset_of!(SpriteJob, colormap) == 24);
     assert!(offset_of!(SpriteJob, blend) == 28);
@@ -272,6 +295,10 @@ static FLAT_KERNELS: [[[FlatKernel; 4]; 2]; 2] = [
         kernel_table!(FlatJob; pc_flat_pair_lit_k3, pc_flat_pair_lit_k4, pc_flat_pair_lit_k5, pc_flat_pair_lit_k6),
     ],
 ];
+
+/// The span kernels of the set-up benchmark's canvas (`VramCanvas::without_kernels`) for
+/// `pc_plane_run`: a stand-in that returns at once (`asm/plane.s`).
+static SKIPPED_FLAT_KERNELS: [FlatKernel; 4] = [pc_flat_skip; 4];
 
 extern "C" {
     fn pc_sprite(job: *const SpriteJob);
@@ -439,6 +466,43 @@ impl VramCanvas {
             .wrapping_add(row * crate::frame::PAGE_WIDTH)
     }
 
+    /// Hands `run` this page, the viewport, the packing and the span kernels for its light
+    /// (bringing their bank in), as `flat` picks them for a span.
+    #[inline(always)]
+    fn prepare_plane_run(&mut self, run: &mut PlaneRun) {
+        let native = self.resolution.pixels_per_halfword() == 2;
+        let halved = native && self.halved_flats;
+        let bank = if run.unlit() {
+            // As `flat` draws an unlit span: through the lit bank and the identity row when
+            // that bank is in.
+            let (bank, row) = if self.kernels {
+                KernelBank::for_colormap(None)
+            } else {
+                (0, core::ptr::null())
+            };
+            run.colormap = row;
+            bank
+        } else {
+            if self.kernels {
+                KernelBank::ensure(true);
+            }
+            1
+        };
+        run.kernels = if self.kernels {
+            FLAT_KERNELS[usize::from(native && !halved)][bank]
+                .as_ptr()
+                .cast::<usize>()
+        } else {
+            SKIPPED_FLAT_KERNELS.as_ptr().cast::<usize>()
+        };
+        run.page = self.page.base.cast::<u8>();
+        run.native = u32::from(native);
+        run.halved = u32::from(halved);
+        run.draw_edges = u32::from(self.kernels);
+        run.height = self.resolution.height() as u32;
+        run.width = self.resolution.width() as u32;
+    }
+
     /// One native pixel written by read-modify-write of its halfword, keeping the neighbour.
     fn put_native(&mut self, x: usize, row: usize, index: u8) {
         let halfword = self.row_address(row).wrapping_add(x & !1).cast::<u16>();
@@ -594,8 +658,10 @@ impl Canvas for VramCanvas {
         }
     }
 
+    /// In ROM: the planes' spans go to `plane_run` (`asm/plane.s`), and only the spans it
+    /// leaves (rows on a plane's far side of the horizon, planes without a flat) and the menu
+    /// come here.
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram.vram_canvas_flat")]
     fn flat(&mut self, row: usize, x: usize, count: usize, texture: &FlatTexture) {
         // Every bound the kernels trust, in one test: the span inside the page row, a kernel
         // for its side, and that many texels.
@@ -737,6 +803,34 @@ impl Canvas for VramCanvas {
             WallRunEnd::Done
         } else {
             WallRunEnd::MipLevel(run.miss_ratio)
+        })
+    }
+
+    #[inline(always)]
+    fn plane_run(&mut self, run: &mut PlaneRun) -> Option<PlaneRunEnd> {
+        if run.page.is_null() {
+            self.prepare_plane_run(run);
+        }
+        // Prepared for this page: its kernels, rows and columns; a start column for every row.
+        assert!(
+            run.page == self.page.base.cast::<u8>()
+                && !run.kernels.is_null()
+                && run.span_start_rows >= run.height
+        );
+        // SAFETY: `PlaneRun::new` and `set_level` checked what the loop follows: the windows
+        // it reads are those of the slice it was given (columns `x..end`), the reciprocal
+        // table has the 512 entries the loop bounds its index by, the texels (when the level
+        // range is not empty) hold the square of a side a kernel takes, and the colormap row
+        // index is at most 31 of the 32-row table (or the run's one row, or the identity row
+        // set here); the assertion above and `prepare_plane_run` keep its rows below this
+        // page's height and the start slice's length (it stops at a window past them), its
+        // spans' columns below the page's width, and hand it this canvas's kernels for the
+        // run's light and packing, from the bank brought in.
+        Some(match unsafe { pc_plane_run(run) } {
+            0 => PlaneRunEnd::Done,
+            1 => run.declined(),
+            2 => PlaneRunEnd::MipLevel(run.miss_ratio),
+            _ => panic!("a plane window outside the viewport's rows"),
         })
     }
 }

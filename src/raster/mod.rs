@@ -1,5 +1,6 @@
 //! Rasterizers: the portable Rust twins of the ARM kernels in `asm/`, the [`Canvas`] they draw
-//! on, and the job of the ARM wall loop ([`wall_run`], whose twin is the renderer's own loop).
+//! on, and the jobs of the ARM wall loop ([`wall_run`]) and span set-up ([`plane_run`]), whose
+//! twins are the renderer's own.
 //!
 //! Every kernel in `asm/*.s` has a twin here with the same arguments and the same arithmetic
 //! (including wrap-around), so the host can render exactly what the ROM renders; an emulator test
@@ -7,6 +8,7 @@
 
 pub mod column;
 pub mod flat;
+pub mod plane_run;
 pub mod span;
 pub mod sprite;
 pub mod wall_run;
@@ -152,6 +154,15 @@ pub trait Canvas {
     /// nothing is drawn: the renderer draws the columns with its own loop, the loop's twin.
     #[inline]
     fn wall_run(&mut self, run: &mut wall_run::WallRun) -> Option<wall_run::WallRunEnd> {
+        let _ = run;
+        None
+    }
+
+    /// Draws the spans of `run` with the canvas's own span loop, if it has one (the GBA's ARM
+    /// loop, `asm/plane.s`), and says where it stopped; `None` if it has none, and then nothing
+    /// is drawn: the renderer makes and sets up the spans itself, the loop's twin.
+    #[inline]
+    fn plane_run(&mut self, run: &mut plane_run::PlaneRun) -> Option<plane_run::PlaneRunEnd> {
         let _ = run;
         None
     }

@@ -4,8 +4,8 @@
 
 use portalcast_format::{Colormap, Sector, Texture};
 
-use super::light::light_row;
 use super::light::Lighting;
+use super::light::{light_row, run_light};
 use super::spans::{make_spans, Window};
 use super::surface::Surface;
 use super::view::{PlaneRays, View};
@@ -14,6 +14,7 @@ use super::RenderAssets;
 use crate::math::{recip_small, Fx24_8, Fx2_30};
 use crate::raster::column::ColumnTexture;
 use crate::raster::flat::{FlatTexture, PackedUv, FLAT_LOG2_SIDES};
+use crate::raster::plane_run::{PlaneConstants, PlaneRun, PlaneRunEnd};
 use crate::raster::Canvas;
 
 /// One visit's planes.
@@ -88,11 +89,9 @@ impl PlaneJob<'_> {
         for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
             canvas.set_surface(*surface);
             let mut plane = PlaneSpans::new(view, assets, sector, *height, *texture);
-            make_spans(windows, first, span_start, |row, start, end| {
-                stats.span_pixels += (end - start) as u32;
-                stats.spans += 1;
-                plane.span(canvas, row, start, end);
-            });
+            if !plane.draw_run(canvas, windows, first, span_start, stats) {
+                plane.draw_twin(canvas, windows, first, span_start, stats);
+            }
         }
         canvas.set_halved_flats(false);
     }
@@ -199,12 +198,92 @@ impl<'r> PlaneSpans<'r> {
         }
     }
 
+    /// Draws the plane's spans with the canvas's own loop ([`Canvas::plane_run`]); `false`
+    /// if it has none or the plane has no flat to draw (nothing is drawn then).
+    #[inline(always)]
+    fn draw_run(
+        &mut self,
+        canvas: &mut impl Canvas,
+        windows: &[Window],
+        first: usize,
+        span_start: &mut [i16],
+        stats: &mut FrameStats,
+    ) -> bool {
+        let Some(texture) = self.texture.filter(|_| !self.edge_on) else {
+            return false;
+        };
+        let constants = PlaneConstants {
+            depth_numerator: self.depth_numerator.to_bits(),
+            horizon_y: self.horizon_y,
+            below_eye: self.below_eye,
+            inverse_focal_y: self.inverse_focal_y as i32,
+            centre_x: self.centre_x as i32,
+            rays: [
+                self.rays.centre.0.to_bits(),
+                self.rays.centre.1.to_bits(),
+                self.rays.step.0.to_bits(),
+                self.rays.step.1.to_bits(),
+            ],
+            eye: (self.eye_x, self.eye_y),
+        };
+        let light = run_light(self.light, self.lighting, self.colormap);
+        let mut run = PlaneRun::new(constants, light, windows, first, span_start);
+        loop {
+            match canvas.plane_run(&mut run) {
+                None => return false,
+                Some(PlaneRunEnd::Done) => break,
+                Some(PlaneRunEnd::MipLevel(ratio)) => {
+                    self.level = PlaneLevel::of(texture, ratio, self.smallest_kernel_level);
+                    let level = &self.level;
+                    run.set_level(
+                        level.level,
+                        level.side_log2,
+                        level.texels,
+                        (level.ratio_low, level.ratio_high),
+                    );
+                    // As `Canvas::flat` refuses a flat of a side no kernel takes.
+                    assert!(run.has_level(), "a flat level no span kernel takes");
+                }
+                Some(PlaneRunEnd::Declined { row, start, end }) => {
+                    stats.span_pixels += (end - start) as u32;
+                    stats.spans += 1;
+                    self.span_twin(canvas, row, start, end);
+                }
+            }
+        }
+        let (spans, pixels) = run.drawn();
+        stats.spans += spans;
+        stats.span_pixels += pixels;
+        true
+    }
+
+    /// Draws the plane's spans as the renderer makes and sets them up: the twin of the
+    /// canvas's loop. Out of line and, on the GBA, in ROM: there only planes without a flat
+    /// to draw come here.
+    #[inline(never)]
+    fn draw_twin(
+        &mut self,
+        canvas: &mut impl Canvas,
+        windows: &[Window],
+        first: usize,
+        span_start: &mut [i16],
+        stats: &mut FrameStats,
+    ) {
+        make_spans(windows, first, span_start, |row, start, end| {
+            stats.span_pixels += (end - start) as u32;
+            stats.spans += 1;
+            self.span_twin(canvas, row, start, end);
+        });
+    }
+
     /// Row `row`, columns `start..end`: the map point under each pixel centre is
     /// `e + z'·f + z'·(x + ½ − cx)/d_x · r`, with `z'` the plane's depth on this row
     /// ([`Viewport::floor_depth_of_row`](crate::math::Viewport::floor_depth_of_row)'s rule).
+    /// The twin of the canvas's own set-up ([`Canvas::plane_run`]). Out of line and, on the
+    /// GBA, in ROM: there only the spans the ARM loop leaves (rows on the far side of the
+    /// horizon) and those of planes without a flat come here.
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram.render_plane_span")]
-    fn span(&mut self, canvas: &mut impl Canvas, row: usize, start: usize, end: usize) {
+    fn span_twin(&mut self, canvas: &mut impl Canvas, row: usize, start: usize, end: usize) {
         let doubled_offset = 2 * (row as i32 - self.horizon_y) + 1;
         let (Some(texture), false, true) = (
             self.texture,
