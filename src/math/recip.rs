@@ -122,6 +122,21 @@ pub const fn recip_with_bit_length(n: u32) -> (u32, u32) {
     ((mantissa_reciprocal(mantissa) + 1) >> 1, 31 - shift)
 }
 
+/// [`recip_with_bit_length`] of a 64-bit `n`: its bit length less one, `p`, and about
+/// `2^(30+p) / n`, in `(2^29, 2^30]`, from its top 32 bits (relative error `≤ 2^-31` more).
+#[inline]
+#[track_caller]
+pub const fn recip_u64_with_bit_length(n: u64) -> (u32, u32) {
+    let high = (n >> 32) as u32;
+    if high == 0 {
+        return recip_with_bit_length(n as u32);
+    }
+    let (_, shift) = normalise(high);
+    // The top 32 bits: bit 31 set, so the reciprocal is 2^61 over them.
+    let (reciprocal, _) = recip_with_bit_length(((n << shift) >> 32) as u32);
+    (reciprocal, 63 - shift)
+}
+
 /// `2^k / n` correctly rounded (ties toward +∞), through the integer divide: the reference path.
 /// Same preconditions as [`recip_pow2`].
 #[inline]
@@ -215,6 +230,34 @@ mod tests {
                 (recip_pow2(n, 30 + p), p),
                 "n {n}"
             );
+        }
+    }
+
+    #[test]
+    fn recip_u64_with_bit_length_is_within_its_bound_of_the_exact_quotient() {
+        let spread = (0..=63u32)
+            .flat_map(|bit| {
+                let power = 1u64 << bit;
+                [
+                    power - 1,
+                    power,
+                    power + 1,
+                    power | (power >> 1),
+                    power | (power - 1),
+                ]
+            })
+            .chain((1..20_000u64).map(|i| i.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (i % 40)));
+        for n in spread.filter(|&n| n > 0) {
+            let (reciprocal, p) = recip_u64_with_bit_length(n);
+            assert_eq!(p, 63 - n.leading_zeros(), "n {n}");
+            let exact = (1u128 << (30 + p)) as f64 / n as f64;
+            assert!(
+                (f64::from(reciprocal) - exact).abs() <= exact * 2.0f64.powi(-30) + 1.0,
+                "n {n}: {reciprocal} against {exact}"
+            );
+            if n >> 32 == 0 {
+                assert_eq!((reciprocal, p), recip_with_bit_length(n as u32), "n {n}");
+            }
         }
     }
 

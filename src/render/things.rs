@@ -21,7 +21,7 @@ use super::light::light_row;
 use super::surface::{Surface, THING_DEPTH_MIN};
 use super::view::View;
 use super::RenderAssets;
-use crate::math::{EyePoint, Fx16_16, Fx24_8, WorldPoint};
+use crate::math::{recip_small, EyePoint, Fx16_16, Fx24_8, WorldPoint};
 use crate::raster::sprite::{BatchColumn, SpriteBatch};
 use crate::raster::{Canvas, Window};
 use portalcast_format::MapTables;
@@ -435,6 +435,22 @@ impl Things {
         let mut numerator = q_before * za - twice_focal * xa;
         let mut denominator = twice_focal * dx - q_before * dz;
         let (numerator_step, denominator_step) = (2 * za, -2 * dz);
+        // 1/z' is affine in the column: z' = za + t·dz = K/denominator, where
+        // K = za·denominator + numerator·dz = 2d_x·(za·dx − xa·dz) is the same in every column
+        // (positive where the wall is seen from the front). So 1/z' in 2.30, 2^38/z' in bits, is
+        // the denominator times 2^38/K: one product a column instead of a reciprocal. Below
+        // THING_DEPTH_MIN it is that depth's.
+        let nearest = i64::from(recip_small(THING_DEPTH_MIN as u32).to_bits());
+        let wall_constant = za * denominator + numerator * dz;
+        let (wall_reciprocal, wall_shift) = match u64::try_from(wall_constant) {
+            // 2^38·d/K = d·(2^(30+p)/K) >> (p − 8); for p < 8, K < 256: z' under a unit for
+            // every d ≥ 1, nearer than THING_DEPTH_MIN.
+            Ok(constant) if constant >> 8 != 0 => {
+                let (reciprocal, p) = crate::math::recip_u64_with_bit_length(constant);
+                (u64::from(reciprocal), p - 8)
+            }
+            _ => (0, 0),
+        };
         for x in columns {
             numerator += numerator_step;
             denominator += denominator_step;
@@ -479,7 +495,12 @@ impl Things {
             let t = t.clamp(0, 1 << 30);
             let depth = (za + ((t * dz) >> 30)).max(i64::from(THING_DEPTH_MIN) << 8);
             let u_fx8 = i64::from(wall.x_offset) * 256 + ((t * i64::from(wall.length_fx8)) >> 30);
-            let inverse_depth = i64::from(Fx24_8::from_bits(depth as i32).recip_fx2_30().to_bits());
+            let inverse_depth = if wall_reciprocal == 0 {
+                nearest
+            } else {
+                ((u64::from(denominator) * wall_reciprocal) >> wall_shift).min(nearest as u64)
+                    as i64
+            };
             let y_top =
                 (i64::from(viewport.horizon_y) << 16) + ((above_eye_focal * inverse_depth) >> 22);
             let rows_per_texel = (inverse_depth * i64::from(viewport.focal_y)) >> 14;
