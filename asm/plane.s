@@ -84,6 +84,18 @@
     add     \u, \v, \u, lsl #16
     .endm
 
+    @ Rows \row.. \end (r2 the span starts) start a span at column r4; \row ends at \end.
+    .macro PLANE_START_ROWS row, end
+1:
+    cmp     \row, \end
+    bge     2f
+    mov     r3, \row, lsl #1
+    strh    r4, [r2, r3]
+    add     \row, \row, #1
+    b       1b
+2:
+    .endm
+
     .section .iwram_render.pc_plane_run, "ax", %progbits
     .arm
     .global pc_plane_run
@@ -210,20 +222,8 @@ pc_plane_run:
     movge   r9, r1
     movge   r10, r1
     ldr     r2, [r11, #PR_SPAN_START]
-6:
-    cmp     r0, r9
-    bge     7f
-    mov     r3, r0, lsl #1
-    strh    r4, [r2, r3]
-    add     r0, r0, #1
-    b       6b
-7:
-    cmp     r10, r1
-    bge     8f
-    mov     r3, r10, lsl #1
-    strh    r4, [r2, r3]
-    add     r10, r10, #1
-    b       7b
+    PLANE_START_ROWS r0, r9
+    PLANE_START_ROWS r10, r1
 8:
     mov     r0, #0
     ldr     lr, [sp], #4
