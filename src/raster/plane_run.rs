@@ -78,6 +78,7 @@ pub struct PlaneRun<'a> {
     pub(crate) pixels: u32,
     /// The span the routine left to the renderer: start, end, row.
     pub(crate) pending: [u32; 3],
+    /// The rows `span_start` has (the canvas checks they cover its height).
     pub(crate) span_start_rows: u32,
     borrows: PhantomData<(&'a [u8], &'a [Window], &'a mut [i16])>,
 }
@@ -214,6 +215,60 @@ impl<'a> PlaneRun<'a> {
     }
 }
 
-// The routine reads `1/n` for `n = |2·(row − cy) + 1|` below this bound from the table: rows are
-// under 256 and so is the horizon's distance from the screen.
+// The routine reads `1/n` for `n = |2·(row − cy) + 1|` from the table, and leaves a span whose
+// `n` is 512 or more to the renderer: the table must have those 512 entries.
 const _: () = assert!(RECIP_SMALL_LEN == 512);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run<'a>(windows: &'a [Window], span_start: &'a mut [i16]) -> PlaneRun<'a> {
+        let constants = PlaneConstants {
+            depth_numerator: 1 << 16,
+            horizon_y: 40,
+            below_eye: true,
+            inverse_focal_y: 1 << 24,
+            centre_x: 60,
+            rays: [1 << 30, 0, 0, 1 << 24],
+            eye: (-(1 << 40), 1 << 33),
+        };
+        PlaneRun::new(constants, RunLight::Off, windows, 7, span_start)
+    }
+
+    #[test]
+    fn a_level_is_taken_only_with_a_square_of_a_side_the_kernels_take() {
+        let windows = [Window { top: 0, bottom: 4 }; 3];
+        let mut span_start = [0i16; 80];
+        let mut run = run(&windows, &mut span_start);
+        assert!(!run.has_level(), "no level before the first");
+        assert!(
+            run.ratio_low > run.ratio_high,
+            "an empty range asks for one"
+        );
+        let flat = [0u8; 64 * 64];
+        run.set_level(2, 6, &flat, (4, 7));
+        assert!(run.has_level());
+        assert_eq!(
+            (run.ratio_low, run.ratio_high, run.level, run.side_log2),
+            (4, 7, 2, 6)
+        );
+        // A square of another side, and a side no kernel takes: refused, the range empty.
+        run.set_level(1, 5, &flat, (2, 3));
+        assert!(!run.has_level() && run.ratio_low > run.ratio_high);
+        run.set_level(0, 7, &[0u8; 128 * 128], (0, 1));
+        assert!(!run.has_level() && run.ratio_low > run.ratio_high);
+    }
+
+    #[test]
+    fn the_scan_starts_at_the_first_window_with_the_eye_in_words() {
+        let windows = [Window { top: 1, bottom: 9 }; 5];
+        let mut span_start = [0i16; 80];
+        let run = run(&windows, &mut span_start);
+        assert_eq!((run.x, run.end, run.old, run.mid), (7, 12, 0, 0));
+        // windows[0] is read at column `first`.
+        assert_eq!(run.windows.wrapping_add(7), windows.as_ptr());
+        assert_eq!(run.eye, [0, (-(1i64 << 40) >> 32) as u32, 0, 2]);
+        assert_eq!(run.drawn(), (0, 0));
+    }
+}
