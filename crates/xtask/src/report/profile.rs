@@ -99,14 +99,22 @@ pub fn measure(elf: &Path) -> TaskResult<Profile> {
 
 /// The stage a function belongs to, for the summary line: by the module path in its name.
 fn stage(name: &str) -> &'static str {
-    if name.starts_with("pc_col") || name.starts_with("pc_flat") || name.starts_with("pc_span") {
+    if name.starts_with("pc_col")
+        || name.starts_with("pc_flat")
+        || name.starts_with("pc_span")
+        || name.starts_with("pc_sprite")
+    {
         "kernels"
     } else if name == "pc_wall_run" || name.contains("raster::wall_run") {
         // The ARM wall loop (asm/wall.s): the columns' set-up; its kernels are their own.
         "wall set-up and the portal walk"
-    } else if name.contains("render::planes")
+    } else if name == "pc_plane_run"
+        || name.contains("raster::plane_run")
+        || name.contains("render::planes")
+        || name.contains("render::spans")
         || name.contains("as portalcast::raster::Canvas>::flat")
     {
+        // The ARM span loop (asm/plane.s) too: the spans' set-up; its kernels are their own.
         "plane set-up"
     } else if name.contains("render::") || name.contains("as portalcast::raster::Canvas>::column") {
         "wall set-up and the portal walk"
@@ -184,6 +192,8 @@ own cycles:
  21.11%    153408/line  ?
  14.00%    100000/line  pc_wall_run
   5.58%     40569/line  pc_flat_dbl_lit_k6
+  3.00%     20000/line  pc_plane_run
+  1.00%      7000/line  pc_sprite_columns
 
 cycles with compiler helpers charged to their caller:
  34.70%    252182/line  x
@@ -196,7 +206,7 @@ cycles with compiler helpers charged to their caller:
         assert_eq!(profile.regions.len(), 2);
         assert_eq!(profile.functions[0].cycles, 252_182.0);
         assert_eq!(profile.functions[1].name, "?");
-        assert_eq!(profile.functions.len(), 4);
+        assert_eq!(profile.functions.len(), 6);
     }
 
     #[test]
@@ -206,7 +216,8 @@ cycles with compiler helpers charged to their caller:
             section.contains("| wall set-up and the portal walk | 352,182 |"),
             "{section}"
         );
-        assert!(section.contains("| kernels | 40,569 |"), "{section}");
+        assert!(section.contains("| kernels | 47,569 |"), "{section}");
+        assert!(section.contains("| plane set-up | 20,000 |"), "{section}");
         assert!(
             section.contains("| BIOS (the wait for VBlank) | 153,408 |"),
             "{section}"
