@@ -8,10 +8,10 @@ use super::light::Lighting;
 use super::light::{light_row, run_light};
 use super::spans::{make_spans, Window};
 use super::surface::Surface;
-use super::view::{PlaneRays, View};
+use super::view::View;
 use super::walk::{is_sky, mip_level_of_ratio, mip_ratio, mip_ratios_of_level, FrameStats};
 use super::RenderAssets;
-use crate::math::{recip_small, Fx24_8, Fx2_30};
+use crate::math::{recip_small, Fx24_8};
 use crate::raster::column::ColumnTexture;
 use crate::raster::flat::{FlatTexture, PackedUv, FLAT_LOG2_SIDES};
 use crate::raster::plane_run::{PlaneConstants, PlaneRun, PlaneRunEnd};
@@ -100,25 +100,15 @@ impl PlaneJob<'_> {
 /// One plane's constants, set up once per visit and surface so that a span computes only what
 /// depends on its row and its first column (Doom's `R_MapPlane` after `R_DrawPlanes`).
 struct PlaneSpans<'r> {
-    /// `|eye − plane|·2·d_y` in 24.8: a row's depth is this times `1/|2·(row − cy) + 1|`.
-    depth_numerator: Fx24_8,
-    /// The plane is below the eye (a floor seen from above): its rows are below the horizon.
-    below_eye: bool,
+    /// The depth rule, the frame's rays and the eye, in the bits the canvas's span loop takes
+    /// them in (`raster::plane_run`): its twin below reads the same.
+    constants: PlaneConstants,
     /// The eye is in the plane: no row shows it.
     edge_on: bool,
-    horizon_y: i32,
-    centre_x: u32,
     /// The flat, if the map's texture index names one.
     texture: Option<&'r Texture<'r>>,
     /// Smallest mip level the span kernels take (their flats are at most 64 texels a side).
     smallest_kernel_level: u8,
-    /// `1/d_y` in 2.30 bits, for the mip rule.
-    inverse_focal_y: i64,
-    /// The frame's rays per unit of depth.
-    rays: PlaneRays,
-    /// The eye's map position in 16.16.
-    eye_x: i64,
-    eye_y: i64,
     light: u8,
     lighting: Lighting,
     colormap: &'r Colormap,
@@ -179,18 +169,28 @@ impl<'r> PlaneSpans<'r> {
         let eye_above_plane = view.eye_z - Fx24_8::from_int(height);
         let texture = assets.textures.get(usize::from(texture));
         let largest = texture.map_or(0, |t| t.width_log2.min(t.height_log2));
+        let rays = view.plane_rays;
         PlaneSpans {
-            depth_numerator: eye_above_plane.abs().mul_int(2 * view.viewport.focal_y),
-            below_eye: eye_above_plane.to_bits() > 0,
+            constants: PlaneConstants {
+                // |eye − plane|·2·d_y in 24.8.
+                depth_numerator: eye_above_plane
+                    .abs()
+                    .mul_int(2 * view.viewport.focal_y)
+                    .to_bits(),
+                horizon_y: view.viewport.horizon_y,
+                below_eye: eye_above_plane.to_bits() > 0,
+                inverse_focal_y: recip_small(view.viewport.focal_y as u32).to_bits(),
+                centre_x: view.viewport.centre_x(),
+                rays: [rays.centre.0, rays.centre.1, rays.step.0, rays.step.1]
+                    .map(|factor| factor.to_bits()),
+                eye: (
+                    i64::from(view.eye.position.x.to_bits()) << 8,
+                    i64::from(view.eye.position.y.to_bits()) << 8,
+                ),
+            },
             edge_on: eye_above_plane.to_bits() == 0,
-            horizon_y: view.viewport.horizon_y,
-            centre_x: view.viewport.centre_x() as u32,
             texture,
             smallest_kernel_level: largest.saturating_sub(*FLAT_LOG2_SIDES.end() as u8),
-            inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
-            rays: view.plane_rays,
-            eye_x: i64::from(view.eye.position.x.to_bits()) << 8,
-            eye_y: i64::from(view.eye.position.y.to_bits()) << 8,
             light: sector.light,
             lighting: view.lighting,
             colormap: assets.colormap,
@@ -212,22 +212,8 @@ impl<'r> PlaneSpans<'r> {
         let Some(texture) = self.texture.filter(|_| !self.edge_on) else {
             return false;
         };
-        let constants = PlaneConstants {
-            depth_numerator: self.depth_numerator.to_bits(),
-            horizon_y: self.horizon_y,
-            below_eye: self.below_eye,
-            inverse_focal_y: self.inverse_focal_y as i32,
-            centre_x: self.centre_x as i32,
-            rays: [
-                self.rays.centre.0.to_bits(),
-                self.rays.centre.1.to_bits(),
-                self.rays.step.0.to_bits(),
-                self.rays.step.1.to_bits(),
-            ],
-            eye: (self.eye_x, self.eye_y),
-        };
         let light = run_light(self.light, self.lighting, self.colormap);
-        let mut run = PlaneRun::new(constants, light, windows, first, span_start);
+        let mut run = PlaneRun::new(self.constants, light, windows, first, span_start);
         loop {
             match canvas.plane_run(&mut run) {
                 None => return false,
@@ -284,11 +270,20 @@ impl<'r> PlaneSpans<'r> {
     /// horizon) and those of planes without a flat come here.
     #[inline(never)]
     fn span_twin(&mut self, canvas: &mut impl Canvas, row: usize, start: usize, end: usize) {
-        let doubled_offset = 2 * (row as i32 - self.horizon_y) + 1;
+        let PlaneConstants {
+            depth_numerator,
+            horizon_y,
+            below_eye,
+            inverse_focal_y,
+            centre_x,
+            rays,
+            eye: (eye_x, eye_y),
+        } = self.constants;
+        let doubled_offset = 2 * (row as i32 - horizon_y) + 1;
         let (Some(texture), false, true) = (
             self.texture,
             self.edge_on,
-            self.below_eye == (doubled_offset > 0),
+            below_eye == (doubled_offset > 0),
         ) else {
             // Rounding put a row of this window on the far side of the horizon (nothing of the
             // plane is visible there), or the map names no flat: draw index 0 so the pixel is
@@ -303,10 +298,9 @@ impl<'r> PlaneSpans<'r> {
             canvas.flat(row, start, end - start, &blank);
             return;
         };
-        let depth = self
-            .depth_numerator
+        let depth = Fx24_8::from_bits(depth_numerator)
             .mul_fx2_30(recip_small(doubled_offset.unsigned_abs()));
-        let ratio = mip_ratio(i64::from(depth.to_bits()), self.inverse_focal_y);
+        let ratio = mip_ratio(i64::from(depth.to_bits()), i64::from(inverse_focal_y));
         if !(self.level.ratio_low..=self.level.ratio_high).contains(&ratio) {
             self.level = PlaneLevel::of(texture, ratio, self.smallest_kernel_level);
         }
@@ -323,11 +317,10 @@ impl<'r> PlaneSpans<'r> {
         // steps from the centre, as the kernel steps), so how the walk splits a plane into
         // visits changes no texel; from the centre, the packed step's rounding drifts over at
         // most half the row.
-        let ray = |factor: Fx2_30| (depth_bits * i64::from(factor.to_bits())) >> 22;
-        let x = self.eye_x + ray(self.rays.centre.0);
-        let y = self.eye_y + ray(self.rays.centre.1);
-        let step_x = ray(self.rays.step.0);
-        let step_y = ray(self.rays.step.1);
+        let [centre_x_ray, centre_y_ray, step_x_ray, step_y_ray] =
+            rays.map(|factor| (depth_bits * i64::from(factor)) >> 22);
+        let (x, y) = (eye_x + centre_x_ray, eye_y + centre_y_ray);
+        let (step_x, step_y) = (step_x_ray, step_y_ray);
         // Texture coordinates wrap, so keeping the low 32 bits of each is exact.
         let at_level = |value: i64| (value >> level) as i32;
 
@@ -335,7 +328,7 @@ impl<'r> PlaneSpans<'r> {
             .map(|row| &self.colormap[row]);
         let centre = PackedUv::pack(at_level(x), at_level(y), side_log2);
         let step = PackedUv::pack(at_level(step_x), at_level(step_y), side_log2);
-        let steps_from_centre = (start as u32).wrapping_sub(self.centre_x);
+        let steps_from_centre = (start as u32).wrapping_sub(centre_x as u32);
         let flat = FlatTexture {
             texels,
             log2_side: side_log2,
