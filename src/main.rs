@@ -72,6 +72,7 @@ mod rom {
         // scene: the soak test's guard over OBJ VRAM reads the copy as the game starts, and
         // nothing may write there afterwards.
         memory::colormap_in_vram();
+        memory::code_in_vram();
         if held_at_boot & (KEY_L | KEY_R) == KEY_L | KEY_R {
             display.set_palette(&testpic::PALETTE);
             kernel_check_scene(&mut display);

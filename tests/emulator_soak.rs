@@ -12,8 +12,8 @@
 //! - every `player` line the same pose and state as the host's replay at that tick;
 //! - the page on screen unchanged since the last flip: the renderer wrote only the back page;
 //! - guard regions unchanged: the VRAM between and after the two pages, the colormap in OBJ VRAM
-//!   and the OBJ VRAM after the column windows, OAM, the palette, and the EWRAM above what the
-//!   ROM uses;
+//!   and the OBJ VRAM after the column windows (the code copied to VRAM at boot lies in these:
+//!   linker.ld's `vram*` regions), OAM, the palette, and the EWRAM above what the ROM uses;
 //! - every frame's cycles within [`FRAME_CYCLES_BOUND`];
 //! - the stack: the ROM's `stack used=… room=…` lines, and the paint left in IWRAM read by the
 //!   host at the end, below the room the linker left.

@@ -4,6 +4,15 @@ extern "C" {
     static __iwram_start: u8;
     static __bss_end: u8;
     static __ewram_bss_end: u8;
+    static __vram_code_start: u32;
+    static __vram_code_end: u32;
+    static __vram_code_position_in_rom: u32;
+    static __vram_between_pages_start: u32;
+    static __vram_between_pages_end: u32;
+    static __vram_between_pages_position_in_rom: u32;
+    static __vram_after_pages_start: u32;
+    static __vram_after_pages_end: u32;
+    static __vram_after_pages_position_in_rom: u32;
     /// linker.ld's reserve for the stack (a symbol whose address is the value).
     static STACK_RESERVE: u8;
 }
@@ -116,6 +125,7 @@ impl WindowStore for VramWindows {
                     <= FREE_OBJ_VRAM + FREE_OBJ_VRAM_BYTES
             );
             assert!(WINDOWS_VRAM.is_multiple_of(core::mem::align_of::<ColumnWindows>()));
+            assert!(WINDOWS_VRAM + core::mem::size_of::<ColumnWindows>() <= VRAM_CODE_START);
         };
         // SAFETY: the address is in the free OBJ VRAM (asserted above), used for nothing else,
         // aligned, and holds a valid `ColumnWindows` (`renderer_in_ewram` wrote one before
@@ -275,6 +285,60 @@ const FREE_OBJ_VRAM: usize = 0x0601_4000;
 /// Bytes of OBJ VRAM free in Mode 4.
 const FREE_OBJ_VRAM_BYTES: usize = 0x4000;
 static mut COLORMAP_COPIED: bool = false;
+/// Where the code that runs from VRAM starts: linker.ld's `vram` region, the top of the free
+/// OBJ VRAM, above the colormap and the column windows.
+const VRAM_CODE_START: usize = 0x0601_6E80;
+static mut CODE_COPIED: bool = false;
+
+/// Copies the code that runs from VRAM from the cartridge, once: linker.ld's `.vram_code`
+/// (functions whose section is `.vram.*`) to the top of the free OBJ VRAM, and
+/// `.vram_between_pages_code` and `.vram_after_pages_code` to the 2,560 bytes after each
+/// 240×160 bitmap page. Call it at boot, before anything calls that code and before the soak's
+/// guard regions are read (its guards over that VRAM prove nothing writes there afterwards).
+pub fn code_in_vram() {
+    // SAFETY: single-threaded; the flag makes the copy happen once, before any of the code runs
+    // (nothing calls it before boot calls this). Each image's run addresses lie in its linker.ld
+    // region: the top of the free OBJ VRAM from VRAM_CODE_START (checked below), above the
+    // windows (asserted in `VramWindows::windows`), and the VRAM after each page, which the
+    // renderer never writes (its pages are 240×160 bytes: `frame::PAGE_HALFWORDS`). The images
+    // and run addresses are word aligned (linker.ld's ASSERT and ALIGN) and whole words long.
+    unsafe {
+        let copied = &raw mut CODE_COPIED;
+        if *copied {
+            return;
+        }
+        *copied = true;
+        assert_eq!(
+            &raw const __vram_code_start as usize, VRAM_CODE_START,
+            "linker.ld's vram region and hw::memory::VRAM_CODE_START disagree"
+        );
+        for (start, end, image) in [
+            (
+                &raw const __vram_code_start,
+                &raw const __vram_code_end,
+                &raw const __vram_code_position_in_rom,
+            ),
+            (
+                &raw const __vram_between_pages_start,
+                &raw const __vram_between_pages_end,
+                &raw const __vram_between_pages_position_in_rom,
+            ),
+            (
+                &raw const __vram_after_pages_start,
+                &raw const __vram_after_pages_end,
+                &raw const __vram_after_pages_position_in_rom,
+            ),
+        ] {
+            let words = (end as usize - start as usize) / 4;
+            for word in 0..words {
+                start
+                    .cast_mut()
+                    .add(word)
+                    .write_volatile(image.add(word).read());
+            }
+        }
+    }
+}
 
 /// The light colormap, copied once from the cartridge to the OBJ VRAM that Mode 4 leaves free
 /// (8 KB of its 16). The lit kernels read one colormap byte per pixel: VRAM answers a byte

@@ -210,6 +210,24 @@ pub(crate) struct ThingView<'v, 'a> {
 }
 
 impl<'v, 'a> ThingView<'v, 'a> {
+    /// [`project`] of `thing` with its sprite set's first image (every image of a set has one
+    /// size, the asset compiler's rule, so it places the sprite), its image not yet chosen
+    /// ([`IMAGE_UNKNOWN`]); `None` where the set or the image is missing, or as `project`.
+    ///
+    /// In VRAM on the GBA (IWRAM has no room): every thing of every sector a frame visits is
+    /// projected.
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".vram.things_project")]
+    fn project_thing(
+        &self,
+        sector: &portalcast_format::Sector,
+        thing: &Thing,
+    ) -> Option<VisibleThing> {
+        let set = self.assets.sprite_sets.get(usize::from(thing.sprite))?;
+        let shape = self.assets.sprites.get(usize::from(set.first))?;
+        project(self, sector, thing, shape)
+    }
+
     /// The frame of `view` on `map`, with `assets`' sprites.
     pub(crate) fn new(
         map: &'v MapTables<'a>,
@@ -275,7 +293,10 @@ impl Things {
     /// Collects the things of sector `sector_index` that show in the visit's columns
     /// `first..end`, whose clip windows are `clip` (indexed by column); `visit` numbers the
     /// visit in the walk's order.
+    ///
+    /// In the VRAM after the second page on the GBA (IWRAM has no room).
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".vram_after_pages.things_collect")]
     pub(crate) fn collect(
         &mut self,
         frame: &ThingView,
@@ -295,7 +316,7 @@ impl Things {
         for (offset, (index, thing)) in range.clone().zip(&map.things[range]).enumerate() {
             let mut seen = match cached {
                 Some(at) => self.projections[at + offset],
-                None => match project_thing(frame, sector, thing) {
+                None => match frame.project_thing(sector, thing) {
                     Some(seen) => seen,
                     None => continue,
                 },
@@ -372,7 +393,7 @@ impl Things {
             .iter_mut()
             .zip(&frame.map.things[range])
         {
-            *slot = project_thing(frame, sector, thing).unwrap_or(OFF_SCREEN);
+            *slot = frame.project_thing(sector, thing).unwrap_or(OFF_SCREEN);
         }
         self.projected_sectors[self.projected_sector_count] = ProjectedSector {
             sector: sector_index,
@@ -385,7 +406,11 @@ impl Things {
 
     /// Collects the middle image of the portal `seen` shows (if it has one); `opening` holds the
     /// windows its columns left for the sector behind (indexed by column).
+    ///
+    /// In VRAM on the GBA (IWRAM has no room): a frame that looks through grates runs it over
+    /// hundreds of columns, and from the cartridge it was the slowest frames' largest cost.
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".vram.things_collect_middle")]
     pub(crate) fn collect_middle(
         &mut self,
         frame: &ThingView,
@@ -532,7 +557,10 @@ impl Things {
     }
 
     /// Draws the collected things and middles back to front, and returns the frame's counts.
+    ///
+    /// In the VRAM between the pages on the GBA (IWRAM has no room).
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".vram_between_pages.things_draw")]
     pub(crate) fn draw(&mut self, assets: &RenderAssets, canvas: &mut impl Canvas) -> ThingStats {
         let drawn = self.count + self.middle_count;
         let (visible, middles) = (&self.visible, &self.middles);
@@ -683,7 +711,9 @@ fn middle_image(assets: &RenderAssets, wall: &Wall) -> Option<usize> {
 }
 
 /// The image of `thing`'s sprite set `set` the frame shows: its animation frame at the view's
-/// tick, seen from the eye's side of it.
+/// tick, seen from the eye's side of it. Out of line: [`Things::collect`] calls it once per thing
+/// a frame, and kept apart it leaves that loop small enough for the VRAM after a page.
+#[inline(never)]
 fn image_of(frame: &ThingView, thing: &Thing, set: &SpriteSet) -> usize {
     let eye = frame.view.eye.position;
     let (sin, cos) = crate::math::Angle::from_bits(thing.angle).sin_cos();
@@ -715,19 +745,6 @@ fn drawn_before(visible: &[VisibleThing], middles: &[VisibleMiddle], a: Drawn, b
         (Drawn::Middle(_), Drawn::Thing(_)) => true,
         _ => false,
     }
-}
-
-/// [`project`] of `thing` with its sprite set's first image (every image of a set has one size,
-/// the asset compiler's rule, so it places the sprite), its image not yet chosen
-/// ([`IMAGE_UNKNOWN`]); `None` where the set or the image is missing, or as `project`.
-fn project_thing(
-    frame: &ThingView,
-    sector: &portalcast_format::Sector,
-    thing: &Thing,
-) -> Option<VisibleThing> {
-    let set = frame.assets.sprite_sets.get(usize::from(thing.sprite))?;
-    let shape = frame.assets.sprites.get(usize::from(set.first))?;
-    project(frame, sector, thing, shape)
 }
 
 /// Where `thing`'s sprite lies on the screen of `frame`, with its columns over the whole width;

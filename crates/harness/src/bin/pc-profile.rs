@@ -193,6 +193,7 @@ fn run(options: &Options) -> Result<(), String> {
         let region = match pc >> 24 {
             0x02 => "EWRAM",
             0x03 => "IWRAM",
+            0x06 => "VRAM",
             0x08..=0x0D => "ROM",
             0x00 => "BIOS",
             _ => "other",
@@ -204,6 +205,8 @@ fn run(options: &Options) -> Result<(), String> {
                 ("IWRAM", _) => "IWRAM Thumb",
                 ("ROM", "ARM") => "ROM ARM",
                 ("ROM", _) => "ROM Thumb",
+                ("VRAM", "ARM") => "VRAM ARM",
+                ("VRAM", _) => "VRAM Thumb",
                 ("EWRAM", _) => "EWRAM",
                 ("BIOS", _) => "BIOS",
                 _ => "other",

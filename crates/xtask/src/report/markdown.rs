@@ -6,7 +6,7 @@ use std::fmt::Write;
 use portalcast_xtask::baseline::{self, TOLERANCE_PERCENT};
 use portalcast_xtask::bench_log::{group_digits, Run, Summary};
 
-use super::sizes::{EWRAM, IWRAM, ROM};
+use super::sizes::{EWRAM, IWRAM, ROM, VRAM};
 use super::{Measurements, CHART_FILE, CPU_HZ, CYCLES_PER_FRAME};
 
 /// The thesis' frame rate at 120×80 without lighting (Espada Brau, 2006).
@@ -1003,7 +1003,7 @@ fn sizes(doc: &mut String, measurements: &Measurements) {
         group_digits(rom_code),
     );
     for section in &sizes.sections {
-        let region = [IWRAM, EWRAM, ROM]
+        let region = [IWRAM, EWRAM, ROM, VRAM]
             .into_iter()
             .find(|region| section.runs_in(*region))
             .map_or("—", |region| region.name);

@@ -35,6 +35,14 @@ pub const ROM: Region = Region {
     usable: 32 * 1024 * 1024,
 };
 
+/// Video RAM: 96 KiB, of which Mode 4's two bitmap pages and the OBJ tiles' colormap and column
+/// windows leave some free for code (linker.ld's `vram*` regions).
+pub const VRAM: Region = Region {
+    name: "VRAM",
+    start: 0x0600_0000,
+    usable: 96 * 1024,
+};
+
 /// One allocated section of the ELF.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Section {
