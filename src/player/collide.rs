@@ -148,6 +148,58 @@ pub struct Body<'s> {
 }
 
 impl Body<'_> {
+    /// One step of the body's disc of at most [`MAX_STEP_BITS`] per axis.
+    ///
+    /// In VRAM on the GBA (IWRAM has no room): every tick takes at least one step. A method
+    /// because `link_section` on a free function is refused as unsafe code.
+    #[inline(never)]
+    #[cfg_attr(
+        target_os = "none",
+        link_section = ".vram_after_pages.player_slide_step"
+    )]
+    fn slide_step(
+        &self,
+        map: &MapTables,
+        sector: u16,
+        from: WorldPoint,
+        step: Delta,
+    ) -> (WorldPoint, u16) {
+        let body = self;
+        debug_assert!(
+            strictly_inside(map, &map.sectors[usize::from(sector)], from),
+            "a step must start strictly inside its sector"
+        );
+        let reach = 2 * RADIUS_BITS + 256;
+        let bounds = Bounds::around(from, step, reach);
+        let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
+        // Room for a few segments, which is quick to clear; more take the slower path.
+        let mut few = [&NO_SEGMENT; FEW_SEGMENTS];
+        let mut reached = [0; MAX_NEARBY_SECTORS];
+        let Some(obstacles) =
+            Obstacles::near(map, sector, &bounds, body, &mut few, &mut reached, target)
+        else {
+            return slide_step_among_many(map, sector, from, step, body, &bounds, target);
+        };
+        // Only a step near things looks for solid ones (a list of them is large: it is filled
+        // only then, and stays out of `Obstacles`, which every step copies).
+        if obstacles.things_near(map) {
+            // By reference: bound by value, the list (136 bytes) was copied out of the option
+            // with a library call.
+            if let Some(discs) = &Discs::near(map, &obstacles, bounds) {
+                return try_moves(map, sector, from, step, body, &obstacles, Some(discs));
+            }
+        }
+        // Nothing to push against and the step ends strictly inside its sector: what try_moves'
+        // first try finds (no push, then track's first test), without a second pass over the
+        // sector's walls.
+        if obstacles.ends.is_empty() && obstacles.target_inside {
+            if let Some(to) = point_from_bits(target) {
+                return (to, sector);
+            }
+        }
+        try_moves(map, sector, from, step, body, &obstacles, None)
+    }
+
     /// [`Body::admits`] of sector `index` of [`Body::sectors`].
     pub fn admits_sector(&self, index: u16) -> bool {
         self.admits(&self.sectors[usize::from(index)])
@@ -202,7 +254,7 @@ pub fn slide(
         .max(1) as i32;
     if steps == 1 {
         // Every move within the speed limit of walking and running: no split, so no divide.
-        return slide_step(map, sector, from, delta, body);
+        return body.slide_step(map, sector, from, delta);
     }
     slide_in_steps(map, sector, from, delta, body, steps)
 }
@@ -226,55 +278,12 @@ fn slide_in_steps(
             x: part(delta.x),
             y: part(delta.y),
         };
-        (position, sector) = slide_step(map, sector, position, step, body);
+        (position, sector) = body.slide_step(map, sector, position, step);
     }
     (position, sector)
 }
 
-/// One step of at most [`MAX_STEP_BITS`] per axis.
-fn slide_step(
-    map: &MapTables,
-    sector: u16,
-    from: WorldPoint,
-    step: Delta,
-    body: &Body,
-) -> (WorldPoint, u16) {
-    debug_assert!(
-        strictly_inside(map, &map.sectors[usize::from(sector)], from),
-        "a step must start strictly inside its sector"
-    );
-    let reach = 2 * RADIUS_BITS + 256;
-    let bounds = Bounds::around(from, step, reach);
-    let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
-    // Room for a few segments, which is quick to clear; more take the slower path.
-    let mut few = [&NO_SEGMENT; FEW_SEGMENTS];
-    let mut reached = [0; MAX_NEARBY_SECTORS];
-    let Some(obstacles) =
-        Obstacles::near(map, sector, &bounds, body, &mut few, &mut reached, target)
-    else {
-        return slide_step_among_many(map, sector, from, step, body, &bounds, target);
-    };
-    // Only a step near things looks for solid ones (a list of them is large: it is filled
-    // only then, and stays out of `Obstacles`, which every step copies).
-    if obstacles.things_near(map) {
-        // By reference: bound by value, the list (136 bytes) was copied out of the option
-        // with a library call.
-        if let Some(discs) = &Discs::near(map, &obstacles, bounds) {
-            return try_moves(map, sector, from, step, body, &obstacles, Some(discs));
-        }
-    }
-    // Nothing to push against and the step ends strictly inside its sector: what try_moves'
-    // first try finds (no push, then track's first test), without a second pass over the
-    // sector's walls.
-    if obstacles.ends.is_empty() && obstacles.target_inside {
-        if let Some(to) = point_from_bits(target) {
-            return (to, sector);
-        }
-    }
-    try_moves(map, sector, from, step, body, &obstacles, None)
-}
-
-/// [`slide_step`] when more than [`FEW_SEGMENTS`] blocking segments are near. Out of line.
+/// [`Body::slide_step`] when more than [`FEW_SEGMENTS`] blocking segments are near. Out of line.
 #[inline(never)]
 fn slide_step_among_many(
     map: &MapTables,
@@ -300,7 +309,7 @@ fn slide_step_among_many(
     try_moves(map, sector, from, step, body, &obstacles, discs.as_ref())
 }
 
-/// The rest of [`slide_step`]: the step, else along x alone, else along y alone, among
+/// The rest of [`Body::slide_step`]: the step, else along x alone, else along y alone, among
 /// `obstacles` and `discs`.
 #[inline(never)]
 fn try_moves(
@@ -1479,12 +1488,11 @@ mod tests {
         assert!(obstacles.target_inside);
         // A step toward the east wall (split at y = 0, in front of the disc) stops the disc at
         // the radius from it, through the long list.
-        let (to, sector) = slide_step(
+        let (to, sector) = standing(map.sectors).slide_step(
             &map,
             0,
             WorldPoint::from_int(12, 0),
             Delta { x: 8 * 256, y: 0 },
-            &standing(map.sectors),
         );
         assert_eq!((to, sector), (WorldPoint::from_int(30 - RADIUS, 0), 0));
     }
@@ -1513,7 +1521,7 @@ mod tests {
             };
             let bounds = Bounds::around(from, step, 2 * RADIUS_BITS + 256);
             let target = (from.x.to_bits() + step.x, from.y.to_bits() + step.y);
-            let short = slide_step(&map, 0, from, step, &standing(map.sectors));
+            let short = standing(map.sectors).slide_step(&map, 0, from, step);
             let long =
                 slide_step_among_many(&map, 0, from, step, &standing(map.sectors), &bounds, target);
             assert_eq!(short, long, "from {from:?} by {step:?}");
