@@ -352,13 +352,10 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
     /// One game tick on a map with movers, the player's `intent` included: what the player
     /// starts starts, the movers move (turning back rather than closing on the player), then the
     /// player moves on the moved map, and the lines it crossed start their tags. Not inlined:
-    /// in the game's tick its frame would sit on the stack on maps without movers too. In the
-    /// VRAM between the pages on the GBA (IWRAM has no room): it runs every tick.
+    /// in the game's tick its frame would sit on the stack on maps without movers too. In VRAM
+    /// on the GBA (IWRAM has no room): it runs every tick.
     #[inline(never)]
-    #[cfg_attr(
-        target_os = "none",
-        link_section = ".vram_between_pages.world_tick_with_player"
-    )]
+    #[cfg_attr(target_os = "none", link_section = ".vram.world_tick_with_player")]
     pub fn tick_with_player(&mut self, map: &MapTables, player: &mut Player, intent: &Intent) {
         if intent.activate {
             self.use_button(map, player);

@@ -7,9 +7,6 @@ extern "C" {
     static __vram_code_start: u32;
     static __vram_code_end: u32;
     static __vram_code_position_in_rom: u32;
-    static __vram_between_pages_start: u32;
-    static __vram_between_pages_end: u32;
-    static __vram_between_pages_position_in_rom: u32;
     static __vram_after_pages_start: u32;
     static __vram_after_pages_end: u32;
     static __vram_after_pages_position_in_rom: u32;
@@ -287,20 +284,19 @@ const FREE_OBJ_VRAM_BYTES: usize = 0x4000;
 static mut COLORMAP_COPIED: bool = false;
 /// Where the code that runs from VRAM starts: linker.ld's `vram` region, the top of the free
 /// OBJ VRAM, above the colormap and the column windows.
-const VRAM_CODE_START: usize = 0x0601_6E80;
+const VRAM_CODE_START: usize = 0x0601_6E60;
 static mut CODE_COPIED: bool = false;
 
 /// Copies the code that runs from VRAM from the cartridge, once: linker.ld's `.vram_code`
 /// (functions whose section is `.vram.*`) to the top of the free OBJ VRAM, and
-/// `.vram_between_pages_code` and `.vram_after_pages_code` to the 2,560 bytes after each
-/// 240×160 bitmap page. Call it at boot, before anything calls that code and before the soak's
+/// `.vram_after_pages_code` to the 2,560 bytes after the second 240×160 bitmap page. Call it at boot, before anything calls that code and before the soak's
 /// guard regions are read (its guards over that VRAM prove nothing writes there afterwards).
 pub fn code_in_vram() {
     // SAFETY: single-threaded; the flag makes the copy happen once, before any of the code runs
     // (nothing calls it before boot calls this). Each image's run addresses lie in its linker.ld
     // region: the top of the free OBJ VRAM from VRAM_CODE_START (checked below), above the
-    // windows (asserted in `VramWindows::windows`), and the VRAM after each page, which the
-    // renderer never writes (its pages are 240×160 bytes: `frame::PAGE_HALFWORDS`). The images
+    // windows (asserted in `VramWindows::windows`), and the VRAM after the second page, which
+    // the renderer never writes (its pages are 240×160 bytes: `frame::PAGE_HALFWORDS`). The images
     // and run addresses are word aligned (linker.ld's ASSERT and ALIGN) and whole words long.
     unsafe {
         let copied = &raw mut CODE_COPIED;
@@ -317,11 +313,6 @@ pub fn code_in_vram() {
                 &raw const __vram_code_start,
                 &raw const __vram_code_end,
                 &raw const __vram_code_position_in_rom,
-            ),
-            (
-                &raw const __vram_between_pages_start,
-                &raw const __vram_between_pages_end,
-                &raw const __vram_between_pages_position_in_rom,
             ),
             (
                 &raw const __vram_after_pages_start,

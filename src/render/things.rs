@@ -557,10 +557,7 @@ impl Things {
     }
 
     /// Draws the collected things and middles back to front, and returns the frame's counts.
-    ///
-    /// In the VRAM between the pages on the GBA (IWRAM has no room).
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".vram_between_pages.things_draw")]
     pub(crate) fn draw(&mut self, assets: &RenderAssets, canvas: &mut impl Canvas) -> ThingStats {
         let drawn = self.count + self.middle_count;
         let (visible, middles) = (&self.visible, &self.middles);
