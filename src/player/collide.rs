@@ -529,7 +529,7 @@ fn track_through_portals(
         if wall.flags & WALL_MIDDLE_BLOCKS != 0 || (next != start && !body.admits_sector(next)) {
             return Track::Blocked;
         }
-        let Some(twin) = twin_wall(map, wall, current, next) else {
+        let Some(twin) = map.twin(current, exit) else {
             return Track::Degenerate;
         };
         came_through = Some(twin);
@@ -585,16 +585,6 @@ pub fn wall_points(map: &MapTables, wall: &Wall) -> (WorldPoint, WorldPoint) {
         WorldPoint::from_int(a.x, a.y),
         WorldPoint::from_int(b.x, b.y),
     )
-}
-
-/// Index of the wall of `next` that is `wall` (of `sector`) seen from the other side.
-fn twin_wall(map: &MapTables, wall: &Wall, sector: u16, next: u16) -> Option<usize> {
-    let there = &map.sectors[usize::from(next)];
-    let first = usize::from(there.first_wall);
-    (first..first + usize::from(there.wall_count)).find(|&index| {
-        let other = &map.walls[index];
-        other.portal == sector && other.start == wall.end && other.end == wall.start
-    })
 }
 
 fn point_bits(p: WorldPoint) -> Bits {
@@ -1437,6 +1427,7 @@ mod tests {
             movers: &[],
             triggers: &[],
             lights: &[],
+            wall_twins: &[],
         }
     }
 

@@ -305,7 +305,8 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
             "    {FORMAT}::MapTables {{ name: {:?}, vertices: &MAP_{index}_VERTICES, walls: &MAP_{index}_WALLS, \
              sectors: &MAP_{index}_SECTORS, player_start: {FORMAT}::PlayerStart {{ x_fx8: {}, y_fx8: {}, angle: {}, sector: {} }}, \
              things: &MAP_{index}_THINGS, sector_things: &MAP_{index}_SECTOR_THINGS, \
-             movers: &MAP_{index}_MOVERS, triggers: &MAP_{index}_TRIGGERS, lights: &MAP_{index}_LIGHTS }},",
+             movers: &MAP_{index}_MOVERS, triggers: &MAP_{index}_TRIGGERS, lights: &MAP_{index}_LIGHTS, \
+             wall_twins: &MAP_{index}_WALL_TWINS }},",
             map.name, p.x_fx8, p.y_fx8, p.angle, p.sector
         );
     }
@@ -368,6 +369,12 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
         "static MAP_{index}_SECTOR_THINGS: [u16; {}] = {:?};\n",
         map.sector_things.len(),
         map.sector_things
+    );
+    let _ = writeln!(
+        s,
+        "static MAP_{index}_WALL_TWINS: [u16; {}] = {:?};\n",
+        map.wall_twins.len(),
+        map.wall_twins
     );
     let _ = writeln!(
         s,

@@ -12,10 +12,10 @@ use portalcast_format::limits::{
     THINGS_MAX, TRIGGERS_MAX, WORLD_COORD_MAX,
 };
 use portalcast_format::{
-    Light, MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall, MOVER_CRUSHER,
-    MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM, NO_PORTAL, NO_TEXTURE,
-    SKY, THING_HANGING, THING_SOLID, THING_TRANSLUCENT, TRIGGER_LINE, TRIGGER_SWITCH,
-    WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT, WALL_SWITCH,
+    find_twin, Light, MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall,
+    MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM, NO_PORTAL,
+    NO_TEXTURE, NO_TWIN, SKY, THING_HANGING, THING_SOLID, THING_TRANSLUCENT, TRIGGER_LINE,
+    TRIGGER_SWITCH, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT, WALL_SWITCH,
 };
 
 use crate::diag::{Loc, Located};
@@ -184,6 +184,8 @@ pub struct CompiledMap {
     pub triggers: Vec<Trigger>,
     /// [`MapTables::lights`].
     pub lights: Vec<Light>,
+    /// [`MapTables::wall_twins`].
+    pub wall_twins: Vec<u16>,
     /// Player start.
     pub player_start: PlayerStart,
 }
@@ -202,6 +204,7 @@ impl CompiledMap {
             movers: &self.movers,
             triggers: &self.triggers,
             lights: &self.lights,
+            wall_twins: &self.wall_twins,
         }
     }
 }
@@ -2014,6 +2017,7 @@ fn tables(
         .zip(fits)
         .collect();
     let (things, fits, sector_things) = group_things_by_sector(things, sectors.len());
+    let wall_twins = wall_twins(&walls, &sectors);
     let map = CompiledMap {
         name: name.to_string(),
         vertices,
@@ -2024,6 +2028,7 @@ fn tables(
         movers,
         triggers,
         lights,
+        wall_twins,
         player_start: PlayerStart {
             x_fx8,
             y_fx8,
@@ -2032,6 +2037,21 @@ fn tables(
         },
     };
     (map, fits)
+}
+
+/// [`MapTables::wall_twins`]: every wall's [`find_twin`], or [`NO_TWIN`].
+fn wall_twins(walls: &[Wall], sectors: &[Sector]) -> Vec<u16> {
+    let mut twins = vec![NO_TWIN; walls.len()];
+    for (sector_index, sector) in sectors.iter().enumerate() {
+        let first = usize::from(sector.first_wall);
+        let count = usize::from(sector.wall_count);
+        for (index, twin) in twins.iter_mut().enumerate().skip(first).take(count) {
+            if let Some(found) = find_twin(walls, sectors, sector_index as u16, index) {
+                *twin = found as u16;
+            }
+        }
+    }
+    twins
 }
 
 /// The [`Trigger`] of a wall (index `wall_index` in the walls table) whose line gives

@@ -51,6 +51,39 @@ fn check_invariants(map: &MapTables<'_>, texture_count: usize, compiled: &Compil
         let walls = map.sector_walls(sector);
         let mut area = 0;
         for (i, wall) in walls.iter().enumerate() {
+            // The compiler's twin table: each portal's twin is the wall of its sector that
+            // leads back with the ends swapped (the search `MapTables::twin` makes without the
+            // table), the twin's twin is the wall itself, and a solid wall has none.
+            let wall_index = usize::from(sector.first_wall) + i;
+            assert_eq!(
+                map.wall_twins.len(),
+                map.walls.len(),
+                "{name}: a twin per wall"
+            );
+            let searched = MapTables {
+                wall_twins: &[],
+                ..*map
+            }
+            .twin(index as u16, wall_index);
+            let twin = map.twin(index as u16, wall_index);
+            assert_eq!(twin, searched, "{name}: wall {wall_index}'s twin");
+            match (wall.neighbour(), twin) {
+                (None, twin) => assert_eq!(twin, None, "{name}: a solid wall has no twin"),
+                (Some(other), Some(twin)) => {
+                    let back = &map.walls[twin];
+                    assert_eq!(
+                        (back.start, back.end, usize::from(back.portal)),
+                        (wall.end, wall.start, index),
+                        "{name}: wall {wall_index}'s twin leads back"
+                    );
+                    assert_eq!(
+                        map.twin(other, twin),
+                        Some(wall_index),
+                        "{name}: twins pair"
+                    );
+                }
+                (Some(_), None) => panic!("{name}: portal wall {wall_index} has no twin"),
+            }
             let next = walls[(i + 1) % walls.len()];
             assert_eq!(wall.end, next.start, "{name}: sector {index} is closed");
             let (a, b, c) = (

@@ -289,6 +289,29 @@ pub struct MapTables<'a> {
     pub triggers: &'a [Trigger],
     /// The sectors whose light changes, at most one effect a sector, in sector order.
     pub lights: &'a [Light],
+    /// For each wall, the index of the same wall seen from its portal's sector (its twin:
+    /// the first wall of that sector whose portal leads back and whose ends are this one's,
+    /// swapped), or [`NO_TWIN`]: the map compiler's [`find_twin`] of every wall, so that a
+    /// body crossing a portal need not search the next sector's walls. Empty in tables built
+    /// by hand: [`MapTables::twin`] then searches.
+    pub wall_twins: &'a [u16],
+}
+
+/// [`MapTables::wall_twins`] of a solid wall, or of a portal whose sector has no twin for it.
+pub const NO_TWIN: u16 = u16::MAX;
+
+/// The twin of wall `index` of `walls` (see [`MapTables::wall_twins`]), whose sector is
+/// `sector`: searched among the walls of its portal's sector.
+pub fn find_twin(walls: &[Wall], sectors: &[Sector], sector: u16, index: usize) -> Option<usize> {
+    let wall = walls.get(index)?;
+    let next = wall.neighbour()?;
+    let there = sectors.get(usize::from(next))?;
+    let first = usize::from(there.first_wall);
+    (first..first + usize::from(there.wall_count)).find(|&at| {
+        walls.get(at).is_some_and(|other| {
+            other.portal == sector && other.start == wall.end && other.end == wall.start
+        })
+    })
 }
 
 impl<'a> MapTables<'a> {
@@ -306,6 +329,19 @@ impl<'a> MapTables<'a> {
         {
             Ok(at) if self.triggers[at].thrown == TRIGGER_THROWN => self.triggers[at].used_texture,
             _ => wall.texture,
+        }
+    }
+
+    /// The twin of wall `index`, of sector `sector` ([`MapTables::wall_twins`]): from the
+    /// compiler's table, or searched where the tables have none.
+    #[inline]
+    pub fn twin(&self, sector: u16, index: usize) -> Option<usize> {
+        if self.wall_twins.is_empty() {
+            return find_twin(self.walls, self.sectors, sector, index);
+        }
+        match self.wall_twins.get(index) {
+            Some(&NO_TWIN) | None => None,
+            Some(&twin) => Some(usize::from(twin)),
         }
     }
 

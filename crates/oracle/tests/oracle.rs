@@ -295,6 +295,7 @@ impl OwnedMap {
             movers: &[],
             triggers: &[],
             lights: &[],
+            wall_twins: &[],
         }
     }
 }
