@@ -472,10 +472,24 @@ impl Things {
             // every d ≥ 1, nearer than THING_DEPTH_MIN.
             Ok(constant) if constant >> 8 != 0 => {
                 let (reciprocal, p) = crate::math::recip_u64_with_bit_length(constant);
-                (u64::from(reciprocal), p - 8)
+                (reciprocal, p - 8)
             }
             _ => (0, 0),
         };
+        // Per column, the products below are of 32-bit factors (the module `limits`' world:
+        // eye-space coordinates and their differences under 2^24 bits, heights times d_y under
+        // 2^30): one multiply each on the ARM7TDMI, where 64-bit factors take three.
+        debug_assert!(
+            [za, dz, above_eye_focal, frame.inverse_focal_y]
+                .iter()
+                .all(|&value| i32::try_from(value).is_ok()),
+            "a middle's factors outside 32 bits"
+        );
+        let (za32, dz32) = (za as i32, dz as i32);
+        let above_eye_focal = above_eye_focal as i32;
+        let nearest = nearest as u32;
+        let x_offset_fx8 = i64::from(wall.x_offset) * 256;
+        let inverse_focal_y = frame.inverse_focal_y as i32;
         for x in columns {
             numerator += numerator_step;
             denominator += denominator_step;
@@ -491,45 +505,27 @@ impl Things {
             // bar of the bench's grate seen square on, 0.8 % of a frame's surfaces).
             // `numerator = q·z_a − 2d_x·x_a`, `denominator = 2d_x·(x_b − x_a) − q·(z_b − z_a)`.
             // A column the wall owns sees its front: the denominator is positive (and below
-            // 2^32: the module `limits`' world). `t = n/d` through the reciprocal: with
-            // `2^p ≤ d < 2^(p+1)`, `2^(30+p)/d` lies in (2^29, 2^30].
+            // 2^32: the module `limits`' world).
             let Ok(denominator) = u32::try_from(denominator) else {
                 continue;
             };
             if denominator == 0 {
                 continue;
             }
-            let (reciprocal, p) = crate::math::recip_with_bit_length(denominator);
-            let reciprocal = i64::from(reciprocal);
-            // The reciprocal is within a unit or two of the quotient: made the exact floor of
-            // `n·2^30 / d` (a column's ray exactly on a texel edge takes the texel right of it,
-            // the oracle's tie rule).
-            // The estimate's remainder is brought into `0..d` a unit at a time: one product
-            // instead of two per test.
-            let d = i64::from(denominator);
-            let mut t = (numerator * reciprocal) >> p;
-            let mut remainder = (numerator << 30) - t * d;
-            while remainder < 0 {
-                t -= 1;
-                remainder += d;
-            }
-            while remainder >= d {
-                t += 1;
-                remainder -= d;
-            }
-            let t = t.clamp(0, 1 << 30);
-            let depth = (za + ((t * dz) >> 30)).max(i64::from(THING_DEPTH_MIN) << 8);
-            let u_fx8 = i64::from(wall.x_offset) * 256 + ((t * i64::from(wall.length_fx8)) >> 30);
+            let t = ray_fraction(numerator, denominator) as i32;
+            let depth =
+                (za32 + ((i64::from(t) * i64::from(dz32)) >> 30) as i32).max(THING_DEPTH_MIN << 8);
+            let u_fx8 = x_offset_fx8 + ((i64::from(t) * i64::from(wall.length_fx8)) >> 30);
             let inverse_depth = if wall_reciprocal == 0 {
                 nearest
             } else {
-                ((u64::from(denominator) * wall_reciprocal) >> wall_shift).min(nearest as u64)
-                    as i64
-            };
-            let y_top =
-                (i64::from(viewport.horizon_y) << 16) + ((above_eye_focal * inverse_depth) >> 22);
-            let rows_per_texel = (inverse_depth * i64::from(viewport.focal_y)) >> 14;
-            let light = light_row(sector.light, (depth >> 8) as i32, view.lighting);
+                ((u64::from(denominator) * u64::from(wall_reciprocal)) >> wall_shift)
+                    .min(u64::from(nearest)) as u32
+            } as i32;
+            let y_top = (i64::from(viewport.horizon_y) << 16)
+                + ((i64::from(above_eye_focal) * i64::from(inverse_depth)) >> 22);
+            let rows_per_texel = (i64::from(inverse_depth) * i64::from(viewport.focal_y)) >> 14;
+            let light = light_row(sector.light, depth >> 8, view.lighting);
             self.middle_columns[used] = BatchColumn {
                 x: x as u8,
                 column: wrap_column(u_fx8, width),
@@ -537,7 +533,7 @@ impl Things {
                 clip: window,
                 y_top: y_top.clamp(-(1 << 30), 1 << 30) as i32,
                 scale: rows_per_texel as i32,
-                iscale: texels_per_row(depth as i32, rows_per_texel, frame.inverse_focal_y),
+                iscale: texels_per_row(depth, rows_per_texel, inverse_focal_y),
             };
             used += 1;
         }
@@ -681,14 +677,44 @@ fn wrap_column(u_fx8: i64, width: u32) -> u8 {
     }
 }
 
+/// `⌊numerator·2^30 / denominator⌋` clamped to `0..=2^30`, exactly: where a column's ray
+/// crosses a middle's wall, in 2.30 (a ray exactly on a texel edge takes the texel right of it,
+/// the oracle's tie rule). Outside the wall (`numerator ≤ 0` or `≥ denominator`) the clamp
+/// alone; inside, both are under 2^32 and the quotient comes from the denominator's
+/// reciprocal (`2^(30+p)/d` with `2^p ≤ d < 2^(p+1)`, within a unit or two of exact), its
+/// remainder brought into `0..d` a unit at a time.
+#[inline(always)]
+fn ray_fraction(numerator: i64, denominator: u32) -> u32 {
+    if numerator <= 0 {
+        return 0;
+    }
+    let (n, d) = (numerator as u64, u64::from(denominator));
+    if n >= d {
+        return 1 << 30;
+    }
+    let (reciprocal, p) = crate::math::recip_with_bit_length(denominator);
+    let mut t = (n * u64::from(reciprocal)) >> p;
+    let (d, mut remainder) = (d as i64, (n << 30) as i64 - (t * d) as i64);
+    while remainder < 0 {
+        t -= 1;
+        remainder += d;
+    }
+    while remainder >= d {
+        t += 1;
+        remainder -= d;
+    }
+    t as u32
+}
+
 /// Texels per row at eye depth `depth` (24.8 bits), `z'/d_y` in 16.16, one less where its
 /// product with `rows_per_texel` would pass 2^32: the sprite kernel's bound on its steps
 /// (`SpriteColumn::reads_inside`). Both are rounded quotients of reciprocals good to 1e-9, so
 /// the product passes 2^32 by a few units at most, less than one step of `rows_per_texel`
 /// (at least `d_y / EYE_DEPTH_MAX`, about 170 in 16.16).
-fn texels_per_row(depth: i32, rows_per_texel: i64, inverse_focal_y: i64) -> u32 {
-    let iscale = ((i64::from(depth) * inverse_focal_y) >> 22) as u64;
-    let rows = rows_per_texel.max(0) as u64;
+fn texels_per_row(depth: i32, rows_per_texel: i64, inverse_focal_y: i32) -> u32 {
+    // Both below 2^32 (depths under 2^23 bits, 2.30 reciprocals): 32-bit factors.
+    let iscale = u64::from(((i64::from(depth) * i64::from(inverse_focal_y)) >> 22) as u32);
+    let rows = u64::from(rows_per_texel.max(0) as u32);
     let iscale = if rows * iscale > 1 << 32 {
         iscale - 1
     } else {
@@ -792,7 +818,7 @@ fn project(
     // Texels per column and per row: z'/d in 16.16 (24.8 by 2.30 bits, shifted by 22); per
     // row at most 2^32 / rows per texel, the sprite kernel's bound on its steps.
     let iscale_x = ((i64::from(depth) * frame.inverse_focal_x) >> 22) as u32;
-    let iscale = texels_per_row(depth, rows_per_texel, frame.inverse_focal_y);
+    let iscale = texels_per_row(depth, rows_per_texel, frame.inverse_focal_y as i32);
     // The first column whose centre is right of the left edge, and its texture column.
     // On screen, both edges are within the sprite's width (at most 256 texels of 30 columns)
     // of it: 16.16 holds them.
