@@ -115,6 +115,8 @@ core::arch::global_asm!(include_str!("../../asm/wall.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/plane.s"), options(raw));
 restore_code_mode!();
+core::arch::global_asm!(include_str!("../../asm/middle.s"), options(raw));
+restore_code_mode!();
 // The math benchmark's ARM routines: assembled here with the kernels, placed in the benchmark's
 // IWRAM overlay by their section, and called through `hw::math_bench`.
 core::arch::global_asm!(include_str!("../../asm/mathbench.s"), options(raw));
@@ -128,6 +130,7 @@ restore_code_mode!();
 use crate::frame::Resolution;
 use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
 use crate::raster::flat::{FlatTexture, FLAT_LOG2_SIDES};
+use crate::raster::middle_run::{MiddleRun, MiddleShared};
 use crate::raster::plane_run::{PlaneRun, PlaneRunEnd};
 use crate::raster::sprite::{steps_fit, BatchColumn, SpriteBatch, SpriteColumn};
 use crate::raster::wall_run::{StripRun, WallRun, WallRunEnd};
@@ -136,6 +139,7 @@ use crate::raster::{Canvas, IDENTITY_ROW};
 extern "C" {
     fn pc_wall_run(run: *mut WallRun) -> u32;
     fn pc_plane_run(run: *mut PlaneRun) -> u32;
+    fn pc_middle_columns(run: *mut MiddleRun) -> u32;
     fn pc_column_skip(job: *const ColumnJob);
     fn pc_flat_skip(job: *const FlatJob);
 }
@@ -182,6 +186,20 @@ const _: () = {
     assert!(offset_of!(PlaneRun, mid) == 140);
     assert!(offset_of!(PlaneRun, spans) == 144);
     assert!(offset_of!(PlaneRun, pending) == 152);
+    // `asm/middle.s` reads the middle's run at these, and writes `BatchColumn`s (below).
+    assert!(offset_of!(MiddleRun, numerator_step) == 16);
+    assert!(offset_of!(MiddleRun, x) == 32);
+    assert!(offset_of!(MiddleRun, opening) == 40);
+    assert!(offset_of!(MiddleRun, out) == 44);
+    assert!(offset_of!(MiddleRun, shared) == 48);
+    assert!(offset_of!(MiddleShared, x_offset_fx8) == 12);
+    assert!(offset_of!(MiddleShared, nearest) == 24);
+    assert!(offset_of!(MiddleShared, inverse_focal_y) == 40);
+    assert!(offset_of!(MiddleShared, width) == 44);
+    assert!(offset_of!(MiddleShared, depth_min) == 56);
+    assert!(offset_of!(MiddleRun, recip_seeds) == 108);
+    assert!(offset_of!(BatchColumn, x) == 0);
+    assert!(offset_of!(BatchColumn, scale) == 12);
     assert!(size_of::<FlatJob>() == 24);
     assert!(offset_of!(SpriteJob, y_top) == 8);
     assert!(offset_of!(SpriteJob, colormap) == 24);
@@ -804,6 +822,19 @@ impl Canvas for VramCanvas {
         } else {
             WallRunEnd::MipLevel(run.miss_ratio)
         })
+    }
+
+    #[inline(always)]
+    fn middle_columns(&mut self, run: &mut MiddleRun, out: &mut [BatchColumn]) -> Option<usize> {
+        assert!(out.len() >= run.columns());
+        run.out = out.as_mut_ptr().cast::<u8>();
+        // SAFETY: `MiddleRun::new` checked that the openings the routine reads (columns
+        // `x..end`) are those of the slice it was given, and the reciprocal table has the 1,024
+        // entries its 10-bit index reaches; it writes at most one column per column of the run,
+        // which the assertion above fits in `out`.
+        let written = unsafe { pc_middle_columns(run) } as usize;
+        assert!(written <= run.columns());
+        Some(written)
     }
 
     #[inline(always)]

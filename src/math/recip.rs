@@ -124,7 +124,9 @@ pub const fn recip_with_bit_length(n: u32) -> (u32, u32) {
 
 /// [`recip_with_bit_length`] of a 64-bit `n`: its bit length less one, `p`, and about
 /// `2^(30+p) / n`, in `(2^29, 2^30]`, from its top 32 bits (relative error `≤ 2^-31` more).
-#[inline]
+/// Out of line: its one caller takes it once per portal middle, from code in VRAM that has no
+/// room for a copy.
+#[inline(never)]
 #[track_caller]
 pub const fn recip_u64_with_bit_length(n: u64) -> (u32, u32) {
     let high = (n >> 32) as u32;

@@ -8,6 +8,7 @@
 
 pub mod column;
 pub mod flat;
+pub mod middle_run;
 pub mod plane_run;
 pub mod span;
 pub mod sprite;
@@ -164,6 +165,20 @@ pub trait Canvas {
     #[inline]
     fn plane_run(&mut self, run: &mut plane_run::PlaneRun) -> Option<plane_run::PlaneRunEnd> {
         let _ = run;
+        None
+    }
+
+    /// Computes the columns of the portal middle `run` into `out`, one per column of the run
+    /// at most, with the canvas's own loop if it has one (the GBA's ARM routine,
+    /// `asm/middle.s`), and says how many it wrote; `None` if it has none: the renderer's own
+    /// loop, the routine's twin, does it.
+    #[inline]
+    fn middle_columns(
+        &mut self,
+        run: &mut middle_run::MiddleRun,
+        out: &mut [sprite::BatchColumn],
+    ) -> Option<usize> {
+        let _ = (run, out);
         None
     }
 }

@@ -61,6 +61,17 @@ pub fn run_light(sector_light: u8, lighting: Lighting, colormap: &Colormap) -> R
     }
 }
 
+/// [`light_row`] as the ARM middle loop takes it (`asm/middle.s`, `MiddleShared`): mode 0 (no
+/// colormap), 1 (the colormap row `base`) or 2 (the row of `base − (z' >> 12)`, z' in 24.8,
+/// clamped to `0..=255` and shifted right by 3), and `base`.
+pub fn light_rule(sector_light: u8, lighting: Lighting) -> (u32, i32) {
+    match lighting {
+        Lighting::Off => (0, 0),
+        Lighting::Sector => (1, colormap_row(sector_light) as i32),
+        Lighting::SectorDepth => (2, i32::from(sector_light) + DEPTH_BOOST),
+    }
+}
+
 // The loop's depth rule is `light_level`'s only while a step is 16 units (`z' >> 12` is
 // `(z' >> 8) / 16`) and a colormap row 8 levels.
 const _: () = assert!(DEPTH_UNITS_PER_STEP == 16);

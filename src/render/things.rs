@@ -17,11 +17,12 @@ use portalcast_format::{
     WALL_MIDDLE_TRANSLUCENT,
 };
 
-use super::light::light_row;
+use super::light::{light_row, light_rule, Lighting};
 use super::surface::{Surface, THING_DEPTH_MIN};
 use super::view::View;
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx16_16, Fx24_8, WorldPoint};
+use crate::raster::middle_run::{MiddleRun, MiddleShared};
 use crate::raster::sprite::{BatchColumn, SpriteBatch};
 use crate::raster::{Canvas, Window};
 use portalcast_format::MapTables;
@@ -405,10 +406,13 @@ impl Things {
     }
 
     /// Collects the middle image of the portal `seen` shows (if it has one); `opening` holds the
-    /// windows its columns left for the sector behind (indexed by column).
+    /// windows its columns left for the sector behind (indexed by column). Its columns come
+    /// from the canvas's own loop where it has one (`Canvas::middle_columns`, the GBA's ARM
+    /// routine), else from [`middle_columns`], its twin.
     ///
-    /// In VRAM on the GBA (IWRAM has no room): a frame that looks through grates runs it over
-    /// hundreds of columns, and from the cartridge it was the slowest frames' largest cost.
+    /// In VRAM on the GBA (IWRAM has no room), with the routine: a frame that looks through
+    /// grates runs them over hundreds of columns, and from the cartridge they were the slowest
+    /// frames' largest cost.
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".vram.things_collect_middle")]
     pub(crate) fn collect_middle(
@@ -416,6 +420,7 @@ impl Things {
         frame: &ThingView,
         seen: PortalSeen,
         opening: &[Window],
+        canvas: &mut impl Canvas,
     ) {
         let PortalSeen {
             visit,
@@ -451,21 +456,18 @@ impl Things {
         // its depth, from the centre row.
         let above_eye_focal =
             (i64::from(view.eye_z.to_bits()) - i64::from(top << 8)) * i64::from(viewport.focal_y);
-        let width = u32::from(sprite.width);
-        let start = self.middle_columns_used;
-        let mut used = start;
-        // The numerator and the denominator of `t` below are affine in the column: stepped from
-        // the column before the first, exactly.
+        // The numerator and the denominator of the ray's fraction along the wall are affine in
+        // the column: stepped from the column before the first, exactly.
         let q_before = i64::from(2 * columns.start - 1 - viewport.width);
-        let mut numerator = q_before * za - twice_focal * xa;
-        let mut denominator = twice_focal * dx - q_before * dz;
-        let (numerator_step, denominator_step) = (2 * za, -2 * dz);
+        let numerator = q_before * za - twice_focal * xa;
+        let denominator = twice_focal * dx - q_before * dz;
+        let steps = (2 * za, -2 * dz);
         // 1/z' is affine in the column: z' = za + t·dz = K/denominator, where
         // K = za·denominator + numerator·dz = 2d_x·(za·dx − xa·dz) is the same in every column
         // (positive where the wall is seen from the front). So 1/z' in 2.30, 2^38/z' in bits, is
         // the denominator times 2^38/K: one product a column instead of a reciprocal. Below
         // THING_DEPTH_MIN it is that depth's.
-        let nearest = i64::from(recip_small(THING_DEPTH_MIN as u32).to_bits());
+        let nearest = recip_small(THING_DEPTH_MIN as u32).to_bits() as u32;
         let wall_constant = za * denominator + numerator * dz;
         let (wall_reciprocal, wall_shift) = match u64::try_from(wall_constant) {
             // 2^38·d/K = d·(2^(30+p)/K) >> (p − 8); for p < 8, K < 256: z' under a unit for
@@ -476,7 +478,7 @@ impl Things {
             }
             _ => (0, 0),
         };
-        // Per column, the products below are of 32-bit factors (the module `limits`' world:
+        // Per column, the products are of 32-bit factors (the module `limits`' world:
         // eye-space coordinates and their differences under 2^24 bits, heights times d_y under
         // 2^30): one multiply each on the ARM7TDMI, where 64-bit factors take three.
         debug_assert!(
@@ -485,59 +487,48 @@ impl Things {
                 .all(|&value| i32::try_from(value).is_ok()),
             "a middle's factors outside 32 bits"
         );
-        let (za32, dz32) = (za as i32, dz as i32);
-        let above_eye_focal = above_eye_focal as i32;
-        let nearest = nearest as u32;
-        let x_offset_fx8 = i64::from(wall.x_offset) * 256;
-        let inverse_focal_y = frame.inverse_focal_y as i32;
-        for x in columns {
-            numerator += numerator_step;
-            denominator += denominator_step;
-            let window = opening[x as usize];
-            if window.is_empty() {
-                continue;
-            }
-            // Where column x's ray crosses the wall: the fraction `t` of the way from a to b,
-            // in 2.30, from the ray `x'·2d_x = q·z'` (`q = 2x + 1 − W`). Not the wall stage's
-            // `WallProjector` stepping: its `t` is rounded, and a middle's texel decides its
-            // surface (transparent or not), so a ray exactly on a texel edge must take the
-            // texel right of it, as the oracle's does (measured: the stepper lost every third
-            // bar of the bench's grate seen square on, 0.8 % of a frame's surfaces).
-            // `numerator = q·z_a − 2d_x·x_a`, `denominator = 2d_x·(x_b − x_a) − q·(z_b − z_a)`.
-            // A column the wall owns sees its front: the denominator is positive (and below
-            // 2^32: the module `limits`' world).
-            let Ok(denominator) = u32::try_from(denominator) else {
-                continue;
-            };
-            if denominator == 0 {
-                continue;
-            }
-            let t = ray_fraction(numerator, denominator) as i32;
-            let depth =
-                (za32 + ((i64::from(t) * i64::from(dz32)) >> 30) as i32).max(THING_DEPTH_MIN << 8);
-            let u_fx8 = x_offset_fx8 + ((i64::from(t) * i64::from(wall.length_fx8)) >> 30);
-            let inverse_depth = if wall_reciprocal == 0 {
-                nearest
-            } else {
-                ((u64::from(denominator) * u64::from(wall_reciprocal)) >> wall_shift)
-                    .min(u64::from(nearest)) as u32
-            } as i32;
-            let y_top = (i64::from(viewport.horizon_y) << 16)
-                + ((i64::from(above_eye_focal) * i64::from(inverse_depth)) >> 22);
-            let rows_per_texel = (i64::from(inverse_depth) * i64::from(viewport.focal_y)) >> 14;
-            let light = light_row(sector.light, depth >> 8, view.lighting);
-            self.middle_columns[used] = BatchColumn {
-                x: x as u8,
-                column: wrap_column(u_fx8, width),
-                light_row: light.map_or(u8::MAX, |row| row as u8),
-                clip: window,
-                y_top: y_top.clamp(-(1 << 30), 1 << 30) as i32,
-                scale: rows_per_texel as i32,
-                iscale: texels_per_row(depth, rows_per_texel, inverse_focal_y),
-            };
-            used += 1;
-        }
-        if used == start {
+        let (light_mode, light_base) = light_rule(sector.light, view.lighting);
+        let shared = MiddleShared {
+            za: za as i32,
+            dz: dz as i32,
+            length_fx8: wall.length_fx8,
+            x_offset_fx8: i32::from(wall.x_offset) * 256,
+            wall_reciprocal,
+            wall_shift,
+            nearest,
+            horizon_fx16: viewport.horizon_y << 16,
+            above_eye_focal: above_eye_focal as i32,
+            focal_y: viewport.focal_y,
+            inverse_focal_y: frame.inverse_focal_y as i32,
+            width: u32::from(sprite.width),
+            light_mode,
+            light_base,
+            depth_min: THING_DEPTH_MIN << 8,
+        };
+        let start = self.middle_columns_used;
+        let out = &mut self.middle_columns[start..start + count];
+        let from_canvas = MiddleRun::new(
+            shared,
+            numerator,
+            denominator,
+            steps,
+            columns.clone(),
+            opening,
+        )
+        .and_then(|mut run| canvas.middle_columns(&mut run, out));
+        let written = match from_canvas {
+            Some(written) => written,
+            None => middle_columns(
+                &shared,
+                (numerator, denominator),
+                steps,
+                columns,
+                opening,
+                out,
+                (sector.light, view.lighting),
+            ),
+        };
+        if written == 0 {
             return;
         }
         self.middles[self.middle_count] = VisibleMiddle {
@@ -546,10 +537,10 @@ impl Things {
             image: image as u16,
             translucent: wall.flags & WALL_MIDDLE_TRANSLUCENT != 0,
             columns_at: start as u16,
-            columns: (used - start) as u16,
+            columns: written as u16,
         };
         self.middle_count += 1;
-        self.middle_columns_used = used;
+        self.middle_columns_used = start + written;
     }
 
     /// Draws the collected things and middles back to front, and returns the frame's counts.
@@ -675,6 +666,73 @@ fn wrap_column(u_fx8: i64, width: u32) -> u8 {
     } else {
         column.rem_euclid(width as i32) as u8
     }
+}
+
+/// A middle's columns `columns` into `out`, in order, as `asm/middle.s` computes them (the
+/// routine's twin): for each column whose opening is not empty and whose denominator is in
+/// `1..2^32`, where its ray crosses the wall ([`ray_fraction`]), the image column there, the
+/// depth's light row, the image's top row and its steps. Returns how many it wrote. Out of line,
+/// in ROM on the GBA: there it runs only for an image whose width is not a power of two.
+#[inline(never)]
+fn middle_columns(
+    shared: &MiddleShared,
+    (mut numerator, mut denominator): (i64, i64),
+    (numerator_step, denominator_step): (i64, i64),
+    columns: core::ops::Range<i32>,
+    opening: &[Window],
+    out: &mut [BatchColumn],
+    (sector_light, lighting): (u8, Lighting),
+) -> usize {
+    let mut used = 0;
+    for x in columns {
+        numerator += numerator_step;
+        denominator += denominator_step;
+        let window = opening[x as usize];
+        if window.is_empty() {
+            continue;
+        }
+        // Where column x's ray crosses the wall: the fraction `t` of the way from a to b,
+        // in 2.30, from the ray `x'·2d_x = q·z'` (`q = 2x + 1 − W`). Not the wall stage's
+        // `WallProjector` stepping: its `t` is rounded, and a middle's texel decides its
+        // surface (transparent or not), so a ray exactly on a texel edge must take the
+        // texel right of it, as the oracle's does (measured: the stepper lost every third
+        // bar of the bench's grate seen square on, 0.8 % of a frame's surfaces).
+        // `numerator = q·z_a − 2d_x·x_a`, `denominator = 2d_x·(x_b − x_a) − q·(z_b − z_a)`.
+        // A column the wall owns sees its front: the denominator is positive (and below
+        // 2^32: the module `limits`' world).
+        let Ok(denominator) = u32::try_from(denominator) else {
+            continue;
+        };
+        if denominator == 0 {
+            continue;
+        }
+        let t = ray_fraction(numerator, denominator) as i32;
+        let depth = (shared.za + ((i64::from(t) * i64::from(shared.dz)) >> 30) as i32)
+            .max(shared.depth_min);
+        let u_fx8 =
+            i64::from(shared.x_offset_fx8) + ((i64::from(t) * i64::from(shared.length_fx8)) >> 30);
+        let inverse_depth = if shared.wall_reciprocal == 0 {
+            shared.nearest
+        } else {
+            ((u64::from(denominator) * u64::from(shared.wall_reciprocal)) >> shared.wall_shift)
+                .min(u64::from(shared.nearest)) as u32
+        } as i32;
+        let y_top = i64::from(shared.horizon_fx16)
+            + ((i64::from(shared.above_eye_focal) * i64::from(inverse_depth)) >> 22);
+        let rows_per_texel = (i64::from(inverse_depth) * i64::from(shared.focal_y)) >> 14;
+        let light = light_row(sector_light, depth >> 8, lighting);
+        out[used] = BatchColumn {
+            x: x as u8,
+            column: wrap_column(u_fx8, shared.width),
+            light_row: light.map_or(u8::MAX, |row| row as u8),
+            clip: window,
+            y_top: y_top.clamp(-(1 << 30), 1 << 30) as i32,
+            scale: rows_per_texel as i32,
+            iscale: texels_per_row(depth, rows_per_texel, shared.inverse_focal_y),
+        };
+        used += 1;
+    }
+    used
 }
 
 /// `⌊numerator·2^30 / denominator⌋` clamped to `0..=2^30`, exactly: where a column's ray

@@ -501,6 +501,7 @@ impl<W: WindowStore> Renderer<W> {
     fn collect_middles(
         &mut self,
         scene: &Scene,
+        canvas: &mut impl Canvas,
         visit: u16,
         sector_index: u16,
         first: i32,
@@ -524,7 +525,7 @@ impl<W: WindowStore> Renderer<W> {
                 columns: start..stop,
             };
             self.things
-                .collect_middle(&scene.things, seen, &self.windows.windows().clip);
+                .collect_middle(&scene.things, seen, &self.windows.windows().clip, canvas);
         }
     }
 
@@ -753,7 +754,14 @@ impl<W: WindowStore> Renderer<W> {
         }
         self.draw_walls(scene, canvas, stats, sector, first, end);
         if scene.view.things == ThingsShown::On && self.has_middles(sector_index) {
-            self.collect_middles(scene, stats.sector_visits as u16, sector_index, first, end);
+            self.collect_middles(
+                scene,
+                canvas,
+                stats.sector_visits as u16,
+                sector_index,
+                first,
+                end,
+            );
         }
         debug_assert!(
             !self.windows.windows().ceiling[range.clone()].contains(&UNSET)

@@ -105,8 +105,13 @@ fn stage(name: &str) -> &'static str {
         || name.starts_with("pc_sprite")
     {
         "kernels"
-    } else if name == "pc_wall_run" || name.contains("raster::wall_run") {
-        // The ARM wall loop (asm/wall.s): the columns' set-up; its kernels are their own.
+    } else if name == "pc_wall_run"
+        || name.contains("raster::wall_run")
+        || name == "pc_middle_columns"
+    {
+        // The ARM wall loop (asm/wall.s): the columns' set-up; its kernels are their own. The
+        // portal middles' column loop (asm/middle.s), like the rest of the things stage that
+        // the walk runs.
         "wall set-up and the portal walk"
     } else if name == "pc_plane_run"
         || name.contains("raster::plane_run")
