@@ -1,9 +1,10 @@
 //! The profiler's symbol lookup on the real ROM: the renderer's IWRAM code and the math
-//! benchmark's overlay share addresses (linker.ld's `OVERLAY`), and `pc-profile` must name each
-//! address by the code that runs there in the scene it profiles, or it charges the renderer's
-//! cycles to benchmark loops that never run in the game.
+//! benchmark's overlay share addresses (linker.ld's `OVERLAY`), and so do the lit and the unlit
+//! kernel banks; `pc-profile` must name each address by the code that runs there in the scene it
+//! profiles, or it charges the renderer's cycles to benchmark loops that never run in the game,
+//! and a lit kernel's to an unlit one.
 
-use portalcast_harness::symbols::FunctionSymbols;
+use portalcast_harness::symbols::{FunctionSymbols, Overlays};
 
 /// IWRAM's address range.
 const IWRAM: std::ops::Range<u32> = 0x0300_0000..0x0300_8000;
@@ -21,8 +22,18 @@ fn iwram_names(symbols: &FunctionSymbols) -> Vec<&str> {
 fn iwram_addresses_are_named_by_the_code_the_profiled_scene_runs() {
     portalcast_xtask::rom_for_tests();
     let elf = portalcast_xtask::elf_path();
-    let game = FunctionSymbols::load(&elf, false).unwrap_or_else(|problem| panic!("{problem}"));
-    let math = FunctionSymbols::load(&elf, true).unwrap_or_else(|problem| panic!("{problem}"));
+    let load = |overlays| {
+        FunctionSymbols::load(&elf, overlays).unwrap_or_else(|problem| panic!("{problem}"))
+    };
+    let game = load(Overlays::default());
+    let math = load(Overlays {
+        math: true,
+        ..Overlays::default()
+    });
+    let unlit = load(Overlays {
+        unlit_kernels: true,
+        ..Overlays::default()
+    });
     let is_math = |name: &&str| name.contains("math_bench") || name.starts_with("pc_mb_");
     let is_render_walk = |name: &&str| name.contains("portalcast::render::walk::Renderer");
 
@@ -45,4 +56,21 @@ fn iwram_addresses_are_named_by_the_code_the_profiled_scene_runs() {
     assert!(math
         .lookup(*start)
         .is_none_or(|name| !name.contains("render")));
+
+    // The kernel banks: lit names by default, unlit ones on request, at the same addresses.
+    let lit_kernel = |name: &&str| name.starts_with("pc_col_") && name.contains("_lit_");
+    let unlit_kernel = |name: &&str| name.starts_with("pc_col_") && name.contains("_unlit_");
+    assert!(game_names.iter().any(lit_kernel), "{game_names:?}");
+    assert!(!game_names.iter().any(unlit_kernel), "{game_names:?}");
+    let unlit_names = iwram_names(&unlit);
+    assert!(unlit_names.iter().any(unlit_kernel), "{unlit_names:?}");
+    assert!(!unlit_names.iter().any(lit_kernel), "{unlit_names:?}");
+    let (bank_start, _, _) = game
+        .all()
+        .iter()
+        .find(|(_, _, name)| lit_kernel(&name.as_str()))
+        .expect("a lit kernel");
+    assert!(unlit
+        .lookup(*bank_start)
+        .is_none_or(|name| !name.contains("_lit_")));
 }

@@ -1,10 +1,13 @@
 //! A ROM's function symbols by address, for the profiler: which function an instruction address
 //! belongs to.
 //!
-//! The linker script overlays two sections in IWRAM (linker.ld's `OVERLAY`): `.iwram_render`,
-//! the renderer's hot code, and `.bench_iwram`, the math benchmark's loops, which the math scene
-//! copies over it. Their symbols share addresses, so only one of the two may name them: the
-//! renderer's by default (every scene but the math one runs it), the math benchmark's on request.
+//! The linker script overlays sections in IWRAM (linker.ld's `OVERLAY`s): `.iwram_render`, the
+//! renderer's hot code, and `.bench_iwram`, the math benchmark's loops, which the math scene
+//! copies over it; and the two kernel banks, `.iwram_kernels_lit` and `.iwram_kernels_unlit`,
+//! whichever of which the frame's lighting needs is copied in. Symbols of sections that share
+//! addresses would name each other's code, so only one of each pair names them: the renderer's
+//! by default (every scene but the math one runs it), the math benchmark's on request; the lit
+//! kernels by default (the default lighting lights), the unlit ones on request.
 
 use std::path::Path;
 
@@ -14,6 +17,19 @@ use object::{Object, ObjectSection, ObjectSymbol, SymbolKind};
 pub const MATH_OVERLAY_SECTION: &str = ".bench_iwram";
 /// The section it overlays: the renderer's IWRAM code.
 pub const RENDER_OVERLAY_SECTION: &str = ".iwram_render";
+/// The kernel banks, which share their addresses.
+pub const LIT_KERNELS_SECTION: &str = ".iwram_kernels_lit";
+/// See [`LIT_KERNELS_SECTION`].
+pub const UNLIT_KERNELS_SECTION: &str = ".iwram_kernels_unlit";
+
+/// Which of the sections that share addresses name them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Overlays {
+    /// The math benchmark's overlay instead of the renderer's code.
+    pub math: bool,
+    /// The unlit kernel bank instead of the lit one.
+    pub unlit_kernels: bool,
+}
 
 /// Function symbols sorted by address, demangled without crate hashes.
 pub struct FunctionSymbols {
@@ -22,10 +38,9 @@ pub struct FunctionSymbols {
 }
 
 impl FunctionSymbols {
-    /// The function symbols of the ELF at `elf`. Of the two sections sharing the IWRAM
-    /// overlay's addresses, the math benchmark's names them with `math_overlay`, the renderer's
-    /// otherwise.
-    pub fn load(elf: &Path, math_overlay: bool) -> Result<FunctionSymbols, String> {
+    /// The function symbols of the ELF at `elf`, of the sections `overlays` picks among those
+    /// that share addresses.
+    pub fn load(elf: &Path, overlays: Overlays) -> Result<FunctionSymbols, String> {
         let data = std::fs::read(elf)
             .map_err(|error| format!("{}: cannot read: {error}", elf.display()))?;
         let file = object::File::parse(&*data).map_err(|error| {
@@ -34,11 +49,18 @@ impl FunctionSymbols {
                 elf.display()
             )
         })?;
-        let hidden = if math_overlay {
-            RENDER_OVERLAY_SECTION
-        } else {
-            MATH_OVERLAY_SECTION
-        };
+        let hidden = [
+            if overlays.math {
+                RENDER_OVERLAY_SECTION
+            } else {
+                MATH_OVERLAY_SECTION
+            },
+            if overlays.unlit_kernels {
+                LIT_KERNELS_SECTION
+            } else {
+                UNLIT_KERNELS_SECTION
+            },
+        ];
         let mut symbols: Vec<(u32, u32, String)> = file
             .symbols()
             .filter(|symbol| symbol.kind() == SymbolKind::Text && symbol.size() > 0)
@@ -47,7 +69,7 @@ impl FunctionSymbols {
                     .section_index()
                     .and_then(|index| file.section_by_index(index).ok())
                     .and_then(|section| section.name().ok().map(str::to_owned));
-                section.as_deref() != Some(hidden)
+                !section.is_some_and(|name| hidden.contains(&name.as_str()))
             })
             .filter_map(|symbol| {
                 let start = (symbol.address() as u32) & !1;

@@ -11,12 +11,12 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use portalcast_harness::symbols::FunctionSymbols;
+use portalcast_harness::symbols::{FunctionSymbols, Overlays};
 use portalcast_harness::{Emulator, KeyScript};
 
 const USAGE: &str =
     "usage: pc-profile ELF [--keys SCRIPTFILE] [--skip N] [--frames N] [--from TEXT] \
-[--until TEXT] [--per-line TEXT] [--period CYCLES] [--top K] [--math-overlay]";
+[--until TEXT] [--per-line TEXT] [--period CYCLES] [--top K] [--math-overlay] [--unlit-kernels]";
 
 const HELP: &str = "\
 Profiles a GBA ELF (it needs the symbols; the .gba has none) headless in mGBA.
@@ -33,7 +33,9 @@ Profiles a GBA ELF (it needs the symbols; the .gba has none) headless in mGBA.
   --top K           rows to print (default 40)
   --addresses K     also print the K most sampled instruction addresses (for llvm-addr2line)
   --math-overlay    name IWRAM addresses by the math benchmark's overlay (the L scene), whose
-                    code shares its addresses with the renderer's: without it, by the renderer's";
+                    code shares its addresses with the renderer's: without it, by the renderer's
+  --unlit-kernels   name the kernel banks' addresses by the unlit kernels (frames drawn with
+                    lighting=off), which share them with the lit ones: without it, by the lit";
 
 struct Options {
     elf: PathBuf,
@@ -44,6 +46,7 @@ struct Options {
     top: usize,
     addresses: usize,
     math_overlay: bool,
+    unlit_kernels: bool,
     from: Option<String>,
     until: Option<String>,
     per_line: Option<String>,
@@ -84,6 +87,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         top: 40,
         addresses: 0,
         math_overlay: false,
+        unlit_kernels: false,
         from: None,
         until: None,
         per_line: None,
@@ -110,6 +114,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                 options.addresses = number("--addresses", value("--addresses")?)? as usize
             }
             "--math-overlay" => options.math_overlay = true,
+            "--unlit-kernels" => options.unlit_kernels = true,
             "--from" => options.from = Some(value("--from")?),
             "--until" => options.until = Some(value("--until")?),
             "--per-line" => options.per_line = Some(value("--per-line")?),
@@ -123,7 +128,13 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
 }
 
 fn run(options: &Options) -> Result<(), String> {
-    let symbols = FunctionSymbols::load(&options.elf, options.math_overlay)?;
+    let symbols = FunctionSymbols::load(
+        &options.elf,
+        Overlays {
+            math: options.math_overlay,
+            unlit_kernels: options.unlit_kernels,
+        },
+    )?;
     let script = match &options.keys {
         Some(path) => KeyScript::load(path).map_err(|error| error.to_string())?,
         None => KeyScript::new(),
