@@ -88,47 +88,10 @@ pc_middle_columns:
     beq     .Lm_t_zero
     cmp     r4, r6
     bhs     .Lm_t_one
-    @ recip_with_bit_length(d): r0 the normalised d, r1 its shift (src/math/recip.rs).
+    @ recip_with_bit_length(d) (src/math/recip.rs): 2^31 over d's mantissa, and its shift.
     mov     r0, r6
-    mov     r1, #0
-    cmp     r0, #0x10000
-    movlo   r0, r0, lsl #16
-    addlo   r1, r1, #16
-    cmp     r0, #0x1000000
-    movlo   r0, r0, lsl #8
-    addlo   r1, r1, #8
-    cmp     r0, #0x10000000
-    movlo   r0, r0, lsl #4
-    addlo   r1, r1, #4
-    cmp     r0, #0x40000000
-    movlo   r0, r0, lsl #2
-    addlo   r1, r1, #2
-    cmp     r0, #0x80000000
-    movlo   r0, r0, lsl #1
-    addlo   r1, r1, #1
-    @ mantissa_reciprocal: the seed for its top 10 bits, then r·(1 + δ + δ²).
     ldr     r2, [r11, #MR_SEEDS]
-    mov     r3, r0, lsr #21
-    bic     r3, r3, #0x400
-    mov     r3, r3, lsl #1
-    ldrh    r3, [r2, r3]                    @ seed
-    mov     lr, r0, lsr #16                 @ high half
-    mov     r12, r0, lsl #16
-    mov     r12, r12, lsr #16               @ low half
-    mul     r2, r3, r12
-    mov     r2, r2, lsr #16
-    mla     r12, r3, lr, r2                 @ m·seed / 2^16
-    rsb     r12, r12, #0x80000000           @ δ · 2^31
-    mov     r2, r12, asr #5
-    mul     lr, r2, r2
-    add     r12, r12, lr, asr #21           @ (δ + δ²) · 2^31
-    mov     r2, r12, asr #8
-    and     r12, r12, #0xff
-    mul     lr, r3, r12
-    mov     lr, lr, asr #8
-    mla     r12, r3, r2, lr
-    mov     r12, r12, asr #8                @ the correction
-    add     r0, r12, r3, lsl #15            @ 2^31 / M
+    RECIP_MANTISSA r0, r1, r2, r3, lr, r12
     add     r0, r0, #1
     mov     r0, r0, lsr #1                  @ r0: 2^(30+p)/d
     rsb     r1, r1, #31                     @ r1: p
@@ -292,6 +255,8 @@ pc_middle_columns:
     bx      lr
     .ltorg
     .size pc_middle_columns, . - pc_middle_columns
+
+    .purgem RECIP_MANTISSA
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

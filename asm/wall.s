@@ -242,48 +242,11 @@ pc_wall_run:
     beq     .Lnext
 
 .Ltexture:
-    @ z' = 1/(1/z'): recip_pow2(1/z', 38) (src/math/recip.rs), r0 the normalised mantissa,
+    @ z' = 1/(1/z'): recip_pow2(1/z', 38) (src/math/recip.rs): r0 2^31 over the mantissa,
     @ r1 its shift.
     mov     r0, r10
-    mov     r1, #0
-    cmp     r0, #0x10000
-    movlo   r0, r0, lsl #16
-    addlo   r1, r1, #16
-    cmp     r0, #0x1000000
-    movlo   r0, r0, lsl #8
-    addlo   r1, r1, #8
-    cmp     r0, #0x10000000
-    movlo   r0, r0, lsl #4
-    addlo   r1, r1, #4
-    cmp     r0, #0x40000000
-    movlo   r0, r0, lsl #2
-    addlo   r1, r1, #2
-    cmp     r0, #0x80000000
-    movlo   r0, r0, lsl #1
-    addlo   r1, r1, #1
-    @ mantissa_reciprocal: the seed for its top 10 bits, then r·(1 + δ + δ²).
     ldr     r2, [r11, #RUN_SEEDS]
-    mov     r3, r0, lsr #21
-    bic     r3, r3, #0x400
-    mov     r3, r3, lsl #1
-    ldrh    r3, [r2, r3]                    @ seed
-    mov     r4, r0, lsr #16                 @ high half
-    mov     r12, r0, lsl #16
-    mov     r12, r12, lsr #16               @ low half
-    mul     r2, r3, r12
-    mov     r2, r2, lsr #16
-    mla     r12, r3, r4, r2                 @ m·seed / 2^16
-    rsb     r12, r12, #0x80000000           @ δ · 2^31
-    mov     r2, r12, asr #5
-    mul     r4, r2, r2
-    add     r12, r12, r4, asr #21           @ (δ + δ²) · 2^31
-    mov     r2, r12, asr #8
-    and     r12, r12, #0xff
-    mul     r4, r3, r12
-    mov     r4, r4, asr #8
-    mla     r12, r3, r2, r4
-    mov     r12, r12, asr #8                @ the correction
-    add     r0, r12, r3, lsl #15            @ 2^31 / M
+    RECIP_MANTISSA r0, r1, r2, r3, r4, r12
     @ To 24.8, rounded: right by 62 − 38 − shift (the shift is 1..16 for 1/z' in
     @ [2^30 / EYE_DEPTH_MAX, 2^30], so 8..23).
     rsb     r1, r1, #23
@@ -479,6 +442,8 @@ pc_wall_run:
 pc_column_skip:
     bx      lr
     .size pc_column_skip, . - pc_column_skip
+
+    .purgem RECIP_MANTISSA
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

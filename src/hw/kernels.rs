@@ -111,11 +111,20 @@ core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/sprite.s"), options(raw));
 restore_code_mode!();
-core::arch::global_asm!(include_str!("../../asm/wall.s"), options(raw));
+// The loops that take a reciprocal per column share its macro (asm/recip.s), assembled with each.
+core::arch::global_asm!(
+    include_str!("../../asm/recip.s"),
+    include_str!("../../asm/wall.s"),
+    options(raw)
+);
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/plane.s"), options(raw));
 restore_code_mode!();
-core::arch::global_asm!(include_str!("../../asm/middle.s"), options(raw));
+core::arch::global_asm!(
+    include_str!("../../asm/recip.s"),
+    include_str!("../../asm/middle.s"),
+    options(raw)
+);
 restore_code_mode!();
 // The math benchmark's ARM routines: assembled here with the kernels, placed in the benchmark's
 // IWRAM overlay by their section, and called through `hw::math_bench`.

@@ -1,0 +1,49 @@
+@ The reciprocal of a 32-bit value as src/math/recip.rs computes it (normalise, then
+@ mantissa_reciprocal), for the ARM loops that take one per column (asm/wall.s, asm/middle.s).
+@ Assembled at the start of each of them (src/hw/kernels.rs), which purge it at their end.
+@
+@ RECIP_MANTISSA m, s, table, seed, a, b: from \m > 0, \m = 2^63/(\m·2^\s) (2^31 over the
+@ normalised mantissa M = \m·2^\s in [2^31, 2^32)) and \s the shift; \table holds the seed
+@ table (u16[1024], RECIP_SEED_U16) and is used as scratch after; \seed, \a, \b scratch.
+@ The Rust twin is the function itself: the loops' ROM-versus-host frames compare them.
+
+    .macro RECIP_MANTISSA m, s, table, seed, a, b
+    mov     \s, #0
+    cmp     \m, #0x10000
+    movlo   \m, \m, lsl #16
+    addlo   \s, \s, #16
+    cmp     \m, #0x1000000
+    movlo   \m, \m, lsl #8
+    addlo   \s, \s, #8
+    cmp     \m, #0x10000000
+    movlo   \m, \m, lsl #4
+    addlo   \s, \s, #4
+    cmp     \m, #0x40000000
+    movlo   \m, \m, lsl #2
+    addlo   \s, \s, #2
+    cmp     \m, #0x80000000
+    movlo   \m, \m, lsl #1
+    addlo   \s, \s, #1
+    @ mantissa_reciprocal: the seed for its top 10 bits, then r·(1 + δ + δ²).
+    mov     \seed, \m, lsr #21
+    bic     \seed, \seed, #0x400
+    mov     \seed, \seed, lsl #1
+    ldrh    \seed, [\table, \seed]
+    mov     \a, \m, lsr #16                 @ high half
+    mov     \b, \m, lsl #16
+    mov     \b, \b, lsr #16                 @ low half
+    mul     \table, \seed, \b
+    mov     \table, \table, lsr #16
+    mla     \b, \seed, \a, \table           @ m·seed / 2^16
+    rsb     \b, \b, #0x80000000             @ δ · 2^31
+    mov     \table, \b, asr #5
+    mul     \a, \table, \table
+    add     \b, \b, \a, asr #21             @ (δ + δ²) · 2^31
+    mov     \table, \b, asr #8
+    and     \b, \b, #0xff
+    mul     \a, \seed, \b
+    mov     \a, \a, asr #8
+    mla     \b, \seed, \table, \a
+    mov     \b, \b, asr #8                  @ the correction
+    add     \m, \b, \seed, lsl #15          @ 2^31 / M
+    .endm
