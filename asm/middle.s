@@ -1,7 +1,7 @@
 @ A portal middle's columns: where each column's ray crosses the middle's wall, and the sprite
 @ column the batch kernel draws there (asm/sprite.s), in ARM code in VRAM (linker.ld: IWRAM has
 @ no room; VRAM fetches an ARM instruction in 2 cycles, the cartridge in about 4).
-@ Rust twin: src/raster/middle_run.rs (MiddleRun::columns_twin), which the host draws with; the
+@ Rust twin: src/render/things.rs (middle_columns), which the host draws with; the
 @ emulator's ROM-versus-host frame test compares the two pixel for pixel. The job is built and
 @ checked by MiddleRun::new and handed over by src/hw/kernels.rs.
 @

@@ -3,7 +3,7 @@
 //! middle's wall it finds where the column's ray crosses the wall, exactly (a ray on a texel
 //! edge takes the texel right of it, the oracle's rule), and from that the image column, the
 //! depth's light row, the top row and the steps the sprite batch kernel draws with. The
-//! renderer's own loop (`render::things`, `Things::collect_middle`) is its portable twin: the
+//! renderer's own loop (`render::things::middle_columns`) is its portable twin: the
 //! host draws with it, and the emulator's ROM-versus-host frame test compares the two pixel for
 //! pixel.
 //!
