@@ -158,11 +158,7 @@ pc_middle_columns:
     movlo   r2, #0xff
     blo     4f
     beq     4f
-    sub     r2, r2, r1, asr #12
-    bic     r2, r2, r2, asr #31
-    cmp     r2, #255
-    movgt   r2, #255
-    mov     r2, r2, lsr #3
+    DEPTH_LIGHT_ROW r2, r1
 4:
     orr     r3, r3, r2, lsl #16
     str     r3, [r9]                        @ x, column, light row
@@ -257,6 +253,7 @@ pc_middle_columns:
     .size pc_middle_columns, . - pc_middle_columns
 
     .purgem RECIP_MANTISSA
+    .purgem DEPTH_LIGHT_ROW
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

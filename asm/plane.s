@@ -329,11 +329,7 @@ pc_plane_run:
     cmp     r0, #2
     bne     1f
     ldr     r0, [r11, #PR_LBASE]
-    sub     r0, r0, r10, asr #12
-    bic     r0, r0, r0, asr #31
-    cmp     r0, #255
-    movgt   r0, #255
-    mov     r0, r0, lsr #3
+    DEPTH_LIGHT_ROW r0, r10
     add     r5, r5, r0, lsl #8
 1:                                          @ r5: the colormap row (0: unlit)
     @ The span is drawn from here: counted.
@@ -465,3 +461,6 @@ pc_plane_run:
 pc_flat_skip:
     bx      lr
     .size pc_flat_skip, . - pc_flat_skip
+
+    .purgem RECIP_MANTISSA
+    .purgem DEPTH_LIGHT_ROW

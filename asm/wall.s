@@ -278,11 +278,7 @@ pc_wall_run:
     @ The light: no colormap, one row, or the row of base − z'/16 units, clamped to 0..255.
     cmp     r3, #2
     bne     1f
-    sub     r6, r6, r8, asr #12
-    bic     r6, r6, r6, asr #31
-    cmp     r6, #255
-    movgt   r6, #255
-    mov     r6, r6, lsr #3
+    DEPTH_LIGHT_ROW r6, r8
     add     r7, r7, r6, lsl #8
 1:
     mov     r3, r7                          @ the colormap row (0: unlit)
@@ -444,6 +440,7 @@ pc_column_skip:
     .size pc_column_skip, . - pc_column_skip
 
     .purgem RECIP_MANTISSA
+    .purgem DEPTH_LIGHT_ROW
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

@@ -111,17 +111,21 @@ core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/sprite.s"), options(raw));
 restore_code_mode!();
-// The loops that take a reciprocal per column share its macro (asm/recip.s), assembled with each.
+// The wall, plane and middle loops share macros (asm/shared.s), assembled with each of them.
 core::arch::global_asm!(
-    include_str!("../../asm/recip.s"),
+    include_str!("../../asm/shared.s"),
     include_str!("../../asm/wall.s"),
     options(raw)
 );
 restore_code_mode!();
-core::arch::global_asm!(include_str!("../../asm/plane.s"), options(raw));
+core::arch::global_asm!(
+    include_str!("../../asm/shared.s"),
+    include_str!("../../asm/plane.s"),
+    options(raw)
+);
 restore_code_mode!();
 core::arch::global_asm!(
-    include_str!("../../asm/recip.s"),
+    include_str!("../../asm/shared.s"),
     include_str!("../../asm/middle.s"),
     options(raw)
 );

@@ -1,6 +1,5 @@
-@ The reciprocal of a 32-bit value as src/math/recip.rs computes it (normalise, then
-@ mantissa_reciprocal), for the ARM loops that take one per column (asm/wall.s, asm/middle.s).
-@ Assembled at the start of each of them (src/hw/kernels.rs), which purge it at their end.
+@ What the ARM loops share (asm/wall.s, asm/plane.s, asm/middle.s), as assembler macros:
+@ assembled at the start of each of them (src/hw/kernels.rs), which purge them at their end.
 @
 @ RECIP_MANTISSA m, s, table, seed, a, b: from \m > 0, \m = 2^63/(\m·2^\s) (2^31 over the
 @ normalised mantissa M = \m·2^\s in [2^31, 2^32)) and \s the shift; \table holds the seed
@@ -46,4 +45,16 @@
     mla     \b, \seed, \table, \a
     mov     \b, \b, asr #8                  @ the correction
     add     \m, \b, \seed, lsl #15          @ 2^31 / M
+    .endm
+
+@ DEPTH_LIGHT_ROW level, depth: \level (a sector's light level plus the depth boost) becomes
+@ the colormap row of \level − \depth/16 units (\depth: z' in 24.8), clamped to 0..255 and
+@ shifted right by 3: render::light's light_row for Lighting::SectorDepth, as the loops' twins
+@ compute it (`run_light`, `light_rule`).
+    .macro DEPTH_LIGHT_ROW level, depth
+    sub     \level, \level, \depth, asr #12
+    bic     \level, \level, \level, asr #31
+    cmp     \level, #255
+    movgt   \level, #255
+    mov     \level, \level, lsr #3
     .endm
