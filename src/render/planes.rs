@@ -231,9 +231,7 @@ impl<'r> PlaneSpans<'r> {
                     assert!(run.has_level(), "a flat level no span kernel takes");
                 }
                 Some(PlaneRunEnd::Declined { row, start, end }) => {
-                    stats.span_pixels += (end - start) as u32;
-                    stats.spans += 1;
-                    self.span_twin(canvas, row, start, end);
+                    self.span_twin(canvas, stats, row, start, end);
                 }
             }
         }
@@ -256,9 +254,7 @@ impl<'r> PlaneSpans<'r> {
         stats: &mut FrameStats,
     ) {
         make_spans(windows, first, span_start, |row, start, end| {
-            stats.span_pixels += (end - start) as u32;
-            stats.spans += 1;
-            self.span_twin(canvas, row, start, end);
+            self.span_twin(canvas, stats, row, start, end);
         });
     }
 
@@ -267,9 +263,18 @@ impl<'r> PlaneSpans<'r> {
     /// ([`Viewport::floor_depth_of_row`](crate::math::Viewport::floor_depth_of_row)'s rule).
     /// The twin of the canvas's own set-up ([`Canvas::plane_run`]). Out of line and, on the
     /// GBA, in ROM: there only the spans the ARM loop leaves (rows on the far side of the
-    /// horizon) and those of planes without a flat come here.
+    /// horizon) and those of planes without a flat come here. Counts the span in `stats`.
     #[inline(never)]
-    fn span_twin(&mut self, canvas: &mut impl Canvas, row: usize, start: usize, end: usize) {
+    fn span_twin(
+        &mut self,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        row: usize,
+        start: usize,
+        end: usize,
+    ) {
+        stats.span_pixels += (end - start) as u32;
+        stats.spans += 1;
         let PlaneConstants {
             depth_numerator,
             horizon_y,

@@ -207,7 +207,7 @@ pub(crate) struct ThingView<'v, 'a> {
     view: &'v View,
     /// `1/d_x` and `1/d_y`, 2.30 bits.
     inverse_focal_x: i64,
-    inverse_focal_y: i64,
+    inverse_focal_y: i32,
 }
 
 impl<'v, 'a> ThingView<'v, 'a> {
@@ -241,7 +241,7 @@ impl<'v, 'a> ThingView<'v, 'a> {
             assets,
             view,
             inverse_focal_x: i64::from(crate::math::recip_small(viewport.focal_x as u32).to_bits()),
-            inverse_focal_y: i64::from(crate::math::recip_small(viewport.focal_y as u32).to_bits()),
+            inverse_focal_y: crate::math::recip_small(viewport.focal_y as u32).to_bits(),
         }
     }
 }
@@ -482,7 +482,7 @@ impl Things {
         // eye-space coordinates and their differences under 2^24 bits, heights times d_y under
         // 2^30): one multiply each on the ARM7TDMI, where 64-bit factors take three.
         debug_assert!(
-            [za, dz, above_eye_focal, frame.inverse_focal_y]
+            [za, dz, above_eye_focal]
                 .iter()
                 .all(|&value| i32::try_from(value).is_ok()),
             "a middle's factors outside 32 bits"
@@ -499,7 +499,7 @@ impl Things {
             horizon_fx16: viewport.horizon_y << 16,
             above_eye_focal: above_eye_focal as i32,
             focal_y: viewport.focal_y,
-            inverse_focal_y: frame.inverse_focal_y as i32,
+            inverse_focal_y: frame.inverse_focal_y,
             width: u32::from(sprite.width),
             light_mode,
             light_base,
@@ -876,7 +876,7 @@ fn project(
     // Texels per column and per row: z'/d in 16.16 (24.8 by 2.30 bits, shifted by 22); per
     // row at most 2^32 / rows per texel, the sprite kernel's bound on its steps.
     let iscale_x = ((i64::from(depth) * frame.inverse_focal_x) >> 22) as u32;
-    let iscale = texels_per_row(depth, rows_per_texel, frame.inverse_focal_y as i32);
+    let iscale = texels_per_row(depth, rows_per_texel, frame.inverse_focal_y);
     // The first column whose centre is right of the left edge, and its texture column.
     // On screen, both edges are within the sprite's width (at most 256 texels of 30 columns)
     // of it: 16.16 holds them.
