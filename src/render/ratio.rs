@@ -18,7 +18,7 @@ pub fn ratio_shifted(num: i64, shift: u32, den: i64) -> i64 {
 #[derive(Clone, Copy, Debug)]
 pub struct Divisor {
     /// `2^61 / mantissa`, in (2^29, 2^30], for the divisor's top 32 bits as the mantissa.
-    reciprocal: u64,
+    reciprocal: u32,
     /// The divisor is about `mantissa · 2^exponent`.
     exponent: i32,
     negative: bool,
@@ -40,7 +40,7 @@ impl Divisor {
             (d << -exponent) as u32
         };
         Divisor {
-            reciprocal: u64::from(recip_pow2(mantissa, 61)),
+            reciprocal: recip_pow2(mantissa, 61),
             exponent,
             negative: den < 0,
         }
@@ -54,13 +54,24 @@ impl Divisor {
     )]
     pub fn ratio_shifted(&self, num: i64, shift: u32) -> i64 {
         let negative = (num < 0) != self.negative;
-        // num · 2^shift / d = num · reciprocal / 2^(61 + exponent − shift).
-        let product = u128::from(num.unsigned_abs()) * u128::from(self.reciprocal);
+        // num · 2^shift / d = num · reciprocal / 2^(61 + exponent − shift). The product has at
+        // most 63 + 30 bits: two 32-bit multiplies, `high · 2^32 + low`, where a 128-bit
+        // product would take a library call's worth of multiplies and shifts.
+        let magnitude = num.unsigned_abs();
+        let reciprocal = u64::from(self.reciprocal);
+        let low = u64::from(magnitude as u32) * reciprocal;
+        let high = (magnitude >> 32) * reciprocal;
         let right = 61 + self.exponent - shift as i32;
-        let quotient = if right > 0 {
-            ((product >> (right - 1)) + 1) >> 1
+        // The product shifted right by `right − 1` (its bits up to 64 past that: the quotient
+        // fits i64), then rounded by its last bit.
+        let quotient = if right > 32 {
+            // `high + low / 2^32` is the product over 2^32 (below 2^62: no carry is lost).
+            (((high + (low >> 32)) >> (right - 33)) + 1) >> 1
+        } else if right > 0 {
+            let kept = (right - 1) as u32;
+            ((high << (32 - kept)).wrapping_add(low >> kept)).wrapping_add(1) >> 1
         } else {
-            product << -right
+            (high << 32).wrapping_add(low) << -right
         };
         let quotient = quotient as i64;
         if negative {
@@ -125,6 +136,43 @@ mod tests {
             let approximate = ratio_shifted(num, shift, den) as f64;
             let bound = exact.abs() / 2f64.powi(28) + 1.0;
             prop_assert!((approximate - exact).abs() <= bound, "{num}<<{shift}/{den}: {approximate} vs {exact}");
+        }
+    }
+
+    /// The quotient as a 128-bit product would give it: what the two 32-bit products must
+    /// reproduce bit for bit wherever the quotient fits i64.
+    fn ratio_by_u128(divisor: &Divisor, num: i64, shift: u32) -> i64 {
+        let product = u128::from(num.unsigned_abs()) * u128::from(divisor.reciprocal);
+        let right = 61 + divisor.exponent - shift as i32;
+        let quotient = if right > 0 {
+            ((product >> (right - 1)) + 1) >> 1
+        } else {
+            product << -right
+        } as i64;
+        if (num < 0) != divisor.negative {
+            -quotient
+        } else {
+            quotient
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig {
+            cases: 20000,
+            max_global_rejects: 1 << 20,
+            ..ProptestConfig::default()
+        })]
+        #[test]
+        fn two_32_bit_products_give_the_128_bit_product_s_quotient(
+            num in prop_oneof![-(1i64 << 40)..(1i64 << 40), i64::MIN + 1..i64::MAX],
+            shift in 0u32..64,
+            den in prop_oneof![1i64..1000, -(1i64 << 62)..(1i64 << 62)],
+        ) {
+            prop_assume!(den != 0);
+            let exact = (i128::from(num) << shift) as f64 / den as f64;
+            prop_assume!(exact.abs() < 2f64.powi(62));
+            let divisor = Divisor::new(den);
+            prop_assert_eq!(divisor.ratio_shifted(num, shift), ratio_by_u128(&divisor, num, shift));
         }
     }
 
