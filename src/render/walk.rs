@@ -982,10 +982,12 @@ impl<W: WindowStore> Renderer<W> {
             horizon_row: view.viewport.horizon_y,
         };
         let light = run_light(job.sector.light, view.lighting, scene.assets.colormap);
+        let kind = job.kind();
+        job.take_first_levels(kind.draws(), &wall, scene.inverse_focal_y);
         let windows = self.windows.windows();
         let mut run = WallRun::new(
             wall.steps(),
-            job.kind(),
+            kind,
             start,
             stop,
             &mut windows.clip,
@@ -1512,6 +1514,35 @@ impl<'s> StripLevel<'s> {
 }
 
 impl<'s> WallJob<'s> {
+    /// The drawn strips take a level for the depth of `wall`'s current column: a canvas loop
+    /// started without one would stop at once to ask for it, and most walls keep their first
+    /// column's level to their end. The mip ratio `z'/d_y` is `(1/d_y)/(1/z')`: taken here to
+    /// its power of two by shifts, no reciprocal. A level missed near a power (the loop's own
+    /// ratio is rounded) stops the loop at that column as no level did, so no pixel depends
+    /// on it. Once per wall: in the VRAM Mode 4 leaves free (IWRAM is full).
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".vram.wall_first_levels")]
+    fn take_first_levels(&mut self, drawn: [bool; 2], wall: &SteppedWall, inverse_focal_y: i64) {
+        // Both in 2.30, positive: 32-bit words.
+        let inverse_depth = wall.steps().inverse_depth.max(1) as u32;
+        let inverse_focal_y = inverse_focal_y.max(1) as u32;
+        // The largest power of two with `inverse_depth · ratio ≤ inverse_focal_y` (0 if none).
+        let mut ratio = 0i32;
+        if inverse_depth <= inverse_focal_y {
+            ratio = 1;
+            let mut scaled = inverse_depth;
+            while scaled <= inverse_focal_y >> 1 {
+                scaled <<= 1;
+                ratio <<= 1;
+            }
+        }
+        for (strip, drawn) in self.strips.iter_mut().zip(drawn) {
+            if drawn {
+                strip.take_level(ratio);
+            }
+        }
+    }
+
     fn new(scene: &Scene<'s, 's>, sector: &'s Sector, wall: &'s Wall, wall_index: u16) -> Self {
         let view = scene.view;
         let above_eye = |height: i32| Fx24_8::from_int(height) - view.eye_z;
