@@ -20,7 +20,9 @@
 @  88 page  92 native  96 halved  100 kernels (by side from 8)  104 draw_edges  108 height
 @ 112 width  116 miss_ratio  120 windows (column 0's place: the plane's first is at `first`)
 @ 124 span_start (i16 per row)  128 x  132 end  136 old (window word)  140 mid  144 spans
-@ 148 pixels  152..160 pending (start, end, row)
+@ 148 pixels  152..160 pending (start, end, row)  164 span_start_rows  168 chain (a square
+@ flat's row-major mip chain, or null)  172 its side at level 0 (log2)  176 its shallowest
+@ level  180 its deepest
 
     .equ PR_NUMER, 0
     .equ PR_HORIZON, 4
@@ -55,6 +57,10 @@
     .equ PR_SPANS, 144
     .equ PR_PIXELS, 148
     .equ PR_PENDING, 152
+    .equ PR_CHAIN, 168
+    .equ PR_CHAIN_SIDE, 172
+    .equ PR_CHAIN_SHALLOW, 176
+    .equ PR_CHAIN_DEEP, 180
 
     @ \dst = ((eye word pair at \eye, or 0) + (z'·ray >> 22)) >> level, low word: the 64-bit
     @ sum as PlaneSpans::span_twin forms it. r10 = z' (24.8), r4 = level, r5 = 32 − level;
@@ -301,10 +307,11 @@ pc_plane_run:
     mov     r1, r1, asr #6
     ldr     r0, [r11, #PR_RLOW]
     cmp     r1, r0
-    blt     .Lpl_miss
+    blt     .Lpl_pick
     ldr     r0, [r11, #PR_RHIGH]
     cmp     r1, r0
-    bgt     .Lpl_miss
+    bgt     .Lpl_pick
+.Lpl_level_held:
     @ The centre column's map position and the step per pixel at the level, packed.
     ldr     r4, [r11, #PR_LEVEL]
     rsb     r5, r4, #32
@@ -423,6 +430,52 @@ pc_plane_run:
     add     sp, sp, #24
     pop     {r4-r10, lr}
     bx      lr
+.Lpl_pick:
+    @ A ratio (r1) the run's level does not hold. With a chain (PlaneRun::pick_levels) the
+    @ routine takes the level PlaneLevel::of picks: floor(log2(ratio)) (0 below 2), clamped to
+    @ the chain's levels, with the ratios that pick it (mip_ratios_of_level); else it stops.
+    ldr     r0, [r11, #PR_CHAIN]
+    cmp     r0, #0
+    beq     .Lpl_miss
+    mov     r2, #0
+    mov     r3, r1, asr #1
+1:
+    cmp     r3, #0
+    ble     2f
+    add     r2, r2, #1
+    mov     r3, r3, asr #1
+    b       1b
+2:
+    ldr     r3, [r11, #PR_CHAIN_SHALLOW]
+    cmp     r2, r3
+    movlt   r2, r3
+    ldr     r4, [r11, #PR_CHAIN_DEEP]
+    cmp     r2, r4
+    movgt   r2, r4                          @ r2: the level
+    mov     r5, #1
+    cmp     r2, r3
+    movle   r6, #0x80000000
+    movgt   r6, r5, lsl r2
+    str     r6, [r11, #PR_RLOW]
+    cmp     r2, r4
+    mvnge   r6, #0x80000000
+    addlt   r6, r2, #1
+    movlt   r6, r5, lsl r6
+    sublt   r6, r6, #1
+    str     r6, [r11, #PR_RHIGH]
+    str     r2, [r11, #PR_LEVEL]
+    ldr     r3, [r11, #PR_CHAIN_SIDE]
+    sub     r4, r3, r2
+    str     r4, [r11, #PR_SIDE]
+    @ Its texels: the chain past the levels above it, the sum of 4^(side − m) for m < level.
+    mov     r3, r3, lsl #1
+3:
+    subs    r2, r2, #1
+    addge   r0, r0, r5, lsl r3
+    subge   r3, r3, #2
+    bgt     3b
+    str     r0, [r11, #PR_TEXELS]
+    b       .Lpl_level_held
 .Lpl_miss:
     str     r1, [r11, #PR_MISS]
     mov     r0, #2

@@ -199,6 +199,10 @@ const _: () = {
     assert!(offset_of!(PlaneRun, mid) == 140);
     assert!(offset_of!(PlaneRun, spans) == 144);
     assert!(offset_of!(PlaneRun, pending) == 152);
+    assert!(offset_of!(PlaneRun, chain) == 168);
+    assert!(offset_of!(PlaneRun, chain_side_log2) == 172);
+    assert!(offset_of!(PlaneRun, chain_shallowest) == 176);
+    assert!(offset_of!(PlaneRun, chain_deepest) == 180);
     // `asm/middle.s` reads the middle's run at these, and writes `BatchColumn`s (below).
     assert!(offset_of!(MiddleRun, numerator_step) == 16);
     assert!(offset_of!(MiddleRun, x) == 32);

@@ -80,6 +80,13 @@ pub struct PlaneRun<'a> {
     pub(crate) pending: [u32; 3],
     /// The rows `span_start` has (the canvas checks they cover its height).
     pub(crate) span_start_rows: u32,
+    /// Set by [`PlaneRun::pick_levels`]: the flat's row-major mip chain, where the routine
+    /// picks a span's level itself (null: it stops and the renderer picks), its side at level
+    /// 0 (log2), and the levels its spans may take.
+    pub(crate) chain: *const u8,
+    pub(crate) chain_side_log2: u32,
+    pub(crate) chain_shallowest: u32,
+    pub(crate) chain_deepest: u32,
     borrows: PhantomData<(&'a [u8], &'a [Window], &'a mut [i16])>,
 }
 
@@ -168,6 +175,10 @@ impl<'a> PlaneRun<'a> {
             end: (first + windows.len()) as u32,
             span_start_rows: span_start.len() as u32,
             span_start: span_start.as_mut_ptr(),
+            chain: core::ptr::null(),
+            chain_side_log2: 0,
+            chain_shallowest: 0,
+            chain_deepest: 0,
             old: 0,
             mid: 0,
             spans: 0,
@@ -190,6 +201,32 @@ impl<'a> PlaneRun<'a> {
         } else {
             core::ptr::null()
         };
+    }
+
+    /// Lets the routine pick each span's level itself, as the renderer's rule does
+    /// (`render::planes`' `PlaneLevel::of`): the level `floor(log2(ratio))` clamped to
+    /// `shallowest..=deepest`, its texels at its place in `chain`, a square flat's row-major mip
+    /// chain of side `2^side_log2` at level 0. Refused (the routine keeps stopping for the
+    /// renderer) unless every level in the range has a side a span kernel takes and lies inside
+    /// `chain`.
+    pub fn pick_levels(&mut self, chain: &'a [u8], side_log2: u32, shallowest: u8, deepest: u8) {
+        let (shallowest, deepest) = (u32::from(shallowest), u32::from(deepest));
+        let sides_fit = shallowest <= deepest
+            && deepest <= side_log2
+            && FLAT_LOG2_SIDES.contains(&(side_log2 - deepest))
+            && FLAT_LOG2_SIDES.contains(&(side_log2 - shallowest));
+        // The deepest level's end: Σ_{m ≤ deepest} 4^(side − m).
+        let chain_end = || {
+            (0..=deepest)
+                .map(|level| 1usize << (2 * (side_log2 - level)))
+                .sum::<usize>()
+        };
+        if sides_fit && chain_end() <= chain.len() {
+            self.chain = chain.as_ptr();
+            self.chain_side_log2 = side_log2;
+            self.chain_shallowest = shallowest;
+            self.chain_deepest = deepest;
+        }
     }
 
     /// Whether the run has a level its spans can be drawn at.
@@ -258,6 +295,44 @@ mod tests {
         assert!(!run.has_level() && run.ratio_low > run.ratio_high);
         run.set_level(0, 7, &[0u8; 128 * 128], (0, 1));
         assert!(!run.has_level() && run.ratio_low > run.ratio_high);
+    }
+
+    #[test]
+    fn levels_are_picked_by_the_loop_only_inside_the_chain_and_the_kernels_sides() {
+        let windows = [Window { top: 0, bottom: 4 }; 3];
+        let mut span_start = [0i16; 80];
+        // A 64-texel square's chain down to 8 texels: 4096 + 1024 + 256 + 64.
+        let chain = [0u8; 5440];
+        let mut picking = run(&windows, &mut span_start);
+        picking.pick_levels(&chain, 6, 0, 3);
+        assert_eq!(
+            (
+                picking.chain,
+                picking.chain_side_log2,
+                picking.chain_shallowest,
+                picking.chain_deepest
+            ),
+            (chain.as_ptr(), 6, 0, 3)
+        );
+        let refused = |chain: &[u8], side: u32, shallowest: u8, deepest: u8| {
+            let mut span_start = [0i16; 80];
+            let mut picking = run(&windows, &mut span_start);
+            picking.pick_levels(chain, side, shallowest, deepest);
+            picking.chain.is_null()
+        };
+        assert!(
+            refused(&chain[..5439], 6, 0, 3),
+            "the deepest level past the chain"
+        );
+        assert!(refused(&chain, 6, 0, 4), "a 4-texel level no kernel takes");
+        assert!(
+            refused(&chain, 7, 0, 3),
+            "a 128-texel level no kernel takes"
+        );
+        assert!(refused(&chain, 6, 2, 1), "an empty range");
+        // A 128-texel square from its level 1 (64) to 3 (16): 16384 + 4096 + 1024 + 256.
+        assert!(refused(&[0u8; 21759], 7, 1, 3));
+        assert!(!refused(&[0u8; 21760], 7, 1, 3));
     }
 
     #[test]

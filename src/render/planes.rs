@@ -128,6 +128,14 @@ struct PlaneLevel<'r> {
 }
 
 impl<'r> PlaneLevel<'r> {
+    /// The level the span rule picks for `ratio` on `texture`: the mip rule on its largest
+    /// square, never below `smallest`.
+    #[inline(always)]
+    fn pick(texture: &Texture<'r>, ratio: i32, smallest: u8) -> u8 {
+        let largest = texture.width_log2.min(texture.height_log2);
+        mip_level_of_ratio(ratio, texture.mip_count, largest, largest).max(smallest)
+    }
+
     /// No level yet: every ratio is out of its range.
     const NONE: PlaneLevel<'static> = PlaneLevel {
         ratio_low: 1,
@@ -137,17 +145,14 @@ impl<'r> PlaneLevel<'r> {
         texels: &[],
     };
 
-    /// The level the span rule picks for `ratio` on `texture`: the mip rule on its largest
-    /// square, never below `smallest` (the largest flat the kernels take).
+    /// The level [`PlaneLevel::pick`] picks for `ratio` on `texture`, with the ratios that pick
+    /// it too (`smallest`: the largest flat the kernels take). Out of line and, on the GBA, in
+    /// ROM: the canvas's span loop picks a square flat's levels itself.
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram.render_plane_level_of")]
     fn of(texture: &Texture<'r>, ratio: i32, smallest: u8) -> PlaneLevel<'r> {
-        let largest = texture.width_log2.min(texture.height_log2);
-        let pick = |ratio: i32| {
-            mip_level_of_ratio(ratio, texture.mip_count, largest, largest).max(smallest)
-        };
-        let level = pick(ratio);
-        let (ratio_low, ratio_high) = mip_ratios_of_level(level, smallest, pick(i32::MAX));
+        let level = Self::pick(texture, ratio, smallest);
+        let deepest = Self::pick(texture, i32::MAX, smallest);
+        let (ratio_low, ratio_high) = mip_ratios_of_level(level, smallest, deepest);
         PlaneLevel {
             ratio_low,
             ratio_high,
@@ -214,6 +219,13 @@ impl<'r> PlaneSpans<'r> {
         };
         let light = run_light(self.light, self.lighting, self.colormap);
         let mut run = PlaneRun::new(self.constants, light, windows, first, span_start);
+        if texture.width_log2 == texture.height_log2 {
+            // A square flat: the canvas's loop may pick its spans' levels itself, by the rule
+            // of `PlaneLevel::of`.
+            let smallest = self.smallest_kernel_level;
+            let deepest = PlaneLevel::pick(texture, i32::MAX, smallest);
+            run.pick_levels(texture.rows, texture.width_log2.into(), smallest, deepest);
+        }
         loop {
             match canvas.plane_run(&mut run) {
                 None => return false,
