@@ -116,6 +116,11 @@ impl ColumnWindows {
             column_angles: [0; MAX_COLUMNS],
         }
     }
+
+    /// The clip windows, one per column: what a [`WindowStore`] opens each frame.
+    pub(crate) fn clip_mut(&mut self) -> &mut [Window] {
+        &mut self.clip
+    }
 }
 
 impl Default for ColumnWindows {
@@ -129,6 +134,17 @@ impl Default for ColumnWindows {
 pub trait WindowStore {
     /// The windows.
     fn windows(&mut self) -> &mut ColumnWindows;
+
+    /// Opens the clip windows of columns `0..width` to rows `0..height`, as every frame starts
+    /// (the eye's sector is seen through the whole screen).
+    fn open_clip(&mut self, width: usize, height: i16) {
+        for window in &mut self.windows().clip_mut()[..width] {
+            *window = Window {
+                top: 0,
+                bottom: height,
+            };
+        }
+    }
 }
 
 impl WindowStore for ColumnWindows {
@@ -411,12 +427,7 @@ impl<W: WindowStore> Renderer<W> {
         if self.column_angles_width != view.viewport.width {
             self.fill_column_angles(&view.viewport);
         }
-        for window in &mut self.windows.windows().clip[..width] {
-            *window = Window {
-                top: 0,
-                bottom: height,
-            };
-        }
+        self.windows.open_clip(width, height);
         let scene = Scene {
             map,
             assets,
