@@ -40,15 +40,16 @@ fn bench_map_cycles_stay_within_the_baseline() {
         .unwrap_or_else(|error| panic!("{error}"));
     emulator.set_keys(Keys::NONE);
     let mut frames = 4;
+    // The guard's runs, then the stack line and `bench done`.
     while !emulator
         .debug_lines()
         .iter()
-        .any(|line| line.contains(bench_log::GUARD_DONE))
+        .any(|line| line.contains(bench_log::BENCH_DONE))
     {
         assert!(
             frames < MAX_FRAMES,
             "no {:?} after {frames} frames",
-            bench_log::GUARD_DONE
+            bench_log::BENCH_DONE
         );
         emulator
             .run_frames(CHUNK)
@@ -58,6 +59,24 @@ fn bench_map_cycles_stay_within_the_baseline() {
     let log = emulator.debug_lines().join("\n");
     let runs = bench_log::bench_runs(&log).unwrap_or_else(|problem| panic!("{problem}"));
     assert!(!runs.is_empty(), "the guard's runs printed no bench lines");
+    // The bench scene's stack (flying the bench map with its things, at every resolution, and
+    // starting each run's flight) inside the linker's reserve, as every scene's must be: it was
+    // 16 bytes past it while the scene built each flight in the frame under the renderer's.
+    let stack = emulator
+        .debug_lines()
+        .into_iter()
+        .find(|line| line.starts_with("stack "))
+        .expect("the bench scene prints `stack used=… room=… reserve=…` before `bench done`");
+    let (used, room, reserve) = (
+        number(stack, "used"),
+        number(stack, "room"),
+        number(stack, "reserve"),
+    );
+    println!("guard: {stack}");
+    assert!(
+        used < room.min(reserve),
+        "the bench scene's stack reached the linker's reserve or its room: {stack}"
+    );
     let isa = portalcast_xtask::engine_isa().unwrap_or_else(|error| panic!("{error}"));
     let measured = Baseline::from_runs(isa.label(), &runs);
     for entry in &measured.entries {

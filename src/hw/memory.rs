@@ -247,6 +247,26 @@ pub fn bench_world_in_ewram() -> &'static mut GameWorld {
     }
 }
 
+use crate::live_flight::LiveFlight;
+
+#[link_section = ".ewram_bss"]
+static mut BENCH_FLIGHT: MaybeUninit<LiveFlight<'static>> = MaybeUninit::uninit();
+static mut BENCH_FLIGHT_TAKEN: bool = false;
+
+/// Where the bench scene keeps the fly-through it is flying: in EWRAM, not in its stack frame
+/// under the renderer's (a flight is half a kilobyte, and IWRAM's stack has no room for it).
+/// Hands it out once; each run writes its own flight there.
+pub fn bench_flight_in_ewram() -> &'static mut MaybeUninit<LiveFlight<'static>> {
+    // SAFETY: single-threaded, and the flag makes this the only reference ever made to the
+    // static; the interrupt handler never touches it. A `MaybeUninit` needs no initialising.
+    unsafe {
+        let taken = &raw mut BENCH_FLIGHT_TAKEN;
+        assert!(!*taken, "the bench's flight slot is handed out once");
+        *taken = true;
+        &mut *(&raw mut BENCH_FLIGHT)
+    }
+}
+
 use crate::assets;
 use portalcast_format::{Align4, Texture};
 
