@@ -263,7 +263,8 @@ pub fn bench_flight_in_ewram() -> &'static mut MaybeUninit<LiveFlight<'static>> 
         let taken = &raw mut BENCH_FLIGHT_TAKEN;
         assert!(!*taken, "the bench's flight slot is handed out once");
         *taken = true;
-        &mut *(&raw mut BENCH_FLIGHT)
+        let slot: *mut MaybeUninit<LiveFlight<'static>> = &raw mut BENCH_FLIGHT;
+        &mut *slot
     }
 }
 
