@@ -410,11 +410,10 @@ impl Things {
     /// from the canvas's own loop where it has one (`Canvas::middle_columns`, the GBA's ARM
     /// routine), else from [`middle_columns`], its twin.
     ///
-    /// In VRAM on the GBA (IWRAM has no room), with the routine: a frame that looks through
-    /// grates runs them over hundreds of columns, and from the cartridge they were the slowest
-    /// frames' largest cost.
+    /// Out of line and, on the GBA, in ROM: its columns come from the routine (in VRAM), and
+    /// the VRAM it had is [`Things::draw_thing`]'s, whose column loop runs for every column of
+    /// every thing.
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".vram.things_collect_middle")]
     pub(crate) fn collect_middle(
         &mut self,
         frame: &ThingView,
@@ -593,6 +592,10 @@ impl Things {
         self.stats
     }
 
+    /// Thing `index`'s columns, in batches to the canvas's sprite loop. In the VRAM Mode 4
+    /// leaves free on the GBA: its loop runs for every column of every thing drawn.
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".vram.things_draw_thing")]
     fn draw_thing(&mut self, assets: &RenderAssets, canvas: &mut impl Canvas, index: usize) {
         let seen = self.visible[index];
         let sprite = &assets.sprites[usize::from(seen.sprite)];
