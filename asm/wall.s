@@ -22,9 +22,11 @@
 @     | log2 base height << 16)  +8 ratio_low  +12 ratio_high  +16 width_mask  +20 texels
 @     +24 kernel_even  +28 kernel_odd  +32 kernel_both (240 wide: the byte-store kernel that
 @     writes both pixels of a halfword)
+@ 200 window_columns  204 planes_seen (1: a ceiling window had rows, 2: a floor window)
 @
-@ Registers kept across columns: r11 the run, r10 1/z', r9 the column, r5 the pixels drawn and
-@ (from bit 16) the strips drawn. The kernels keep r4-r11. The stack holds the column's strip
+@ Registers kept across columns: r11 the run, r10 1/z', r9 the column, r5 the pixels drawn,
+@ (from bit 16) the strips drawn, and in bits 30 and 31 whether a ceiling and a floor window had
+@ rows. The kernels keep r4-r11. The stack holds the column's strip
 @ rows and the kernels' argument block (asm/column.s).
 
     .equ RUN_INV, 0
@@ -60,6 +62,7 @@
     .equ RUN_RESUME_ROWS, 120
     .equ RUN_STRIP0, 128
     .equ RUN_STRIP1, 164
+    .equ RUN_PLANES, 204
 
     .equ STRIP_EYE, 0
     .equ STRIP_SHAPE, 4
@@ -165,11 +168,15 @@ pc_wall_run:
     cmp     r2, r12
     movlt   r0, r2
     movge   r0, r12
+    cmp     r8, r0
+    orrlt   r5, r5, #0x40000000             @ a ceiling window with rows
     orr     r0, r8, r0, lsl #16
     str     r0, [r6, r9, lsl #2]
     cmp     r3, r8
     movgt   r0, r3
     movle   r0, r8
+    cmp     r0, r12
+    orrlt   r5, r5, #0x80000000             @ a floor window with rows
     orr     r0, r0, r12, lsl #16
     str     r0, [r7, r9, lsl #2]
     ands    r0, r1, #3
@@ -329,6 +336,10 @@ pc_wall_run:
     ldr     r3, [sp, #SP_AOD]
     mla     r1, r9, r2, r3
     str     r1, [r11, #RUN_AOD]
+    ldr     r1, [r11, #RUN_PLANES]
+    orr     r1, r1, r5, lsr #30
+    str     r1, [r11, #RUN_PLANES]
+    bic     r5, r5, #0xC0000000
     ldr     r1, [r11, #RUN_PIXELS]
     ldr     r2, [r11, #RUN_STRIPS]
     mov     r3, r5, lsl #16

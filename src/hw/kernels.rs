@@ -181,7 +181,8 @@ const _: () = {
     assert!(offset_of!(StripRun, texels) == 20);
     assert!(offset_of!(StripRun, kernel_odd) == 28);
     assert!(offset_of!(StripRun, kernel_both) == 32);
-    assert!(size_of::<WallRun>() == 204);
+    assert!(offset_of!(WallRun, planes_seen) == 204);
+    assert!(size_of::<WallRun>() == 208);
     // `asm/plane.s` reads the plane's run at these.
     assert!(offset_of!(PlaneRun, inverse_focal_y) == 12);
     assert!(offset_of!(PlaneRun, level) == 24);

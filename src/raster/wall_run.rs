@@ -255,8 +255,16 @@ pub struct WallRun<'a> {
     /// The columns every window slice holds (the loop reads the clip window one column past
     /// the current one where two pixels share a halfword; the canvas checks it has them).
     pub(crate) window_columns: u32,
+    /// The plane windows the loop has written with rows in them: [`CEILING_SEEN`],
+    /// [`FLOOR_SEEN`].
+    pub(crate) planes_seen: u32,
     borrows: PhantomData<(&'a mut [Window], &'a [u8])>,
 }
+
+/// [`WallRun::planes_seen`]'s bit for a ceiling window with rows in it.
+pub const CEILING_SEEN: u32 = 1;
+/// [`WallRun::planes_seen`]'s bit for a floor window with rows in it.
+pub const FLOOR_SEEN: u32 = 2;
 
 impl<'a> WallRun<'a> {
     /// The columns `start..stop` of a wall with `steps` at `start`, writing the windows
@@ -314,6 +322,7 @@ impl<'a> WallRun<'a> {
             resume_rows: [0; 2],
             strips: strips.map(StripRun::of),
             window_columns: clip.len().min(ceiling.len()).min(floor.len()) as u32,
+            planes_seen: 0,
             borrows: PhantomData,
         })
     }
@@ -350,6 +359,12 @@ impl<'a> WallRun<'a> {
     pub fn pending_strips(&self) -> Option<[(i32, i32); 2]> {
         let rows = |word: u32| ((word & 0xffff) as i32, (word >> 16) as i32);
         (self.resume != 0).then(|| self.resume_rows.map(rows))
+    }
+
+    /// Which plane windows the loop has written with rows in them so far: [`CEILING_SEEN`] and
+    /// [`FLOOR_SEEN`]. A visit whose walls wrote none of a plane has no span of it to draw.
+    pub fn planes_seen(&self) -> u32 {
+        self.planes_seen
     }
 
     /// Pixels and strips drawn so far.

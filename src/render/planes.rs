@@ -29,9 +29,9 @@ pub struct PlaneJob<'r> {
     pub sector_index: u16,
     /// Screen column of the first window.
     pub first: usize,
-    /// Ceiling window per column from `first`.
+    /// Ceiling window per column from `first`; none if no column shows the ceiling.
     pub ceiling: &'r [Window],
-    /// Floor window per column from `first`.
+    /// Floor window per column from `first`; none if no column shows the floor.
     pub floor: &'r [Window],
     /// Scratch for `make_spans`, one entry per row.
     pub span_start: &'r mut [i16],
@@ -87,6 +87,10 @@ impl PlaneJob<'_> {
         ];
         canvas.set_halved_flats(view.halved_floors);
         for (surface, windows, height, texture) in &planes[usize::from(sky)..] {
+            if windows.is_empty() {
+                // No column of the visit shows it (the walls said so: `PlaneJob::ceiling`).
+                continue;
+            }
             canvas.set_surface(*surface);
             let mut plane = PlaneSpans::new(view, assets, sector, *height, *texture);
             if !plane.draw_run(canvas, windows, first, span_start, stats) {

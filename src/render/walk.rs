@@ -20,7 +20,9 @@ use super::walls::{
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
 use crate::raster::column::ColumnTexture;
-use crate::raster::wall_run::{RunTexturing, StripRunLevel, WallKind, WallRun, WallRunEnd};
+use crate::raster::wall_run::{
+    RunTexturing, StripRunLevel, WallKind, WallRun, WallRunEnd, CEILING_SEEN, FLOOR_SEEN,
+};
 use crate::raster::Canvas;
 use crate::render::light::{light_row, run_light, Lighting};
 use core::cell::Cell;
@@ -175,6 +177,9 @@ pub struct Renderer<W: WindowStore = ColumnWindows> {
     recording_portals: bool,
     /// Whether the last visit drawn recorded all of its portals.
     portals_recorded: bool,
+    /// Which of the visit's plane windows its walls wrote with rows in them (`CEILING_SEEN`,
+    /// `FLOOR_SEEN`): a plane with none is not drawn (about half of a frame's planes).
+    planes_seen: u32,
     /// The scene preprocessing's visits ([`Preprocessing::On`]).
     plan: VisitPlan,
     /// Each vertex's eye-space position (and the precision knob's column) this frame.
@@ -385,6 +390,7 @@ impl<W: WindowStore> Renderer<W> {
             }; PORTALS_RECORDED],
             portals_used: 0,
             recording_portals: false,
+            planes_seen: 0,
             portals_recorded: false,
             plan: VisitPlan::new(),
             vertices: VertexCache(
@@ -755,6 +761,7 @@ impl<W: WindowStore> Renderer<W> {
             windows.ceiling[range.clone()].fill(UNSET);
             windows.floor[range.clone()].fill(UNSET);
         }
+        self.planes_seen = 0;
         let walls_started = (self.clock)();
         if scene.view.things == ThingsShown::On && !scene.map.things_in(sector_index).is_empty() {
             // Before the walls: the clip windows are still the ones the sector is seen through.
@@ -1034,6 +1041,7 @@ impl<W: WindowStore> Renderer<W> {
         let (pixels, strips) = run.drawn();
         stats.column_pixels += pixels;
         stats.strips += strips;
+        self.planes_seen |= run.planes_seen();
         resume.map(|column| WallResume {
             column,
             wall: SteppedWall::from_steps(run.steps()),
@@ -1098,8 +1106,17 @@ impl<W: WindowStore> Renderer<W> {
             sector,
             sector_index,
             first: first as usize,
-            ceiling: &windows.ceiling[first as usize..end as usize],
-            floor: &windows.floor[first as usize..end as usize],
+            // A plane whose walls left no window with rows has nothing to draw: no windows.
+            ceiling: if self.planes_seen & CEILING_SEEN != 0 {
+                &windows.ceiling[first as usize..end as usize]
+            } else {
+                &[]
+            },
+            floor: if self.planes_seen & FLOOR_SEEN != 0 {
+                &windows.floor[first as usize..end as usize]
+            } else {
+                &[]
+            },
             span_start: &mut windows.span_start,
             stats,
             column_angles: &windows.column_angles,
@@ -1121,7 +1138,9 @@ impl<W: WindowStore> Renderer<W> {
         rows: [i32; ROW_HEIGHTS],
         column: i32,
     ) {
-        let strips = column_windows(self.windows.windows(), kind, rows, column as usize);
+        let (strips, planes_seen) =
+            column_windows(self.windows.windows(), kind, rows, column as usize);
+        self.planes_seen |= planes_seen;
         if strips.iter().all(|(top, bottom)| top >= bottom) {
             // Nothing of the wall is drawn in this column (an open portal, or a clipped strip):
             // its texture column is not needed.
@@ -1247,7 +1266,7 @@ fn column_windows(
     kind: WallKind,
     rows: [i32; ROW_HEIGHTS],
     x: usize,
-) -> [(i32, i32); 2] {
+) -> ([(i32, i32); 2], u32) {
     let [ceiling, floor, neighbour_ceiling, neighbour_floor] = rows;
     let clip = windows.clip[x];
     let (clip_top, clip_bottom) = (i32::from(clip.top), i32::from(clip.bottom));
@@ -1257,11 +1276,24 @@ fn column_windows(
         top: top as i16,
         bottom: bottom as i16,
     };
-    windows.ceiling[x] = window(clip_top, ceiling_row.min(clip_bottom));
-    windows.floor[x] = window(floor_row.max(clip_top), clip_bottom);
+    let (ceiling_window, floor_window) = (
+        window(clip_top, ceiling_row.min(clip_bottom)),
+        window(floor_row.max(clip_top), clip_bottom),
+    );
+    windows.ceiling[x] = ceiling_window;
+    windows.floor[x] = floor_window;
+    let planes_seen = if ceiling_window.is_empty() {
+        0
+    } else {
+        CEILING_SEEN
+    } | if floor_window.is_empty() {
+        0
+    } else {
+        FLOOR_SEEN
+    };
     // The rows of the column's strips (`job.strips`, empty where not drawn), and the clip
     // window the column leaves for the sectors behind it.
-    match kind {
+    let strips = match kind {
         WallKind::Solid => {
             windows.clip[x] = Window::EMPTY;
             [(ceiling_row, floor_row), (0, 0)]
@@ -1307,7 +1339,8 @@ fn column_windows(
                 },
             ]
         }
-    }
+    };
+    (strips, planes_seen)
 }
 
 /// Where the renderer's own loop takes over a wall from a canvas loop: the column, the wall's
@@ -1500,8 +1533,9 @@ impl<'s> StripLevel<'s> {
     };
 
     /// The level [`mip_level_of_ratio`] picks for `ratio`, and the ratios that pick it too.
+    /// Once a wall and strip: in the VRAM Mode 4 leaves free (IWRAM is full).
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram_render.strip_level_of")]
+    #[cfg_attr(target_os = "none", link_section = ".vram.strip_level_of")]
     fn of(texture: &Texture<'s>, ratio: i32) -> StripLevel<'s> {
         let level = mip_level_of_ratio(
             ratio,
