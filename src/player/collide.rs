@@ -88,7 +88,7 @@ pub const HEADROOM: i32 = 16;
 /// jumps over more than half the disc.
 pub const MAX_STEP_BITS: i32 = RADIUS * 256 / 2;
 /// How far, in 24.8 bits (1/32 unit), the disc may still overlap a blocking segment after the
-/// pushes settle.
+/// pushes settle (the length of the push that would clear it).
 pub const OVERLAP_TOLERANCE: i64 = 8;
 /// Most sectors the disc is checked against in one step (its own and those behind open
 /// portals near it). Walls of sectors beyond are not pushed against; the exact tracking still
@@ -331,8 +331,11 @@ fn try_moves(
         let (settled, pushes_done) = obstacles.push_out(target, discs);
         // When the last pass pushed nothing, no segment pushes the result: its overlap is 0.
         if !pushes_done {
-            let allowed = *allowed
-                .get_or_insert_with(|| obstacles.overlap(point_bits(from)).max(OVERLAP_TOLERANCE));
+            let allowed = *allowed.get_or_insert_with(|| {
+                obstacles
+                    .overlap(point_bits(from))
+                    .max(OVERLAP_TOLERANCE * OVERLAP_TOLERANCE)
+            });
             if obstacles.overlap(settled) > allowed {
                 continue;
             }
@@ -847,7 +850,10 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         (p, false)
     }
 
-    /// The largest push (per axis, in bits) any segment would still give `p`.
+    /// How deep `p`'s disc is in the segments: the largest squared length (in bits²) of the
+    /// push any segment would still give it. The length, not its larger axis: a vertex pushes
+    /// along a diagonal, and a step that traded an edge's push for a vertex's longer one, with a
+    /// shorter larger axis, went deeper (a disc sliding past a wall's end into a portal).
     #[inline]
     fn overlap(&self, p: Bits) -> i64 {
         if self.ends.is_empty() {
@@ -865,7 +871,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
                     .into_iter()
                     .filter_map(move |contact| push_from_segment(p, &segment, contact))
             })
-            .map(|(x, y)| wide(x.abs().max(y.abs())))
+            .map(|(x, y)| wide(x) * wide(x) + wide(y) * wide(y))
             .max()
             .unwrap_or(0)
     }
