@@ -48,6 +48,26 @@ pub fn number(line: &str, key: &str) -> u64 {
     parsed.unwrap_or_else(|_| panic!("{key}={text} is not a number in {line:?}"))
 }
 
+/// The `stack used=U room=R reserve=S` line among a scene's `lines`, checked as every scene's
+/// stack must be: it went some way, and stayed below the linker script's `STACK_RESERVE` (S),
+/// which is within the room the code left it (R). Returns the line, to print.
+pub fn checked_stack_line<'a>(lines: impl IntoIterator<Item = &'a str>, scene: &str) -> &'a str {
+    let line = lines
+        .into_iter()
+        .find(|line| line.starts_with("stack "))
+        .unwrap_or_else(|| panic!("{scene}: no `stack used=… room=… reserve=…` line"));
+    let (used, room, reserve) = (
+        number(line, "used"),
+        number(line, "room"),
+        number(line, "reserve"),
+    );
+    assert!(
+        used > 0 && used < reserve && reserve <= room,
+        "{scene}: the stack reached the linker's reserve or its room: {line}"
+    );
+    line
+}
+
 /// The ROM's debug lines that start with `prefix`.
 pub fn lines_starting(emulator: &Emulator, prefix: &str) -> Vec<String> {
     emulator
