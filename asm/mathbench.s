@@ -68,52 +68,16 @@
     orr     \out, \out, \hi, lsl #(32 - \shift)
 .endm
 
-@ out = recip_pow2(n, 38) for n > 128: Fx24_8::recip_fx2_30 (src/math/recip.rs). Normalise by
-@ five compare-and-shift steps, seed from the u16 table at `tab` (1024 entries, indexed by the
-@ 10 mantissa bits below the leading one), one second-order Newton step in 32-bit arithmetic,
-@ round. The same operations in the same order as the Rust, so the results are identical.
-@ Clobbers n (it becomes the mantissa), t2, t3, t5; out must differ from n.
+@ out = recip_pow2(n, 38) for n > 128: Fx24_8::recip_fx2_30 (src/math/recip.rs), through the
+@ renderer's own RECIP_MANTISSA (asm/shared.s, assembled with this file), then rounded to the
+@ result's scale. Clobbers n (it becomes 2^31 over the mantissa), t2, t3, t5 and tab (the seed
+@ table's address, used as scratch as the wall loop's is): callers load it before each use.
 .macro RECIP38 out, n, t2, t3, t5, tab
-    mov     \t2, #0                 @ shift
-    cmp     \n, #0x10000
-    movlo   \n, \n, lsl #16
-    addlo   \t2, \t2, #16
-    cmp     \n, #0x1000000
-    movlo   \n, \n, lsl #8
-    addlo   \t2, \t2, #8
-    cmp     \n, #0x10000000
-    movlo   \n, \n, lsl #4
-    addlo   \t2, \t2, #4
-    cmp     \n, #0x40000000
-    movlo   \n, \n, lsl #2
-    addlo   \t2, \t2, #2
-    cmp     \n, #0x80000000
-    movlo   \n, \n, lsl #1
-    addlo   \t2, \t2, #1
-    mov     \t3, \n, lsl #1         @ drop the leading one
-    mov     \t3, \t3, lsr #22       @ seed index
-    add     \t3, \t3, \t3           @ byte offset of a u16
-    ldrh    \t3, [\tab, \t3]        @ seed ~ 2^16 / M
-    mov     \out, \n, lsr #16       @ m = high:low, 16 bits each
-    mul     \t5, \out, \t3          @ high * seed
-    mov     \out, \n, lsl #16
-    mov     \out, \out, lsr #16
-    mul     \n, \out, \t3           @ low * seed
-    add     \t5, \t5, \n, lsr #16   @ m * seed / 2^16 ~ 2^31 (1 - delta)
-    rsb     \t5, \t5, #0x80000000   @ delta * 2^31
-    mov     \out, \t5, asr #5       @ delta / 32
-    mul     \n, \out, \out
-    add     \t5, \t5, \n, asr #21   @ (delta + delta^2) * 2^31
-    mov     \out, \t5, asr #8       @ its high part
-    mul     \n, \out, \t3           @ seed * high part
-    and     \t5, \t5, #0xff         @ its low 8 bits
-    mul     \out, \t5, \t3          @ seed * low part
-    add     \n, \n, \out, asr #8
-    mov     \out, \t3, lsl #15
-    add     \out, \out, \n, asr #8  @ 2^31 / M
+    RECIP_MANTISSA \n, \t2, \tab, \t3, \t5, \out
     rsbs    \t2, \t2, #24           @ right shift 62 - 38 - shift, 0 ..= 24 for n > 128
+    moveq   \out, \n
     subne   \t2, \t2, #1            @ round to nearest: keep one more bit, add one, drop it
-    movne   \out, \out, lsr \t2
+    movne   \out, \n, lsr \t2
     addne   \out, \out, #1
     movne   \out, \out, lsr #1
 .endm
@@ -163,8 +127,9 @@ BENCH_END pc_mb_mul16_16, r0
 
 @ Fx24_8::recip_fx2_30 of a. Context: the seed table's address (math::tables::RECIP_SEED_U16).
 BENCH_BEGIN pc_mb_recip
-    ldr     r7, [r3]
 BENCH_LOOP
+    ldr     r7, [sp, #4]            @ the context
+    ldr     r7, [r7]
     RECIP38 r6, r0, r1, r2, r3, r7
 BENCH_END pc_mb_recip, r6
 
@@ -248,10 +213,12 @@ BENCH_END pc_mb_to_eye, r0
 @ rounded to 16.16 and clamped. Context: cx, d (focal length in columns), the seed table's
 @ address.
 BENCH_BEGIN pc_mb_project_x
-    ldmia   r3, {r6, r7, r11}
+    ldmia   r3, {r6, r7}
 BENCH_LOOP
     mul     r2, r1, r6              @ cx z'
     mla     r2, r0, r7, r2          @ + d x'
+    ldr     r11, [sp, #4]           @ the context
+    ldr     r11, [r11, #8]
     RECIP38 r0, r1, r3, r12, lr, r11
     smull   r1, r3, r2, r0
     ROUND_SHIFT r0, r1, r3, 22
@@ -268,6 +235,10 @@ BENCH_END pc_mb_project_x, r0
 @ be a multiple of 2 only). "R": kept, though nothing refers to it.
     .section .iwram_render_end, "aR", %progbits
     .balign 4
+
+    .purgem RECIP_MANTISSA
+    .purgem MUL_2_30
+    .purgem DEPTH_LIGHT_ROW
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

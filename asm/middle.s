@@ -132,9 +132,7 @@ pc_middle_columns:
     @ The image column: ((x offset + (t·length >> 30)) >> 8) & width mask, with x and the
     @ light row (below) in the first word.
     ldr     r1, [r11, #MR_LENGTH]
-    smull   r2, r3, r0, r1
-    mov     r2, r2, lsr #30
-    orr     r2, r2, r3, lsl #2
+    MUL_2_30 r2, r0, r1, r3
     ldr     r1, [r11, #MR_X_OFFSET]
     add     r2, r2, r1
     ldr     r1, [r11, #MR_WIDTH]
@@ -143,9 +141,7 @@ pc_middle_columns:
     orr     r3, r8, r2, lsl #8              @ r3: x | column << 8
     @ The depth za + (t·dz >> 30), at least the least depth, in r1.
     ldr     r1, [r11, #MR_DZ]
-    smull   r2, r12, r0, r1
-    mov     r2, r2, lsr #30
-    orr     r2, r2, r12, lsl #2
+    MUL_2_30 r2, r0, r1, r12
     ldr     r1, [r11, #MR_ZA]
     add     r1, r1, r2
     ldr     r2, [r11, #MR_DEPTH_MIN]
@@ -253,6 +249,7 @@ pc_middle_columns:
     .size pc_middle_columns, . - pc_middle_columns
 
     .purgem RECIP_MANTISSA
+    .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the

@@ -516,4 +516,5 @@ pc_flat_skip:
     .size pc_flat_skip, . - pc_flat_skip
 
     .purgem RECIP_MANTISSA
+    .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW

@@ -1,4 +1,5 @@
-@ What the ARM loops share (asm/wall.s, asm/plane.s, asm/middle.s), as assembler macros:
+@ What the ARM loops share (asm/wall.s, asm/plane.s, asm/middle.s, and the math benchmark's
+@ asm/mathbench.s), as assembler macros:
 @ assembled at the start of each of them (src/hw/kernels.rs), which purge them at their end.
 @
 @ RECIP_MANTISSA m, s, table, seed, a, b: from \m > 0, \m = 2^63/(\m·2^\s) (2^31 over the
@@ -7,22 +8,13 @@
 @ The Rust twin is the function itself: the loops' ROM-versus-host frames compare them.
 
     .macro RECIP_MANTISSA m, s, table, seed, a, b
+    @ Normalised by compare-and-shift steps of 16, 8, 4, 2 and 1 bits.
     mov     \s, #0
-    cmp     \m, #0x10000
-    movlo   \m, \m, lsl #16
-    addlo   \s, \s, #16
-    cmp     \m, #0x1000000
-    movlo   \m, \m, lsl #8
-    addlo   \s, \s, #8
-    cmp     \m, #0x10000000
-    movlo   \m, \m, lsl #4
-    addlo   \s, \s, #4
-    cmp     \m, #0x40000000
-    movlo   \m, \m, lsl #2
-    addlo   \s, \s, #2
-    cmp     \m, #0x80000000
-    movlo   \m, \m, lsl #1
-    addlo   \s, \s, #1
+    .irp    bits, 16, 8, 4, 2, 1
+    cmp     \m, #(1 << (32 - \bits))
+    movlo   \m, \m, lsl #\bits
+    addlo   \s, \s, #\bits
+    .endr
     @ mantissa_reciprocal: the seed for its top 10 bits, then r·(1 + δ + δ²).
     mov     \seed, \m, lsr #21
     bic     \seed, \seed, #0x400
@@ -45,6 +37,14 @@
     mla     \b, \seed, \table, \a
     mov     \b, \b, asr #8                  @ the correction
     add     \m, \b, \seed, lsl #15          @ 2^31 / M
+    .endm
+
+@ MUL_2_30 dst, t, factor, hi: \dst = (\t·\factor) >> 30, the low word: a 2.30 fraction \t of
+@ \factor, as the twins' `(i64 · i64) >> 30` narrowed to i32; \hi scratch.
+    .macro MUL_2_30 dst, t, factor, hi
+    smull   \dst, \hi, \t, \factor
+    mov     \dst, \dst, lsr #30
+    orr     \dst, \dst, \hi, lsl #2
     .endm
 
 @ DEPTH_LIGHT_ROW level, depth: \level (a sector's light level plus the depth boost) becomes

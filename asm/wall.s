@@ -278,9 +278,7 @@ pc_wall_run:
     add     lr, r11, #RUN_LENGTH
     ldmia   lr, {r0, r1, r2, r3, r6, r7}    @ length, x offset, 1/d_y, light mode, base, colormap
     @ u = t·length >> 30, plus the x offset (24.8).
-    smull   r12, lr, r4, r0
-    mov     r12, r12, lsr #30
-    orr     r12, r12, lr, lsl #2
+    MUL_2_30 r12, r4, r0, lr
     add     r4, r12, r1                     @ r4: u
     @ The light: no colormap, one row, or the row of base − z'/16 units, clamped to 0..255.
     cmp     r3, #2
@@ -451,6 +449,7 @@ pc_column_skip:
     .size pc_column_skip, . - pc_column_skip
 
     .purgem RECIP_MANTISSA
+    .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the

@@ -130,9 +130,14 @@ core::arch::global_asm!(
     options(raw)
 );
 restore_code_mode!();
-// The math benchmark's ARM routines: assembled here with the kernels, placed in the benchmark's
-// IWRAM overlay by their section, and called through `hw::math_bench`.
-core::arch::global_asm!(include_str!("../../asm/mathbench.s"), options(raw));
+// The math benchmark's ARM routines: assembled here with the kernels and the loops' shared macros
+// (its reciprocal is the wall loop's), placed in the benchmark's IWRAM overlay by their section,
+// and called through `hw::math_bench`.
+core::arch::global_asm!(
+    include_str!("../../asm/shared.s"),
+    include_str!("../../asm/mathbench.s"),
+    options(raw)
+);
 restore_code_mode!();
 
 // Interworking-safe division helpers that the ROM links in place of compiler-builtins' own
