@@ -111,34 +111,27 @@ core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
 restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/sprite.s"), options(raw));
 restore_code_mode!();
+/// Assembles `asm/<file>` after the loops' shared macros (asm/shared.s), which the file purges
+/// at its end, then restores the code mode.
+macro_rules! assemble_with_shared_macros {
+    ($file:literal) => {
+        core::arch::global_asm!(
+            include_str!("../../asm/shared.s"),
+            include_str!(concat!("../../asm/", $file)),
+            options(raw)
+        );
+        restore_code_mode!();
+    };
+}
+
 // The wall, plane and middle loops share macros (asm/shared.s), assembled with each of them.
-core::arch::global_asm!(
-    include_str!("../../asm/shared.s"),
-    include_str!("../../asm/wall.s"),
-    options(raw)
-);
-restore_code_mode!();
-core::arch::global_asm!(
-    include_str!("../../asm/shared.s"),
-    include_str!("../../asm/plane.s"),
-    options(raw)
-);
-restore_code_mode!();
-core::arch::global_asm!(
-    include_str!("../../asm/shared.s"),
-    include_str!("../../asm/middle.s"),
-    options(raw)
-);
-restore_code_mode!();
+assemble_with_shared_macros!("wall.s");
+assemble_with_shared_macros!("plane.s");
+assemble_with_shared_macros!("middle.s");
 // The math benchmark's ARM routines: assembled here with the kernels and the loops' shared macros
 // (its reciprocal is the wall loop's), placed in the benchmark's IWRAM overlay by their section,
 // and called through `hw::math_bench`.
-core::arch::global_asm!(
-    include_str!("../../asm/shared.s"),
-    include_str!("../../asm/mathbench.s"),
-    options(raw)
-);
-restore_code_mode!();
+assemble_with_shared_macros!("mathbench.s");
 
 // Interworking-safe division helpers that the ROM links in place of compiler-builtins' own
 // (`--wrap`, see the file's header); nothing here calls them by name.
