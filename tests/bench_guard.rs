@@ -64,6 +64,7 @@ fn bench_map_cycles_stay_within_the_baseline() {
     // 16 bytes past it while the scene built each flight in the frame under the renderer's.
     let lines = emulator.debug_lines();
     println!("guard: {}", checked_stack_line(lines, "the bench scene"));
+    check_page_rows_lent(&emulator.debug_lines());
     let isa = portalcast_xtask::engine_isa().unwrap_or_else(|error| panic!("{error}"));
     let measured = Baseline::from_runs(isa.label(), &runs);
     for entry in &measured.entries {
@@ -88,4 +89,30 @@ fn bench_map_cycles_stay_within_the_baseline() {
         baseline::TOLERANCE_PERCENT,
         verdict.regressions.join("\n  ")
     );
+}
+
+/// The page rows a 120×80 frame leaves free hold texture chains for every 120×80 run with the
+/// textures in fast memory, and for no other (`hw::memory::LentPageRows`): the ROM prints
+/// `page rows lent chains=N bytes=B` after a run's unmeasured first frame, before its first
+/// line.
+fn check_page_rows_lent(lines: &[&str]) {
+    let mut previous: Option<&str> = None;
+    let mut lent_runs = 0;
+    for &line in lines {
+        if line.starts_with("bench map=") && field(line, "frame") == Some("0") {
+            let lent = previous.filter(|line| line.starts_with("page rows lent"));
+            let wanted =
+                field(line, "res") == Some("120x80") && field(line, "tex") == Some("ewram");
+            assert_eq!(lent.is_some(), wanted, "{line}\nafter {previous:?}");
+            if let Some(lent) = lent {
+                assert!(
+                    number(lent, "chains") >= 1 && number(lent, "bytes") >= 1,
+                    "{lent}"
+                );
+                lent_runs += 1;
+            }
+        }
+        previous = Some(line);
+    }
+    assert!(lent_runs >= 1, "no 120x80 run lent the page rows");
 }

@@ -10,7 +10,9 @@
 //! - no panic and no fatal line (the harness fails the frame), and no line mGBA grades as an error
 //!   or a game error: byte stores to OAM or OBJ VRAM, bad memory accesses, …;
 //! - every `player` line the same pose and state as the host's replay at that tick;
-//! - the page on screen unchanged since the last flip: the renderer wrote only the back page;
+//! - the rows of the page on screen that BG2 shows unchanged since the last flip: the renderer
+//!   wrote only the back page (a 120×80 frame shows rows 0..80; the ROM lends the rest to
+//!   textures while it does);
 //! - guard regions unchanged: the VRAM between and after the two pages, the colormap in OBJ VRAM
 //!   and the OBJ VRAM after the column windows (the code copied to VRAM at boot lies in these:
 //!   linker.ld's `vram*` regions), OAM, the palette, and the EWRAM above what the ROM uses;
@@ -90,6 +92,9 @@ const EWRAM_START: u32 = 0x0200_0000;
 const EWRAM_BYTES: u32 = 0x4_0000;
 const DISPCNT: u32 = 0x0400_0000;
 const DISPCNT_PAGE: u16 = 1 << 4;
+/// BG2's step down the page per screen line, 8.8 fixed point: 0x80 shows 80 page rows
+/// (120×80), 0x100 all 160.
+const BG2PD: u32 = 0x0400_0026;
 
 #[test]
 fn every_map_survives_random_and_adversarial_input() {
@@ -370,6 +375,8 @@ fn run_until_game_starts(emulator: &mut Emulator) -> Result<u32, String> {
 }
 
 /// The page on screen and its bytes.
+/// The page on screen and the bytes of the rows BG2 shows of it: at 120×80 its rows 80..160
+/// are not on screen, and the ROM lends them to textures (`hw::memory::LentPageRows`).
 struct Shown {
     page: usize,
     bytes: Vec<u8>,
@@ -378,9 +385,11 @@ struct Shown {
 impl Shown {
     fn read(emulator: &Emulator) -> Shown {
         let page = usize::from(emulator.read_u16(DISPCNT) & DISPCNT_PAGE != 0);
+        let step = u32::from(emulator.read_u16(BG2PD)).clamp(1, 0x100);
+        let rows = (160 * step).div_ceil(0x100);
         Shown {
             page,
-            bytes: emulator.read_bytes(PAGE_ADDRESSES[page], PAGE_BYTES as usize),
+            bytes: emulator.read_bytes(PAGE_ADDRESSES[page], (PAGE_BYTES / 160 * rows) as usize),
         }
     }
 }

@@ -37,6 +37,10 @@ extern "C" {
     fn pc_span64_pairs(job: *const SpanJob);
 }
 
+/// Why a page refuses a write while its lower rows hold textures.
+const ROWS_LENT: &str =
+    "the page rows below a 120x80 frame are lent to textures: drop the LentPageRows first";
+
 /// A Mode 4 page in VRAM that the kernels draw into.
 pub struct VramPage {
     pub(crate) base: *mut u16,
@@ -57,8 +61,10 @@ impl VramPage {
 }
 
 impl VramPage {
-    /// Sets every pixel of the page to palette index 0.
+    /// Sets every pixel of the page to palette index 0. Panics while its lower rows are lent to
+    /// textures ([`super::memory::LentPageRows`]).
     pub fn clear(&mut self) {
+        assert!(!super::memory::page_rows_lent(), "{ROWS_LENT}");
         for offset in 0..PAGE_HALFWORDS {
             // SAFETY: offset < 19,200 halfwords, the page size; VRAM takes 16-bit stores.
             unsafe { self.base.add(offset).write_volatile(0) };
@@ -473,8 +479,13 @@ pub struct VramCanvas {
 }
 
 impl VramCanvas {
-    /// Draws into `page` at `resolution`.
+    /// Draws into `page` at `resolution`. Panics if the frame is taller than the rows the page
+    /// keeps while its lower rows are lent to textures ([`super::memory::LentPageRows`]).
     pub fn new(page: VramPage, resolution: Resolution) -> VramCanvas {
+        assert!(
+            !super::memory::page_rows_lent() || resolution.height() <= super::memory::LENT_FROM_ROW,
+            "{ROWS_LENT}"
+        );
         VramCanvas {
             page,
             resolution,

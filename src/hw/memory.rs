@@ -269,6 +269,7 @@ pub fn bench_flight_in_ewram() -> &'static mut MaybeUninit<LiveFlight<'static>> 
 }
 
 use crate::assets;
+use crate::frame;
 use portalcast_format::{Align4, Texture};
 
 #[link_section = ".ewram_bss"]
@@ -412,5 +413,121 @@ pub fn colormap_in_vram() -> &'static portalcast_format::Colormap {
             }
         }
         &*(FREE_OBJ_VRAM as *const Colormap)
+    }
+}
+
+/// Page rows from this one down are what a frame of at most this many rows never draws: BG2
+/// shows a 120×80 frame's rows 0..80 at twice their height, so rows 80..160 of both Mode 4
+/// pages are free while that resolution is on screen.
+pub const LENT_FROM_ROW: usize = 80;
+
+/// The free rows of each page, as (first byte, end): 19,200 bytes each.
+const LENT_ROWS: [(usize, usize); 2] = [
+    (
+        0x0600_0000 + LENT_FROM_ROW * frame::PAGE_WIDTH,
+        0x0600_0000 + frame::PAGE_HEIGHT * frame::PAGE_WIDTH,
+    ),
+    (
+        0x0600_A000 + LENT_FROM_ROW * frame::PAGE_WIDTH,
+        0x0600_A000 + frame::PAGE_HEIGHT * frame::PAGE_WIDTH,
+    ),
+];
+
+#[link_section = ".ewram_bss"]
+static mut ROWS_LENT: bool = false;
+#[link_section = ".ewram_bss"]
+static mut LENT_TEXTURES: MaybeUninit<[Texture<'static>; assets::TEXTURE_COUNT]> =
+    MaybeUninit::uninit();
+
+/// Whether the page rows from [`LENT_FROM_ROW`] hold texture chains ([`LentPageRows`]): no
+/// canvas or clear may write them then.
+pub fn page_rows_lent() -> bool {
+    // SAFETY: single-threaded; the interrupt handler never touches the flag.
+    unsafe { (&raw const ROWS_LENT).read() }
+}
+
+/// The page rows a 120×80 frame never draws ([`LENT_FROM_ROW`]), lent to the hottest texture
+/// chains: VRAM answers a byte read in 1 cycle, EWRAM in 3, so every wall and floor pixel of
+/// those chains costs 2 cycles less. While it lives, [`page_rows_lent`] is true and
+/// [`VramCanvas`](super::kernels::VramCanvas) refuses frames taller than those rows (it
+/// panics): drop it before drawing at another resolution.
+pub struct LentPageRows {
+    chains: u16,
+    bytes: u16,
+}
+
+impl LentPageRows {
+    /// Copies the chains of `textures` (the table [`textures_in_ewram`] returns, or the
+    /// cartridge's) into the free page rows, hottest first ([`assets::TEXTURE_CHAINS_BY_HEAT`]),
+    /// each that still fits; `None` if the rows are lent already. Copy it only while the
+    /// display shows a resolution of at most [`LENT_FROM_ROW`] rows, or the chains show on
+    /// screen until the next flip.
+    #[inline(never)]
+    pub fn lend(textures: &[Texture<'static>]) -> Option<LentPageRows> {
+        if page_rows_lent() || textures.len() != assets::TEXTURE_COUNT {
+            return None;
+        }
+        let mut free = LENT_ROWS;
+        let (mut chains, mut bytes) = (0u16, 0u16);
+        // SAFETY: single-threaded. The flag is set before any VRAM byte is written, and while
+        // it is set nothing else writes the lent rows (the canvas and `VramPage::clear` check
+        // it). Each copy lies inside one block of `LENT_ROWS` (checked by the fit test), at a
+        // word-aligned address, written by halfword stores (VRAM takes no byte stores); the
+        // slices made over it are read only, and live no longer than the `&self` borrow
+        // `textures` hands them out under, after which `Drop` clears the flag. The table is
+        // written whole before the first shared reference to it is made.
+        unsafe {
+            (&raw mut ROWS_LENT).write(true);
+            let table: *mut [Texture<'static>; assets::TEXTURE_COUNT] =
+                (&raw mut LENT_TEXTURES).cast();
+            for (slot, texture) in (*table).iter_mut().zip(textures) {
+                *slot = *texture;
+            }
+            for &(index, chain) in assets::TEXTURE_CHAINS_BY_HEAT {
+                let Some(slot) = (*table).get_mut(usize::from(index)) else {
+                    continue;
+                };
+                let texels = slot.chain(chain);
+                let Some(block) = free
+                    .iter_mut()
+                    .find(|(at, end)| !texels.is_empty() && at + texels.len() <= *end)
+                else {
+                    continue;
+                };
+                let destination = block.0 as *mut u16;
+                for (half, pair) in texels.chunks(2).enumerate() {
+                    let high = pair.get(1).copied().unwrap_or(0);
+                    destination
+                        .add(half)
+                        .write_volatile(u16::from(pair[0]) | u16::from(high) << 8);
+                }
+                let copy: &'static [u8] =
+                    core::slice::from_raw_parts(block.0 as *const u8, texels.len());
+                *slot = slot.with_chain(chain, copy);
+                block.0 += texels.len().next_multiple_of(4);
+                chains += 1;
+                bytes = bytes.saturating_add(texels.len() as u16);
+            }
+        }
+        Some(LentPageRows { chains, bytes })
+    }
+
+    /// The textures, the lent chains read from the page rows.
+    pub fn textures(&self) -> &[Texture<'_>] {
+        // SAFETY: `lend` wrote the whole table before making `self`; it is only rewritten by
+        // the next `lend`, which cannot run while `self` lives (the flag).
+        unsafe { &*(&raw const LENT_TEXTURES).cast::<[Texture<'static>; assets::TEXTURE_COUNT]>() }
+    }
+
+    /// How many chains and bytes it holds.
+    pub fn held(&self) -> (u16, u16) {
+        (self.chains, self.bytes)
+    }
+}
+
+impl Drop for LentPageRows {
+    fn drop(&mut self) {
+        // SAFETY: single-threaded; no slice into the rows outlives `self` (`textures`).
+        unsafe { (&raw mut ROWS_LENT).write(false) };
     }
 }

@@ -11,6 +11,7 @@ use gba::prelude::{Color, DisplayControl, DisplayStatus, VideoMode};
 /// Owns the display: which page is shown and at which resolution.
 pub struct Display {
     shown_page: usize,
+    shown_resolution: Resolution,
 }
 
 impl Display {
@@ -24,7 +25,10 @@ impl Display {
         IME.write(true);
         // The backdrop is BG palette entry 0; the scenes load their palettes later.
         BG_PALETTE.index(0).write(Color(0));
-        let display = Display { shown_page: 0 };
+        let display = Display {
+            shown_page: 0,
+            shown_resolution: resolution,
+        };
         display.show(resolution, false);
         display
     }
@@ -32,6 +36,11 @@ impl Display {
     /// The page on screen (0 at 0x0600_0000, 1 at 0x0600_A000).
     pub fn shown_page(&self) -> usize {
         self.shown_page
+    }
+
+    /// The resolution BG2 shows the page at.
+    pub fn shown_resolution(&self) -> Resolution {
+        self.shown_resolution
     }
 
     /// Loads all 256 BG palette entries.
@@ -47,6 +56,7 @@ impl Display {
     pub fn flip_at_vblank(&mut self, resolution: Resolution) {
         VBlankIntrWait();
         self.shown_page ^= 1;
+        self.shown_resolution = resolution;
         self.show(resolution, true);
     }
 

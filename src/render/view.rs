@@ -165,7 +165,9 @@ impl Preprocessing {
 pub enum TexturePlacement {
     /// The cartridge (5 cycles a random byte at WAITCNT 0x4317).
     Rom,
-    /// A copy in EWRAM (3 cycles a byte), made once at boot.
+    /// A copy in EWRAM (3 cycles a byte), made once at boot; at 120×80 the ROM reads the hottest
+    /// mip chains from the page rows that resolution leaves free in VRAM (1 cycle a byte,
+    /// `hw::memory::LentPageRows`).
     Ewram,
 }
 

@@ -169,6 +169,20 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
         );
     }
     let _ = writeln!(s, "];\n");
+    let _ = writeln!(
+        s,
+        "/// Every chain of [`TEXTURES`] a map uses, as (texture index, chain), the hottest first\n\
+         /// (the most map area): the order in which the ROM copies chains to the VRAM a 120×80\n\
+         /// frame leaves free."
+    );
+    let _ = writeln!(
+        s,
+        "pub static TEXTURE_CHAINS_BY_HEAT: &[(u16, {FORMAT}::TextureChain)] = &["
+    );
+    for (index, chain) in placement::chains_by_heat(compiled) {
+        let _ = writeln!(s, "    ({index}, {FORMAT}::TextureChain::{chain:?}),");
+    }
+    let _ = writeln!(s, "];\n");
 
     let _ = writeln!(s, "/// The sky panorama, if some sector shows it.");
     match &compiled.sky {

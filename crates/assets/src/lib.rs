@@ -218,6 +218,13 @@ impl Compiled {
         placement::textures_in_ewram(self)
     }
 
+    /// Every texture chain some map uses, as (index in [`Compiled::textures`], chain), the
+    /// hottest first (the most map area): the order in which the ROM copies chains to the VRAM
+    /// a 120×80 frame leaves free.
+    pub fn texture_chains_by_heat(&self) -> Vec<(u16, portalcast_format::TextureChain)> {
+        placement::chains_by_heat(self)
+    }
+
     /// The sky, if some sector shows it.
     pub fn sky(&self) -> Option<&CompiledSky> {
         self.sky.as_ref()

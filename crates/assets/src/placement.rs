@@ -2,7 +2,7 @@
 //! ([`portalcast_format::memory::ewram_texel_budget`]); the others are read from the cartridge
 //! (slower, 5 cycles a byte against 3), so a texture set of any size builds.
 
-use portalcast_format::{Wall, MOVER_CRUSHER, MOVER_DOOR, SKY};
+use portalcast_format::{TextureChain, Wall, MOVER_CRUSHER, MOVER_DOOR, SKY};
 
 use crate::{Compiled, CompiledMap, CompiledTexture};
 
@@ -10,7 +10,10 @@ use crate::{Compiled, CompiledMap, CompiledTexture};
 pub(crate) fn textures_in_ewram(compiled: &Compiled) -> Vec<bool> {
     let textures = &compiled.textures;
     let bytes: Vec<usize> = textures.iter().map(CompiledTexture::blob_bytes).collect();
-    let heat = texture_heat(textures.len(), &compiled.maps);
+    let heat: Vec<u64> = texture_heat(textures.len(), &compiled.maps)
+        .iter()
+        .map(|heat| heat.walls.saturating_add(heat.flats))
+        .collect();
     in_ewram(
         &bytes,
         &heat,
@@ -18,16 +21,29 @@ pub(crate) fn textures_in_ewram(compiled: &Compiled) -> Vec<bool> {
     )
 }
 
-/// How much of the maps each texture covers, in square world units times 256: a wall's length
-/// times the height it shows the texture over (the whole wall, or an upper or lower strip), and
-/// a floor's or ceiling's area; a moving sector counts with the heights it has when the map
+/// How much of the maps a texture covers, in square world units times 256, apart for its two
+/// chains: the walls that show it (a wall's length times the height it shows the texture over:
+/// the whole wall, or an upper or lower strip) read its column-major chain, the floors and
+/// ceilings (their area) its row-major one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct ChainHeat {
+    pub(crate) walls: u64,
+    pub(crate) flats: u64,
+}
+
+/// Every texture's [`ChainHeat`]; a moving sector counts with the heights it has when the map
 /// starts (a closed door's face is the upper strip of the walls into it). The more of the world
-/// a texture covers, the more pixels it is likely to draw, so the EWRAM copy takes the hottest
-/// first.
-pub(crate) fn texture_heat(texture_count: usize, maps: &[CompiledMap]) -> Vec<u64> {
-    let mut heat = vec![0u64; texture_count];
-    let mut add = |texture: u16, amount: i64| {
+/// a chain covers, the more pixels it is likely to draw, so the EWRAM copy takes the hottest
+/// textures first, and the ROM's copy into the VRAM a 120×80 frame leaves free the hottest
+/// chains ([`chains_by_heat`]).
+pub(crate) fn texture_heat(texture_count: usize, maps: &[CompiledMap]) -> Vec<ChainHeat> {
+    let mut heat = vec![ChainHeat::default(); texture_count];
+    let mut add = |texture: u16, chain: TextureChain, amount: i64| {
         if let Some(slot) = heat.get_mut(usize::from(texture)) {
+            let slot = match chain {
+                TextureChain::Columns => &mut slot.walls,
+                TextureChain::Rows => &mut slot.flats,
+            };
             *slot = slot.saturating_add(amount.max(0) as u64);
         }
     };
@@ -54,13 +70,21 @@ pub(crate) fn texture_heat(texture_count: usize, maps: &[CompiledMap]) -> Vec<u6
             let height = i64::from(ceil_z - floor_z);
             for wall in walls {
                 match wall.neighbour() {
-                    None => add(wall.texture, length(wall) * height),
+                    None => add(wall.texture, TextureChain::Columns, length(wall) * height),
                     Some(next) => {
                         let (next_floor, next_ceil) = heights[usize::from(next)];
                         let upper = i64::from(ceil_z - next_ceil);
                         let lower = i64::from(next_floor - floor_z);
-                        add(wall.upper_texture, length(wall) * upper);
-                        add(wall.lower_texture, length(wall) * lower);
+                        add(
+                            wall.upper_texture,
+                            TextureChain::Columns,
+                            length(wall) * upper,
+                        );
+                        add(
+                            wall.lower_texture,
+                            TextureChain::Columns,
+                            length(wall) * lower,
+                        );
                     }
                 }
             }
@@ -76,13 +100,37 @@ pub(crate) fn texture_heat(texture_count: usize, maps: &[CompiledMap]) -> Vec<u6
                 })
                 .sum::<i64>()
                 .abs();
-            add(sector.floor_texture, doubled_area * 128);
+            add(sector.floor_texture, TextureChain::Rows, doubled_area * 128);
             if sector.ceil_texture != SKY {
-                add(sector.ceil_texture, doubled_area * 128);
+                add(sector.ceil_texture, TextureChain::Rows, doubled_area * 128);
             }
         }
     }
     heat
+}
+
+/// Every chain of `compiled`'s textures that some map uses (not empty), as (texture index,
+/// chain), the hottest first ([`ChainHeat`]; ties by index, columns first).
+pub(crate) fn chains_by_heat(compiled: &Compiled) -> Vec<(u16, TextureChain)> {
+    let heat = texture_heat(compiled.textures.len(), &compiled.maps);
+    let mut chains: Vec<(u64, u16, TextureChain)> = Vec::new();
+    for (index, texture) in compiled.textures.iter().enumerate() {
+        for (chain, texels, heat) in [
+            (TextureChain::Columns, &texture.columns, heat[index].walls),
+            (TextureChain::Rows, &texture.rows, heat[index].flats),
+        ] {
+            if !texels.is_empty() {
+                chains.push((heat, index as u16, chain));
+            }
+        }
+    }
+    chains.sort_by_key(|&(heat, index, chain)| {
+        (core::cmp::Reverse(heat), index, chain == TextureChain::Rows)
+    });
+    chains
+        .into_iter()
+        .map(|(_, index, chain)| (index, chain))
+        .collect()
 }
 
 /// Which of the textures (`bytes` each, `heat` each) go to EWRAM within `budget` bytes: the

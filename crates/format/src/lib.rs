@@ -27,7 +27,7 @@ pub use map::{
 };
 pub use texture::{
     bgr555, colormap_row, BlendTable, Colormap, Palette, Post, Sky, Sprite, SpriteSet, Texture,
-    LIGHT_LEVELS, LIGHT_NEUTRAL, POST_HEADER_BYTES, TRANSPARENT,
+    TextureChain, LIGHT_LEVELS, LIGHT_NEUTRAL, POST_HEADER_BYTES, TRANSPARENT,
 };
 
 /// Forces 4-byte alignment on its contents, so the ROM can read blobs pulled in with

@@ -129,6 +129,43 @@ impl<'a> Texture<'a> {
     }
 }
 
+/// One of a [`Texture`]'s two mip chains: the column-major one walls read, or the row-major one
+/// floors and ceilings read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TextureChain {
+    /// [`Texture::columns`].
+    Columns,
+    /// [`Texture::rows`].
+    Rows,
+}
+
+impl<'a> Texture<'a> {
+    /// The texels of `chain` (empty where no map uses that layout).
+    pub const fn chain(&self, chain: TextureChain) -> &'a [u8] {
+        match chain {
+            TextureChain::Columns => self.columns,
+            TextureChain::Rows => self.rows,
+        }
+    }
+
+    /// The texture with `chain` read from `texels` instead (a copy of it elsewhere).
+    pub const fn with_chain<'b>(self, chain: TextureChain, texels: &'b [u8]) -> Texture<'b>
+    where
+        'a: 'b,
+    {
+        match chain {
+            TextureChain::Columns => Texture {
+                columns: texels,
+                ..self
+            },
+            TextureChain::Rows => Texture {
+                rows: texels,
+                ..self
+            },
+        }
+    }
+}
+
 /// The 360° sky panorama, drawn behind sectors whose ceiling is [`SKY`](crate::SKY).
 ///
 /// Column-major: texel `(u, v)` at `u * height + v`. The width is a power of two covering one

@@ -459,7 +459,7 @@ fn knobs(doc: &mut String, measurements: &Measurements) {
          knobs (`src/render/view.rs`; the Start menu changes each live):\n\n\
          - `lighting`: `off`, `sector` (each sector's light level), `depth` (sector light \
            darkened with distance, through the colormap);\n\
-         - `tex`: texels read from the EWRAM copy (`ewram`: the textures that fit it, the most used first; all of the shipped ones) or the cartridge (`rom`);\n\
+         - `tex`: texels read from the EWRAM copy (`ewram`: the textures that fit it, the most used first; all of the shipped ones; at 120×80 the hottest mip chains are read from the page rows that resolution leaves free in VRAM instead, `hw::memory::LentPageRows`) or the cartridge (`rom`);\n\
          - `prep`: the thesis' scene preprocessing: `on` plans the portal walk first and draws \
            each sector once over the touching columns of its visits (`src/render/visits.rs`), \
            `off` draws each visit as the walk reaches it;\n\
@@ -816,7 +816,8 @@ fn set_up(doc: &mut String, measurements: &Measurements) {
          spread over the columns; the plane stage's, over the spans, the **set-up per span** \
          (`R_MakeSpans`, each span's depth, mip level, texture steps and light, and the sky's \
          columns). What the kernels add to each stage, over the pixels it draws, is their cost \
-         per pixel as the game runs them: texels in EWRAM, the colormap in OBJ VRAM, the call \
+         per pixel as the game runs them: texels in EWRAM (at 120×80 the hottest chains in the \
+         page rows that resolution leaves free in VRAM), the colormap in OBJ VRAM, the call \
          and its dispatch included (the kernel table above has texels and colormap in IWRAM and \
          the call cancelled out). Means over the frames of the runs; `cargo bench-rom` prints \
          this table too.\n\n",
