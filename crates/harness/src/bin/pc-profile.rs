@@ -260,6 +260,31 @@ fn run(options: &Options) -> Result<(), String> {
         "cycles with compiler helpers charged to their caller:",
         &with_leaf_helpers,
     );
+    // Every function in fast memory (IWRAM, VRAM), sampled or not, and every sampled one in
+    // the cartridge: what its bytes buy, for the choice of what runs where.
+    println!("\ncode by memory (own cycles, bytes, memory, name):");
+    let mut placed: Vec<(f64, u32, &str, &str)> = symbols
+        .all()
+        .iter()
+        .filter_map(|(start, end, name)| {
+            let memory = match start >> 24 {
+                0x03 => "IWRAM",
+                0x06 => "VRAM",
+                0x08..=0x0D => "ROM",
+                _ => return None,
+            };
+            let count = own.get(name.as_str()).copied().unwrap_or(0);
+            if memory == "ROM" && count == 0 {
+                return None;
+            }
+            let cycles = count as f64 * f64::from(options.period) / per;
+            Some((cycles, end - start, memory, name.as_str()))
+        })
+        .collect();
+    placed.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.3.cmp(b.3)));
+    for (cycles, bytes, memory, name) in placed {
+        println!("{cycles:>9.0}/{unit} {bytes:>6} {memory:<5} {name}");
+    }
     if options.addresses > 0 {
         let mut by_address: HashMap<u32, usize> = HashMap::new();
         for &(pc, _) in &samples {

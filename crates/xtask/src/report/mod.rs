@@ -147,7 +147,9 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         .ok_or_else(|| TaskError("the kernel check printed no cycles".to_string()))?;
     let boot = bench_log::numbers_of_line(&bench_log, BOOT_LINE).unwrap_or_default();
     let sizes = sizes::measure(&elf_path_for(EngineIsa::Arm), &gba)?;
-    let profile_section = profile::section(&profile::measure(&elf_path_for(EngineIsa::Arm))?);
+    let profile = profile::measure(&elf_path_for(EngineIsa::Arm))?;
+    let profile_section = profile::section(&profile)
+        + &profile::placement_section(&profile, &code_rooms(&sizes, &boot)?);
 
     let thumb_gba = rom_path(EngineIsa::Thumb);
     build_rom_for(EngineIsa::Thumb, &thumb_gba)?;
@@ -279,6 +281,48 @@ fn run_rom(gba: &Path, keys: &str, until: &str) -> TaskResult<String> {
         )));
     }
     Ok(log)
+}
+
+/// What IWRAM and linker.ld's VRAM regions for code hold and leave: IWRAM's use from the
+/// ELF's sections and what the stack's room at boot (`boot`) leaves above linker.ld's
+/// `STACK_RESERVE`; each VRAM region's from the sections inside it.
+fn code_rooms(sizes: &Sizes, boot: &[(String, u64)]) -> TaskResult<Vec<profile::CodeRoom>> {
+    let path = workspace_root().join("linker.ld");
+    let script = std::fs::read_to_string(&path)
+        .map_err(|error| TaskError(format!("{}: {error}", path.display())))?;
+    let reserve = sizes::stack_reserve(&script)
+        .ok_or_else(|| TaskError(format!("{}: no STACK_RESERVE", path.display())))?;
+    let room = boot
+        .iter()
+        .find(|(name, _)| name == "stack_room")
+        .map(|(_, value)| *value as u32)
+        .ok_or_else(|| TaskError("the boot line printed no stack_room".to_string()))?;
+    let mut rooms = vec![profile::CodeRoom {
+        name: "IWRAM".to_string(),
+        used: sizes.used(sizes::IWRAM),
+        left: room.saturating_sub(reserve),
+    }];
+    for region in sizes::linker_regions(&script)
+        .into_iter()
+        .filter(|region| region.name.starts_with("vram"))
+    {
+        let end = region.origin + region.length;
+        let used: u32 = sizes
+            .sections
+            .iter()
+            .filter(|section| (region.origin..end).contains(&section.address))
+            .map(|section| section.size)
+            .sum();
+        rooms.push(profile::CodeRoom {
+            name: format!(
+                "VRAM, linker.ld's `{}` (0x{:08x}..0x{end:08x})",
+                region.name, region.origin
+            ),
+            used,
+            left: region.length.saturating_sub(used),
+        });
+    }
+    Ok(rooms)
 }
 
 /// Runs the host's accuracy pass and returns its lines. The dev profile, which the tests build

@@ -26,6 +26,20 @@ pub struct Row {
     pub cycles: f64,
 }
 
+/// One row of `pc-profile`'s "code by memory" table: a function, where it runs, its bytes and
+/// its own cycles per drawn frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Placed {
+    /// Function name.
+    pub name: String,
+    /// `IWRAM`, `VRAM` or `ROM`.
+    pub memory: String,
+    /// Bytes of code.
+    pub bytes: u32,
+    /// Own cycles per frame the ROM drew.
+    pub cycles: f64,
+}
+
 /// A parsed `pc-profile --per-line` output.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Profile {
@@ -35,7 +49,13 @@ pub struct Profile {
     pub regions: Vec<Row>,
     /// "own cycles": each function's own samples.
     pub functions: Vec<Row>,
+    /// "code by memory": every function in IWRAM and VRAM, and every sampled one in the
+    /// cartridge.
+    pub placed: Vec<Placed>,
 }
+
+/// The title of `pc-profile`'s table of code by memory.
+const PLACED_TITLE: &str = "code by memory (own cycles, bytes, memory, name):";
 
 /// Reads `pc-profile`'s output (run with `--per-line`).
 pub fn parse(output: &str) -> Result<Profile, String> {
@@ -63,11 +83,127 @@ pub fn parse(output: &str) -> Result<Profile, String> {
         }
         Ok(rows)
     };
+    let mut placed = Vec::new();
+    for line in output
+        .lines()
+        .skip_while(|line| *line != PLACED_TITLE)
+        .skip(1)
+        .take_while(|line| !line.trim().is_empty())
+    {
+        // `   123456/line   1400 IWRAM name`
+        let mut fields = line.split_whitespace();
+        let row = (|| {
+            let cycles = fields.next()?.split_once('/')?.0.parse().ok()?;
+            let bytes = fields.next()?.parse().ok()?;
+            let memory = fields.next()?.to_string();
+            let name = fields.collect::<Vec<_>>().join(" ");
+            Some(Placed {
+                name,
+                memory,
+                bytes,
+                cycles,
+            })
+        })()
+        .ok_or_else(|| format!("pc-profile: unreadable row {line:?}"))?;
+        placed.push(row);
+    }
+    if placed.is_empty() {
+        return Err(format!("pc-profile printed no {PLACED_TITLE:?} table"));
+    }
     Ok(Profile {
         frames,
         regions: table("where the CPU runs:")?,
         functions: table("own cycles:")?,
+        placed,
     })
+}
+
+/// What a memory for code holds and leaves: its name, bytes used and bytes left.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CodeRoom {
+    /// As the report names it.
+    pub name: String,
+    /// Bytes its sections take.
+    pub used: u32,
+    /// Bytes left (for IWRAM: above the stack's reserve).
+    pub left: u32,
+}
+
+/// Functions of at least this many bytes are listed in the fast-memory table (smaller ones
+/// are the linker's veneers and the kernels' variants).
+const PLACED_BYTES_MIN: u32 = 200;
+/// Rows of the table of the cartridge's hottest code.
+const ROM_ROWS: usize = 10;
+
+/// The subsection on what the fast memories hold: `rooms` (IWRAM and the VRAM regions for
+/// code), every function of them with its bytes and what they buy per frame, and the hottest
+/// code left in the cartridge.
+pub fn placement_section(profile: &Profile, rooms: &[CodeRoom]) -> String {
+    let mut doc = String::new();
+    doc.push_str(
+        "\n### What the fast memories hold, and what their bytes buy\n\n\
+         IWRAM fetches an ARM instruction in 1 cycle, the VRAM Mode 4 leaves free in 2 and the \
+         cartridge in about 4, and the first two are full: code moved into one means other code \
+         moved out (docs/ARCHITECTURE.md). The room left, from the ELF's sections, linker.ld's \
+         regions and the boot line's stack room:\n\n\
+         | memory | bytes of code and data | left |\n|---|---|---|\n",
+    );
+    for room in rooms {
+        doc.push_str(&format!(
+            "| {} | {} | {} |\n",
+            room.name,
+            group_digits(u64::from(room.used)),
+            group_digits(u64::from(room.left))
+        ));
+    }
+    let mut fast: Vec<&Placed> = profile
+        .placed
+        .iter()
+        .filter(|row| row.memory != "ROM" && row.bytes >= PLACED_BYTES_MIN)
+        .collect();
+    let per_100_bytes = |row: &Placed| row.cycles * 100.0 / f64::from(row.bytes.max(1));
+    fast.sort_by(|a, b| {
+        per_100_bytes(a)
+            .total_cmp(&per_100_bytes(b))
+            .then(a.name.cmp(&b.name))
+    });
+    doc.push_str(&format!(
+        "\nThe functions of at least {PLACED_BYTES_MIN} bytes in them, by the cycles per frame each \
+         100 of their bytes take in the profile above (the least first: what fast memory holds \
+         for the least). The profile draws 120×80 frames and runs no game tick, so the 240-wide \
+         kernels, the half-width floors' and the tick's code read 0 here; they earn their room \
+         at 240×160 and in `cargo bench-tick`:\n\n\
+         | function | memory | bytes | cycles per frame | per 100 bytes |\n|---|---|---|---|---|\n"
+    ));
+    for row in fast {
+        doc.push_str(&format!(
+            "| `{}` | {} | {} | {} | {} |\n",
+            row.name.replace('|', "\\|"),
+            row.memory,
+            group_digits(u64::from(row.bytes)),
+            thousands(row.cycles),
+            thousands(per_100_bytes(row))
+        ));
+    }
+    doc.push_str(&format!(
+        "\nThe {ROM_ROWS} hottest functions in the cartridge (the bench scene's own log lines and \
+         flight among them, outside `Renderer::render`):\n\n\
+         | function | bytes | cycles per frame |\n|---|---|---|\n"
+    ));
+    for row in profile
+        .placed
+        .iter()
+        .filter(|row| row.memory == "ROM")
+        .take(ROM_ROWS)
+    {
+        doc.push_str(&format!(
+            "| `{}` | {} | {} |\n",
+            row.name.replace('|', "\\|"),
+            group_digits(u64::from(row.bytes)),
+            thousands(row.cycles)
+        ));
+    }
+    doc
 }
 
 /// Profiles the shipped ROM's ELF `elf` over the bench map's default 120×80 run.
@@ -202,6 +338,13 @@ own cycles:
 
 cycles with compiler helpers charged to their caller:
  34.70%    252182/line  x
+
+code by memory (own cycles, bytes, memory, name):
+   252182/line   6000 IWRAM <portalcast::render::walk::Renderer<W>>::draw_walls::<C>
+   100000/line   1400 IWRAM pc_wall_run
+    20000/line   4000 ROM   slow::thing
+     7000/line    260 IWRAM pc_sprite_columns
+        0/line   1500 IWRAM tick
 ";
 
     #[test]
@@ -225,6 +368,36 @@ cycles with compiler helpers charged to their caller:
         assert!(section.contains("| plane set-up | 20,000 |"), "{section}");
         assert!(
             section.contains("| BIOS (the wait for VBlank) | 153,408 |"),
+            "{section}"
+        );
+    }
+
+    #[test]
+    fn the_placement_lists_fast_code_by_what_its_bytes_buy() {
+        let profile = parse(OUTPUT).unwrap();
+        assert_eq!(profile.placed.len(), 5);
+        assert_eq!(profile.placed[1].bytes, 1400);
+        let rooms = [CodeRoom {
+            name: "IWRAM".to_string(),
+            used: 28_388,
+            left: 28,
+        }];
+        let section = placement_section(&profile, &rooms);
+        assert!(section.contains("| IWRAM | 28,388 | 28 |"), "{section}");
+        // The least per byte first: the tick (0), the sprite columns (2,692 per 100 bytes),
+        // the walls (4,203), the wall loop (7,143); the cartridge's code apart.
+        let order: Vec<usize> = [
+            "`tick`",
+            "`pc_sprite_columns`",
+            "draw_walls",
+            "`pc_wall_run`",
+        ]
+        .iter()
+        .map(|name| section.find(name).unwrap())
+        .collect();
+        assert!(order.windows(2).all(|pair| pair[0] < pair[1]), "{section}");
+        assert!(
+            section.contains("| `slow::thing` | 4,000 | 20,000 |"),
             "{section}"
         );
     }

@@ -120,6 +120,63 @@ pub fn allocated_sections(elf: &[u8]) -> Result<Vec<Section>, String> {
     Ok(sections)
 }
 
+/// A memory region of linker.ld's `MEMORY` block.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LinkerRegion {
+    /// Its name there (`vram`, `vram_after_pages`, …).
+    pub name: String,
+    /// `ORIGIN`.
+    pub origin: u32,
+    /// `LENGTH`.
+    pub length: u32,
+}
+
+/// A linker script number: decimal or `0x` hexadecimal, with an optional `K` or `M`, or a
+/// difference of two (`32K - 256`).
+fn linker_number(text: &str) -> Option<u32> {
+    if let Some((left, right)) = text.split_once(" - ") {
+        return linker_number(left)?.checked_sub(linker_number(right)?);
+    }
+    let text = text.trim();
+    let (digits, scale) = match text.as_bytes().last()? {
+        b'K' => (&text[..text.len() - 1], 1024),
+        b'M' => (&text[..text.len() - 1], 1024 * 1024),
+        _ => (text, 1),
+    };
+    let value = match digits.strip_prefix("0x") {
+        Some(hex) => u32::from_str_radix(hex, 16).ok()?,
+        None => digits.parse().ok()?,
+    };
+    value.checked_mul(scale)
+}
+
+/// The regions of a linker script's `MEMORY` block (lines `name (attributes) : ORIGIN = …,
+/// LENGTH = …`).
+pub fn linker_regions(script: &str) -> Vec<LinkerRegion> {
+    script
+        .lines()
+        .filter_map(|line| {
+            let (head, values) = line.split_once(':')?;
+            let name = head.split_whitespace().next()?;
+            let origin = values.split_once("ORIGIN =")?.1.split(',').next()?;
+            let length = values.split_once("LENGTH =")?.1;
+            Some(LinkerRegion {
+                name: name.to_string(),
+                origin: linker_number(origin)?,
+                length: linker_number(length)?,
+            })
+        })
+        .collect()
+}
+
+/// The linker script's `STACK_RESERVE`, if it sets one.
+pub fn stack_reserve(script: &str) -> Option<u32> {
+    script.lines().find_map(|line| {
+        let value = line.trim().strip_prefix("STACK_RESERVE =")?;
+        linker_number(value.trim().trim_end_matches(';'))
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -144,6 +201,23 @@ mod tests {
         assert_eq!(sizes.used(IWRAM), 80);
         assert_eq!(sizes.used(EWRAM), 8);
         assert_eq!(sizes.used(ROM), 100);
+    }
+
+    #[test]
+    fn linker_regions_and_the_stack_reserve_are_read() {
+        let script = "STACK_RESERVE = 4K;\nMEMORY {\n  iwram (w!x) : ORIGIN = 0x03000000, LENGTH = 32K - 256\n  vram  (rwx) : ORIGIN = 0x06016E60, LENGTH = 0x11A0\n}\n";
+        assert_eq!(stack_reserve(script), Some(4096));
+        let regions = linker_regions(script);
+        assert_eq!(regions.len(), 2);
+        assert_eq!(regions[0].length, 32 * 1024 - 256);
+        assert_eq!(
+            regions[1],
+            LinkerRegion {
+                name: "vram".to_string(),
+                origin: 0x0601_6E60,
+                length: 0x11A0
+            }
+        );
     }
 
     #[test]
