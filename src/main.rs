@@ -516,8 +516,6 @@ mod rom {
         slot.write(LiveFlight::new(map, world))
     }
 
-    /// The textures copied to EWRAM and the colormap to OBJ VRAM (once), for
-    /// [`demo::assets_for`].
     /// Keeps the page rows a low frame leaves free lent to the hottest texture chains
     /// ([`LentPageRows`]) while the frames are that low, their textures in fast memory, and the
     /// display already shows such a frame (so the copy never shows on screen); gives them back
@@ -549,6 +547,8 @@ mod rom {
         }
     }
 
+    /// The textures copied to EWRAM and the colormap to OBJ VRAM (once), for
+    /// [`demo::assets_for`].
     fn assets_in_fast_memory() -> (
         &'static [portalcast_format::Texture<'static>],
         &'static portalcast_format::Colormap,
