@@ -466,3 +466,59 @@ fn turning_for_36_ticks_is_exactly_a_right_angle() {
     run(&mut player, &map, walk(0, 0, 1), 36);
     assert_eq!(player.angle.to_bits(), start.to_bits().wrapping_add(16384));
 }
+
+/// Two cave cells of the generated `caves` map (issue 16), where the long soak found a disc
+/// flying up beside a wall: the cell beyond the portal (ceiling 160) stops admitting the body
+/// once its feet pass 112, and the disc, 0.3 unit from the portal's line, is 15.7 deep in it.
+const CAVE_CORNER: &str = "
+vertex a 1076 -8
+vertex b 1176 -13
+vertex c 1129 76
+vertex d 1076 115
+vertex e 1242 -2
+vertex f 1248 77
+sector cell floor=16 ceil=168 floor_tex=tiles ceil_tex=ceiling
+  wall a b tex=brick
+  wall b c portal=beyond lower=step upper=brick
+  wall c d tex=brick
+  wall d a tex=brick
+sector beyond floor=24 ceil=160 floor_tex=tiles ceil_tex=ceiling
+  wall b e tex=brick
+  wall e f tex=brick
+  wall f c tex=brick
+  wall c b portal=cell
+player 1100.5 50.5
+";
+
+#[test]
+fn a_disc_pushed_out_of_a_portal_it_no_longer_fits_is_not_pushed_into_a_wall() {
+    let compiled = compile_map("cave_corner.map", CAVE_CORNER);
+    let map = compiled.tables();
+    let cell = sector_index_in(CAVE_CORNER, "cell");
+    let mut player = Player::spawn(&map);
+    player.position = portalcast::math::WorldPoint::new(
+        Fx24_8::from_bits(298_742), // 1166.9609375
+        Fx24_8::from_bits(889),     // 3.47265625
+    );
+    player.sector = cell;
+    player.velocity = (-128, 6);
+    player.angle = portalcast::math::Angle::from_bits(48128);
+    player.feet_z = Fx24_8::from_int(114);
+    player.fly = true;
+    player.on_ground = false;
+    let before = player;
+    // Forward, into the wall, and up: every push out of the portal pushes into the wall.
+    player.tick(
+        &Intent {
+            forward: 1,
+            jump: true,
+            ..Intent::default()
+        },
+        &map,
+    );
+    check_tick(&map, &before, &player).unwrap_or_else(|problem| panic!("{problem}"));
+    assert!(
+        solid_overlap(&map, player.position) <= 1.0 / 32.0,
+        "{player:?}"
+    );
+}

@@ -321,8 +321,7 @@ fn try_moves(
     obstacles: &Obstacles,
     discs: Option<&Discs>,
 ) -> (WorldPoint, u16) {
-    // Only needed for a target the pushes leave overlapping: most steps never compute them.
-    let mut allowed = None;
+    // Only needed for a target the pushes leave overlapping: most steps never compute it.
     let mut allowed_depth = None;
     let tries = [step, Delta { x: step.x, y: 0 }, Delta { x: 0, y: step.y }];
     let try_count = if step.x != 0 && step.y != 0 { 3 } else { 1 };
@@ -331,12 +330,7 @@ fn try_moves(
         let (settled, pushes_done) = obstacles.push_out(target, discs);
         // When the last pass pushed nothing, no segment pushes the result: its overlap is 0.
         if !pushes_done {
-            let allowed = *allowed.get_or_insert_with(|| {
-                obstacles
-                    .overlap(point_bits(from))
-                    .max(OVERLAP_TOLERANCE * OVERLAP_TOLERANCE)
-            });
-            if obstacles.overlap(settled) > allowed {
+            if obstacles.deepens_some(point_bits(from), settled) {
                 continue;
             }
             // Unsettled pushes may leave the disc in a thing: never deeper than it began.
@@ -850,30 +844,30 @@ impl<'a, 'm> Obstacles<'a, 'm> {
         (p, false)
     }
 
-    /// How deep `p`'s disc is in the segments: the largest squared length (in bits²) of the
-    /// push any segment would still give it. The length, not its larger axis: a vertex pushes
-    /// along a diagonal, and a step that traded an edge's push for a vertex's longer one, with a
-    /// shorter larger axis, went deeper (a disc sliding past a wall's end into a portal).
-    #[inline]
-    fn overlap(&self, p: Bits) -> i64 {
-        if self.ends.is_empty() {
-            return 0;
-        }
-        self.overlap_of_some(p)
-    }
-
-    /// [`Obstacles::overlap`] with at least one segment. Out of line: most steps have none.
+    /// Whether `to`'s disc is deeper than `from`'s in some segment, beyond
+    /// [`OVERLAP_TOLERANCE`]: a segment would push it out further than that and further than it
+    /// pushes `from`. Segment by segment: a disc deep in one blocking segment (a portal whose
+    /// heights stopped admitting it as it flew up) may move out of it, but not into another
+    /// (measured by the soak: pushed 18 units out of a portal, a disc ended 0.14 unit inside
+    /// the solid wall beside it, which the deepest overlap alone allowed). Depth is the push's
+    /// squared length, not its larger axis: a vertex pushes along a diagonal, and a step that
+    /// traded an edge's push for a vertex's longer one, with a shorter larger axis, went deeper
+    /// (a disc sliding past a wall's end into a portal). Out of line: only a step whose pushes
+    /// did not settle asks.
     #[inline(never)]
-    fn overlap_of_some(&self, p: Bits) -> i64 {
-        self.segments()
-            .flat_map(|segment| {
-                [Contact::Edge, Contact::Vertex]
-                    .into_iter()
-                    .filter_map(move |contact| push_from_segment(p, &segment, contact))
-            })
-            .map(|(x, y)| wide(x) * wide(x) + wide(y) * wide(y))
-            .max()
-            .unwrap_or(0)
+    fn deepens_some(&self, from: Bits, to: Bits) -> bool {
+        let depth = |p: Bits, segment: &Segment| {
+            [Contact::Edge, Contact::Vertex]
+                .into_iter()
+                .filter_map(|contact| push_from_segment(p, segment, contact))
+                .map(|(x, y)| wide(x) * wide(x) + wide(y) * wide(y))
+                .max()
+                .unwrap_or(0)
+        };
+        self.segments().any(|segment| {
+            let after = depth(to, &segment);
+            after > OVERLAP_TOLERANCE * OVERLAP_TOLERANCE && after > depth(from, &segment)
+        })
     }
 }
 
