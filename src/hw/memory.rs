@@ -433,7 +433,10 @@ const LENT_ROWS: [(usize, usize); 2] = [
     ),
 ];
 
-#[link_section = ".ewram_bss"]
+/// In IWRAM's `.bss`, which the runtime clears at boot (EWRAM's is not: a real GBA powers on
+/// with arbitrary bytes there). A section of its own: the compiler does not merge it with the
+/// other `.bss` flags, whose addressing the hot code shares.
+#[link_section = ".bss.rows_lent"]
 static mut ROWS_LENT: bool = false;
 #[link_section = ".ewram_bss"]
 static mut LENT_TEXTURES: MaybeUninit<[Texture<'static>; assets::TEXTURE_COUNT]> =
