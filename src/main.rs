@@ -195,7 +195,10 @@ mod rom {
             let address = page.address();
             let mut canvas = VramCanvas::new(page, settings.resolution);
             let started = meter::now();
-            let render_assets = assets_with(&lent, &settings);
+            let render_assets = with_lent_rows(
+                demo::assets_for(settings.textures, assets_in_fast_memory),
+                &lent,
+            );
             let stats = renderer.render(&game.map(), &render_assets, &view, &mut canvas);
             let cycles = meter::cycles_since(started);
             if game.hud {
@@ -466,11 +469,7 @@ mod rom {
                     ));
                 }
             }
-            let lent_assets = lent.as_ref().map(|lent| RenderAssets {
-                textures: lent.textures(),
-                ..*render_assets
-            });
-            let render_assets = lent_assets.as_ref().unwrap_or(render_assets);
+            let render_assets = &with_lent_rows(*render_assets, &lent);
             let camera = flight.camera();
             // The fly-through's clock: a tick a frame.
             let view = View::new(&camera, settings).at_tick(flight.frame());
@@ -534,10 +533,11 @@ mod rom {
         }
     }
 
-    /// The assets for `settings`, the textures read from the lent page rows where `lent` holds
-    /// them.
-    fn assets_with<'l>(lent: &'l Option<LentPageRows>, settings: &Settings) -> RenderAssets<'l> {
-        let assets = demo::assets_for(settings.textures, assets_in_fast_memory);
+    /// `assets`, the textures read from the lent page rows where `lent` holds them.
+    fn with_lent_rows<'l>(
+        assets: RenderAssets<'l>,
+        lent: &'l Option<LentPageRows>,
+    ) -> RenderAssets<'l> {
         match lent {
             Some(lent) => RenderAssets {
                 textures: lent.textures(),
