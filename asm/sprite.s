@@ -25,6 +25,8 @@
 @   pc_sprite_run_even, _odd    240 wide: read-modify-write of the halfword, keeping the other byte
 @   pc_sprite_run_blend_dbl, _blend_even, _blend_odd: the same, each pixel the blend of the lit
 @                               texel over the one behind it, read back from VRAM
+@ The 240-wide blending runs sit in the VRAM Mode 4 leaves free, not IWRAM: they draw only the
+@ translucent things and middles at 240 wide, and IWRAM's bytes earn more in the wall stage.
 @ Cycles per pixel: docs/BENCH.md.
 
     .section .iwram.pc_sprite, "ax", %progbits
@@ -292,6 +294,8 @@ pc_sprite_run_blend_dbl:
     .size \name, . - \name
     .endm
 
+    .section .vram.pc_sprite_blend_native, "ax", %progbits
+    .arm
     RUN_BLEND_NATIVE pc_sprite_run_blend_even, 0
     RUN_BLEND_NATIVE pc_sprite_run_blend_odd, 1
 

@@ -39,6 +39,21 @@ pub const MAX_PORTAL_DEPTH: u32 = 64;
 /// the visits on its current path. A path that finds more has its visits' portals tested again.
 const PORTALS_RECORDED: usize = 256;
 
+/// Portals into a neighbour with the same planes ([`same_planes`]) a visit's wall pass may
+/// leave open at once for the visit to draw the neighbour's walls as its own
+/// ([`Renderer::see_through`]); more are drawn as plain portals.
+const SEE_THROUGH_MAX: usize = 16;
+
+/// What the wall pass did with a portal ([`Renderer::note_portal`]).
+enum PortalNoted {
+    /// It sees through it into a neighbour with the same planes: nothing of it is drawn.
+    SeenThrough,
+    /// It recorded it for the walk.
+    Recorded,
+    /// The record is full: the walk tests the visit's portals again.
+    RecordFull,
+}
+
 /// A portal a visit's wall pass found owning columns `start..stop`, and the sector behind it.
 #[derive(Clone, Copy)]
 struct OwnedPortal {
@@ -173,6 +188,18 @@ pub struct Renderer<W: WindowStore = ColumnWindows> {
     portals: [OwnedPortal; PORTALS_RECORDED],
     /// Entries of [`Renderer::portals`] in use.
     portals_used: u16,
+    /// The portals the visit being drawn sees through into a neighbour with the same planes,
+    /// not yet drawn (Doom's `R_AddLine` skips such a line: nothing of it shows): the visit
+    /// draws each neighbour's walls in the portal's columns as if they were its own, with the
+    /// clip windows it has there, and its floor and ceiling cover the neighbour's as one plane.
+    /// No wall column of the portal is evaluated, and a row across several such sectors is one
+    /// span.
+    see_through: [OwnedPortal; SEE_THROUGH_MAX],
+    /// Entries of [`Renderer::see_through`] waiting.
+    see_through_used: u16,
+    /// The walls of the waiting neighbours: each may record a portal, so the record keeps room
+    /// for them.
+    see_through_walls: u16,
     /// Whether the wall pass records its portals: only while the walk draws a visit.
     recording_portals: bool,
     /// Whether the last visit drawn recorded all of its portals.
@@ -392,6 +419,13 @@ impl<W: WindowStore> Renderer<W> {
                 stop: 0,
             }; PORTALS_RECORDED],
             portals_used: 0,
+            see_through: [OwnedPortal {
+                sector: 0,
+                start: 0,
+                stop: 0,
+            }; SEE_THROUGH_MAX],
+            see_through_used: 0,
+            see_through_walls: 0,
             recording_portals: false,
             skip_closed: false,
             planes_seen: 0,
@@ -755,12 +789,7 @@ impl<W: WindowStore> Renderer<W> {
         first: i32,
         end: i32,
     ) {
-        stats.sector_visits += 1;
-        if let Some(word) = self.visited.get_mut(usize::from(sector_index) / 32) {
-            let bit = 1u32 << (sector_index % 32);
-            stats.repeat_visits += u32::from(*word & bit != 0);
-            *word |= bit;
-        }
+        self.count_visit(stats, sector_index);
         let sector = &scene.map.sectors[usize::from(sector_index)];
         // Every column of `[first, end)` is owned by exactly one wall of the sector (the
         // ownership rule, module `walls`: around the sector's closed outline the vertices right
@@ -776,26 +805,37 @@ impl<W: WindowStore> Renderer<W> {
         }
         self.planes_seen = 0;
         let walls_started = (self.clock)();
-        if scene.view.things == ThingsShown::On && !scene.map.things_in(sector_index).is_empty() {
-            // Before the walls: the clip windows are still the ones the sector is seen through.
-            self.things.collect(
-                &scene.things,
-                stats.sector_visits as u16,
-                sector_index,
-                first..end,
-                &self.windows.windows().clip,
-            );
-        }
-        self.draw_walls(scene, canvas, stats, sector, first, end);
-        if scene.view.things == ThingsShown::On && self.has_middles(sector_index) {
-            self.collect_middles(
-                scene,
-                canvas,
-                stats.sector_visits as u16,
-                sector_index,
-                first,
-                end,
-            );
+        // The sector's own walls, then those of the neighbours it sees through (each a visit
+        // of its own for the things' order, its columns inside the visit's), and theirs.
+        let (mut inner, mut inner_sector) = (sector_index, sector);
+        let (mut inner_first, mut inner_end) = (first, end);
+        loop {
+            if scene.view.things == ThingsShown::On && !scene.map.things_in(inner).is_empty() {
+                // Before the walls: the clip windows are still the ones the sector is seen
+                // through.
+                self.things.collect(
+                    &scene.things,
+                    stats.sector_visits as u16,
+                    inner,
+                    inner_first..inner_end,
+                    &self.windows.windows().clip,
+                );
+            }
+            self.draw_walls(scene, canvas, stats, inner_sector, inner_first, inner_end);
+            if scene.view.things == ThingsShown::On && self.has_middles(inner) {
+                self.collect_middles(
+                    scene,
+                    canvas,
+                    stats.sector_visits as u16,
+                    inner,
+                    inner_first,
+                    inner_end,
+                );
+            }
+            if self.see_through_used == 0 {
+                break;
+            }
+            (inner, inner_sector, inner_first, inner_end) = self.next_seen_through(scene, stats);
         }
         debug_assert!(
             !self.windows.windows().ceiling[range.clone()].contains(&UNSET)
@@ -833,46 +873,122 @@ impl<W: WindowStore> Renderer<W> {
             let Some((a, b, start, stop)) = ownership.wall(scene, &self.vertices, wall) else {
                 continue;
             };
+            let mut seen_through = false;
             if wall.portal != NO_PORTAL && recording {
-                match self.portals.get_mut(usize::from(self.portals_used)) {
-                    Some(entry) => {
-                        *entry = OwnedPortal {
-                            sector: wall.portal,
-                            start: start as i16,
-                            stop: stop as i16,
-                        };
-                        self.portals_used += 1;
-                    }
-                    None => recording = false,
+                match self.note_portal(scene, sector, wall, wall_index, start, stop) {
+                    PortalNoted::SeenThrough => seen_through = true,
+                    PortalNoted::Recorded => {}
+                    PortalNoted::RecordFull => recording = false,
                 }
             }
-            let projector = WallProjector::new(&scene.view.viewport, a, b);
-            let mut job = WallJob::new(scene, sector, wall, wall_index);
-            let stepper = projector.stepper(start);
-            stats.wall_columns += (stop - start) as u32;
-            let viewport = &scene.view.viewport;
-            let heights = job.heights();
-            let columns = stop - start;
-            let (first, end, stepped) = match SteppedWall::new(viewport, heights, &stepper, columns)
-            {
-                Some(stepped) => (0, columns, Some(stepped)),
-                None => {
-                    self.draw_clamped_runs(scene, canvas, stats, &mut job, stepper, start, stop)
+            if !seen_through {
+                let projector = WallProjector::new(&scene.view.viewport, a, b);
+                let mut job = WallJob::new(scene, sector, wall, wall_index);
+                let stepper = projector.stepper(start);
+                stats.wall_columns += (stop - start) as u32;
+                let viewport = &scene.view.viewport;
+                let heights = job.heights();
+                let columns = stop - start;
+                let (first, end, stepped) =
+                    match SteppedWall::new(viewport, heights, &stepper, columns) {
+                        Some(stepped) => (0, columns, Some(stepped)),
+                        None => self.draw_clamped_runs(
+                            scene, canvas, stats, &mut job, stepper, start, stop,
+                        ),
+                    };
+                if let Some(stepped) = stepped {
+                    self.draw_stepped_wall(
+                        scene,
+                        canvas,
+                        stats,
+                        &mut job,
+                        stepped,
+                        start + first,
+                        start + end,
+                    );
                 }
-            };
-            if let Some(stepped) = stepped {
-                self.draw_stepped_wall(
-                    scene,
-                    canvas,
-                    stats,
-                    &mut job,
-                    stepped,
-                    start + first,
-                    start + end,
-                );
             }
         }
         self.portals_recorded = recording;
+    }
+
+    /// Counts a visit of `sector_index` in `stats`, and whether the frame drew it before.
+    #[inline(always)]
+    fn count_visit(&mut self, stats: &mut FrameStats, sector_index: u16) {
+        stats.sector_visits += 1;
+        if let Some(word) = self.visited.get_mut(usize::from(sector_index) / 32) {
+            let bit = 1u32 << (sector_index % 32);
+            stats.repeat_visits += u32::from(*word & bit != 0);
+            *word |= bit;
+        }
+    }
+
+    /// Notes portal `wall` of `sector` (wall `wall_index` of the map), owning columns
+    /// `start..stop`, for the walk. A portal into a neighbour with the same planes
+    /// is seen through: the neighbour waits in [`Renderer::see_through`] and the portal is
+    /// neither drawn nor recorded. That needs room in the record for every portal the waiting
+    /// neighbours' walls and the sector's walls after this one may add, so that the walk never has to
+    /// find the visit's portals again by testing them (it would not find the neighbours'):
+    /// else the portal is recorded as any other. Out of line and in VRAM: once per portal wall,
+    /// and only while the pass records its portals (the drawing walk's).
+    #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".vram.note_portal")]
+    fn note_portal(
+        &mut self,
+        scene: &Scene,
+        sector: &Sector,
+        wall: &Wall,
+        wall_index: u16,
+        start: i32,
+        stop: i32,
+    ) -> PortalNoted {
+        let walls_after = usize::from(sector.first_wall + sector.wall_count - wall_index - 1);
+        let noted = OwnedPortal {
+            sector: wall.portal,
+            start: start as i16,
+            stop: stop as i16,
+        };
+        let neighbour = &scene.map.sectors[usize::from(wall.portal)];
+        let room = PORTALS_RECORDED - usize::from(self.portals_used);
+        let needed =
+            walls_after + usize::from(self.see_through_walls) + usize::from(neighbour.wall_count);
+        if wall.middle == NO_TEXTURE && same_planes(sector, neighbour) && needed <= room {
+            if let Some(slot) = self.see_through.get_mut(usize::from(self.see_through_used)) {
+                *slot = noted;
+                self.see_through_used += 1;
+                self.see_through_walls += neighbour.wall_count;
+                return PortalNoted::SeenThrough;
+            }
+        }
+        match self.portals.get_mut(usize::from(self.portals_used)) {
+            Some(entry) => {
+                *entry = noted;
+                self.portals_used += 1;
+                PortalNoted::Recorded
+            }
+            None => PortalNoted::RecordFull,
+        }
+    }
+
+    /// The last neighbour waiting in [`Renderer::see_through`] (there is one), counted as a
+    /// visit: its index, sector and columns. Out of line and from ROM: once per neighbour.
+    #[inline(never)]
+    fn next_seen_through<'m>(
+        &mut self,
+        scene: &Scene<'m, '_>,
+        stats: &mut FrameStats,
+    ) -> (u16, &'m Sector, i32, i32) {
+        self.see_through_used -= 1;
+        let portal = self.see_through[usize::from(self.see_through_used)];
+        let neighbour = &scene.map.sectors[usize::from(portal.sector)];
+        self.see_through_walls -= neighbour.wall_count;
+        self.count_visit(stats, portal.sector);
+        (
+            portal.sector,
+            neighbour,
+            portal.start.into(),
+            portal.stop.into(),
+        )
     }
 
     /// A wall that [`SteppedWall`] cannot step whole: draws the columns nearest the eye (or at
@@ -1678,6 +1794,25 @@ fn vertex(map: &MapTables, index: u16) -> WorldPoint {
 }
 
 /// A wall's length in 24.8: the map compiler's ([`Wall::length_fx8`]).
+/// Whether sectors `a` and `b` have the same floor and ceiling: heights, flats and light. A
+/// portal between two such (without a middle image) shows nothing of itself: no strip, and the
+/// planes on either side meet in one (Doom's `R_AddLine` leaves such a line out).
+pub fn same_planes(a: &Sector, b: &Sector) -> bool {
+    (
+        a.floor_z,
+        a.ceil_z,
+        a.floor_texture,
+        a.ceil_texture,
+        a.light,
+    ) == (
+        b.floor_z,
+        b.ceil_z,
+        b.floor_texture,
+        b.ceil_texture,
+        b.light,
+    )
+}
+
 fn wall_length(wall: &Wall) -> Fx24_8 {
     Fx24_8::from_bits(wall.length_fx8)
 }

@@ -119,13 +119,21 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
         pixels,
         ..Comparison::default()
     };
+    // A floor or a ceiling counts as its plane group's: coplanar neighbours are one plane.
+    let plane_surfaces = |surfaces: &[Surface]| -> Vec<Surface> {
+        surfaces.iter().map(|&s| oracle.plane_surface(s)).collect()
+    };
+    let (engine_surfaces, oracle_surfaces) = (
+        &plane_surfaces(engine_surfaces)[..],
+        &plane_surfaces(&oracle.surfaces)[..],
+    );
     // Mismatched pixels grouped by the surface the engine drew, one distance map per surface.
     let mut misplaced: HashMap<Surface, Vec<usize>> = HashMap::new();
     let mut engine_sectors = BTreeSet::new();
     let mut oracle_sectors = BTreeSet::new();
     let mut engine_things = BTreeSet::new();
     let mut oracle_things = BTreeSet::new();
-    for (pixel, (&engine, &expected)) in engine_surfaces.iter().zip(&oracle.surfaces).enumerate() {
+    for (pixel, (&engine, &expected)) in engine_surfaces.iter().zip(oracle_surfaces).enumerate() {
         engine_sectors.extend(oracle.sector_of(engine));
         oracle_sectors.extend(oracle.sector_of(expected));
         engine_things.extend(thing_of(engine));
@@ -143,15 +151,14 @@ pub fn compare(engine_surfaces: &[Surface], engine_indices: &[u8], oracle: &Fram
         }
     }
     for (surface, pixels) in &misplaced {
-        let distances =
-            chebyshev_distances(&oracle.surfaces, oracle.width, oracle.height, *surface);
+        let distances = chebyshev_distances(oracle_surfaces, oracle.width, oracle.height, *surface);
         for &pixel in pixels {
             result.max_edge_error_px = result.max_edge_error_px.max(distances[pixel]);
         }
     }
     result.max_wall_edge_error_px = max_wall_edge_error(
         engine_surfaces,
-        &oracle.surfaces,
+        oracle_surfaces,
         oracle.width,
         oracle.height,
     );
@@ -371,8 +378,8 @@ pub fn write_diff_png(engine_surfaces: &[Surface], oracle: &Frame, path: &Path) 
         image::RgbImage::from_pixel(total_width as u32, height as u32, image::Rgb([64, 64, 64]));
     for y in 0..height {
         for x in 0..width {
-            let engine = engine_surfaces[y * width + x];
-            let expected = oracle.surfaces[y * width + x];
+            let engine = oracle.plane_surface(engine_surfaces[y * width + x]);
+            let expected = oracle.plane_surface(oracle.surfaces[y * width + x]);
             let mask = if engine == Surface::None {
                 [255, 255, 0]
             } else if engine != expected {
@@ -443,6 +450,7 @@ mod tests {
             depths: vec![1.0; width * height],
             wall_sectors: vec![0; 8],
             thing_sectors: Vec::new(),
+            plane_groups: Vec::new(),
         };
         let result = compare(&engine, &vec![0; width * height], &frame);
         assert_eq!(result.max_wall_edge_error_px, 2);

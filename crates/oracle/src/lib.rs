@@ -93,7 +93,7 @@ pub use geometry::find_sector;
 pub use portalcast::render::light::Lighting;
 pub use portalcast::render::surface::Surface;
 pub use poses::{sample_poses, Rng};
-pub use render::{engine_direction, mip_level, render, COLUMN_TIE_NUDGE, TIE_NUDGE};
+pub use render::{engine_direction, mip_level, plane_groups, render, COLUMN_TIE_NUDGE, TIE_NUDGE};
 
 /// The oracle's frame of `camera`, then the two frames with every row's ray moved up and down by
 /// [`ROW_TOLERANCE_PX`] (the horizon moved the other way), for [`compare_with_row_tolerance`].
@@ -245,6 +245,12 @@ pub struct Frame {
     /// [`MapTables::sector_things`](portalcast_format::MapTables::sector_things) holds it;
     /// `u16::MAX` for a thing in none), as [`Frame::wall_sectors`] for walls.
     pub thing_sectors: Vec<u16>,
+    /// The sector each sector's floor and ceiling count as (sector index → the least index of
+    /// its plane group): sectors joined by portals without a middle image between neighbours
+    /// with the same planes (`portalcast::render::walk::same_planes`) show one floor and one
+    /// ceiling, with no edge between them, and the engine draws them as one plane (Doom's
+    /// visplanes), so [`compare()`] counts a pixel of either as the same surface.
+    pub plane_groups: Vec<u16>,
 }
 
 impl Frame {
@@ -268,11 +274,25 @@ impl Frame {
         (self.surface(x, y), self.index(x, y), self.depth(x, y))
     }
 
-    /// The sector a surface belongs to: its own for floors and ceilings, the owner of the wall
-    /// for walls, strips and middles, the thing's for things; `None` for the sky,
-    /// [`Surface::None`] and unknown walls and things.
-    pub fn sector_of(&self, surface: Surface) -> Option<u16> {
+    /// `surface`, a floor or a ceiling counted as its plane group's ([`Frame::plane_groups`]);
+    /// any other surface as it is.
+    pub fn plane_surface(&self, surface: Surface) -> Surface {
+        let group = |s: u16| self.plane_groups.get(usize::from(s)).copied().unwrap_or(s);
         match surface {
+            Surface::Floor(s) => Surface::Floor(group(s)),
+            Surface::Ceiling(s) => Surface::Ceiling(group(s)),
+            other => other,
+        }
+    }
+
+    /// The sector a surface belongs to, as its plane group ([`Frame::plane_groups`]): of the
+    /// floor's or ceiling's sector, of the wall's owner for walls, strips and middles, of the
+    /// thing's sector for things; `None` for the sky, [`Surface::None`] and unknown walls and
+    /// things. A sector of a group is shown wherever its group's floor is, so the sectors a
+    /// frame shows are counted by group.
+    pub fn sector_of(&self, surface: Surface) -> Option<u16> {
+        let group = |s: u16| self.plane_groups.get(usize::from(s)).copied().unwrap_or(s);
+        let sector = match surface {
             Surface::Floor(s) | Surface::Ceiling(s) => Some(s),
             Surface::Wall(w) | Surface::Upper(w) | Surface::Lower(w) | Surface::Middle(w) => {
                 let owner = self.wall_sectors.get(usize::from(w)).copied();
@@ -283,6 +303,7 @@ impl Frame {
                 owner.filter(|&s| s != u16::MAX)
             }
             Surface::Sky | Surface::None => None,
-        }
+        };
+        sector.map(group)
     }
 }

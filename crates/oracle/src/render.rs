@@ -2,6 +2,7 @@
 
 use portalcast::render::light::light_row;
 use portalcast::render::surface::{Surface, THING_DEPTH_MIN};
+use portalcast::render::walk::same_planes;
 use portalcast_format::{
     MapTables, Sector, Sprite, Texture, Wall, NO_TEXTURE, SKY, THING_HANGING, THING_TRANSLUCENT,
     TRANSPARENT, WALL_MIDDLE_TRANSLUCENT,
@@ -175,6 +176,7 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
         depths: vec![f64::INFINITY; width * height],
         wall_sectors: wall_sectors(map),
         thing_sectors: thing_sectors(map),
+        plane_groups: plane_groups(map),
     };
     let Some(start) = camera
         .sector
@@ -269,6 +271,32 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
         }
     }
     frame
+}
+
+/// Every sector's plane group ([`Frame::plane_groups`]): the least sector index reachable
+/// through portals without a middle image between neighbours with the same planes.
+pub fn plane_groups(map: &MapTables) -> Vec<u16> {
+    let mut groups: Vec<u16> = (0..map.sectors.len() as u16).collect();
+    fn root(groups: &[u16], mut sector: u16) -> u16 {
+        while groups[usize::from(sector)] != sector {
+            sector = groups[usize::from(sector)];
+        }
+        sector
+    }
+    for (index, sector) in map.sectors.iter().enumerate() {
+        for wall in map.sector_walls(sector) {
+            let Some(neighbour) = map.sectors.get(usize::from(wall.portal)) else {
+                continue;
+            };
+            if wall.middle == NO_TEXTURE && same_planes(sector, neighbour) {
+                let (a, b) = (root(&groups, index as u16), root(&groups, wall.portal));
+                groups[usize::from(a.max(b))] = a.min(b);
+            }
+        }
+    }
+    (0..map.sectors.len() as u16)
+        .map(|sector| root(&groups, sector))
+        .collect()
 }
 
 /// The owner sector of every wall (`u16::MAX` for a wall no sector lists).

@@ -1538,6 +1538,7 @@ fn oracle_frame(surfaces: Vec<Surface>, width: usize, height: usize) -> Frame {
         surfaces,
         wall_sectors: vec![0, 0, 0, 0, 1, 1, 1, 1],
         thing_sectors: vec![0, 1, 2],
+        plane_groups: Vec::new(),
     }
 }
 
@@ -1728,4 +1729,37 @@ fn diff_png_has_three_panels() {
         image.get_pixel(7, 0).0,
         portalcast_oracle::surface_colour(Floor(0))
     );
+}
+
+/// Sectors 0 and 1 are one plane group, 2 another: where the oracle shows 0's floor, the
+/// engine's floor labelled 1 is the same surface and 2's is not; and the sectors a frame shows
+/// are counted by group (wall 4 is sector 1's).
+#[test]
+fn compare_counts_a_floor_or_a_ceiling_as_its_plane_group() {
+    use Surface::*;
+    let mut oracle = oracle_frame(vec![Floor(0), Floor(0), Ceiling(1), Wall(4)], 4, 1);
+    oracle.plane_groups = vec![0, 0, 2];
+    let engine = [Floor(1), Floor(2), Ceiling(0), Wall(4)];
+    let result = compare(&engine, &[10; 4], &oracle);
+    assert_eq!(result.surface_mismatches, 1);
+    assert!(result.missed_sectors.is_empty());
+    assert_eq!(result.extra_sectors, vec![2]);
+}
+
+/// The bench hall's eight cells share their floor, ceiling and light and are one group; the
+/// dais in their middle, raised and brighter, is one of its own.
+#[test]
+fn the_bench_hall_s_cells_are_one_plane_group_and_its_dais_another() {
+    let map = portalcast::assets::MAPS
+        .iter()
+        .find(|map| map.name == "bench")
+        .expect("the bench map");
+    let groups = portalcast_oracle::plane_groups(map);
+    // The map file's order: hall_nw, hall_n, hall_ne, hall_w, dais, hall_e, hall_sw, hall_s,
+    // hall_se.
+    for cell in [0, 1, 2, 3, 5, 6, 7, 8] {
+        assert_eq!(groups[cell], 0, "cell {cell}");
+    }
+    assert_eq!(groups[4], 4);
+    assert!(groups.iter().filter(|&&group| group == 0).count() == 8);
 }

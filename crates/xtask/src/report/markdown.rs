@@ -904,7 +904,11 @@ fn accuracy(doc: &mut String, measurements: &Measurements) {
          `cargo test --test emulator_render` proves them identical. The oracle is exact, so a \
          knob only changes the engine's side. The columns:\n\n\
          - **surface %**: pixels showing another surface (a wall, a strip, a floor, a ceiling, \
-         the sky) than the oracle's, over all compared pixels;\n\
+         the sky) than the oracle's, over all compared pixels. Neighbours with the same floor \
+         and ceiling (heights, flats and light) joined by a portal without a middle image show \
+         one floor and one ceiling, with no edge between them, and the engine draws them as \
+         one plane (Doom's visplanes), so a floor or a ceiling counts as its plane group's \
+         (`portalcast_oracle::plane_groups`), in the oracle's frame and the engine's alike;\n\
          - **texel %**: pixels on the right surface with another palette index (rounding at texel \
          edges, and the mip rule: the engine never uses a mip level smaller than its smallest \
          column kernel, the oracle follows the plain `floor(log2(z'/d_y))` rule);\n\
@@ -913,7 +917,8 @@ fn accuracy(doc: &mut String, measurements: &Measurements) {
          top pixels and between the rows of their bottom pixels; the maximum over every column \
          of every compared frame;\n\
          - **missed sectors**: sectors the oracle's frame shows and the engine's does not, added \
-         up over the compared frames (the thesis' 24.8 projection lost portals this way);\n\
+         up over the compared frames (the thesis' 24.8 projection lost portals this way), \
+         each counted as its plane group;\n\
          - **missed things**: things the oracle's frame shows in two pixels or more and the \
          engine's in none (`portalcast_oracle::MISSED_THING_MIN_PIXELS`), added up likewise. \
          With `things=off` the engine draws none, and the surface % counts their pixels: what \
