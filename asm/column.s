@@ -1,5 +1,5 @@
 @ Column kernels (walls, strips, the sky): one texture column stepped down one screen column.
-@ ARM code in IWRAM. Rust twins: src/raster/column.rs (identical pixels, tested).
+@ ARM code in IWRAM (the even read-modify-write ones in the cartridge, below). Rust twins: src/raster/column.rs (identical pixels, tested).
 @
 @ r0 = *const ColumnJob:
 @   +0  dst       *mut u8    first pixel: page + row*240 + byte column (see the variants)
@@ -94,7 +94,6 @@
     .arm
     .irp log2h, 3, 4, 5, 6, 7, 8
     COLUMN_KERNEL pc_col_dbl_lit_h\log2h, dbl, (32 - \log2h), 1, 2
-    COLUMN_KERNEL pc_col_even_lit_h\log2h, even, (32 - \log2h), 1, 2
     COLUMN_KERNEL pc_col_odd_lit_h\log2h, odd, (32 - \log2h), 1, 2
     .endr
 
@@ -102,8 +101,18 @@
     .arm
     .irp log2h, 3, 4, 5, 6, 7, 8
     COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, dbl, (32 - \log2h), 0, 2
-    COLUMN_KERNEL pc_col_even_unlit_h\log2h, even, (32 - \log2h), 0, 2
     COLUMN_KERNEL pc_col_odd_unlit_h\log2h, odd, (32 - \log2h), 0, 2
+    .endr
+
+    @ The even read-modify-write kernels run from the cartridge: a 240-wide even column takes
+    @ the byte-store kernel unless its odd neighbour is drawn already (the wall loop,
+    @ asm/wall.s), so they draw only the pixels beside an edge, and their 2 KB of IWRAM earn
+    @ more elsewhere (docs/BENCH.md's fast-memory table).
+    .section .text.pc_col_even, "ax", %progbits
+    .arm
+    .irp log2h, 3, 4, 5, 6, 7, 8
+    COLUMN_KERNEL pc_col_even_lit_h\log2h, even, (32 - \log2h), 1, 2
+    COLUMN_KERNEL pc_col_even_unlit_h\log2h, even, (32 - \log2h), 0, 2
     .endr
 
 

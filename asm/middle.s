@@ -1,6 +1,6 @@
 @ A portal middle's columns: where each column's ray crosses the middle's wall, and the sprite
-@ column the batch kernel draws there (asm/sprite.s), in ARM code in VRAM (linker.ld: IWRAM has
-@ no room; VRAM fetches an ARM instruction in 2 cycles, the cartridge in about 4).
+@ column the batch kernel draws there (asm/sprite.s), in ARM code in IWRAM (with the wall loop:
+@ it costs its columns' set-up in the slowest frames, where the bench hall's grate is in view).
 @ Rust twin: src/render/things.rs (middle_columns), which the host draws with; the
 @ emulator's ROM-versus-host frame test compares the two pixel for pixel. The job is built and
 @ checked by MiddleRun::new and handed over by src/hw/kernels.rs.
@@ -45,7 +45,7 @@
     .equ MR_DEPTH_MIN, 104
     .equ MR_SEEDS, 108
 
-    .section .vram.pc_middle_columns, "ax", %progbits
+    .section .iwram_render.pc_middle_columns, "ax", %progbits
     .arm
     .global pc_middle_columns
     .type pc_middle_columns, %function

@@ -1662,9 +1662,9 @@ impl<'s> StripLevel<'s> {
     };
 
     /// The level [`mip_level_of_ratio`] picks for `ratio`, and the ratios that pick it too.
-    /// Once a wall and strip: in the VRAM Mode 4 leaves free (IWRAM is full).
+    /// Once a wall and strip, and again at each change of level: out of line, in IWRAM.
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".vram.strip_level_of")]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.strip_level_of")]
     fn of(texture: &Texture<'s>, ratio: i32) -> StripLevel<'s> {
         let level = mip_level_of_ratio(
             ratio,
