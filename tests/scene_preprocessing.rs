@@ -15,11 +15,10 @@ use portalcast::bench::{default_settings, FRAMES_PER_SETTING};
 use portalcast::flight::Flight;
 use portalcast::frame::Resolution;
 use portalcast::render::demo::render_assets;
-use portalcast::render::surface::Surface;
 use portalcast::render::view::{Camera, Preprocessing, Settings, View};
 use portalcast::render::walk::{FrameStats, Renderer};
 use portalcast_format::MapTables;
-use portalcast_oracle::{plane_groups, RecordingCanvas};
+use portalcast_oracle::{plane_groups, plane_surface, RecordingCanvas};
 
 /// Differing pixels allowed, per pixel compared: one in ten thousand.
 const DIFFERING_PIXELS_PER_PIXEL: f64 = 1e-4;
@@ -49,11 +48,7 @@ fn differing_pixels(
     context: &str,
 ) -> usize {
     let width = plain.resolution.width();
-    let plane = |surface: Surface| match surface {
-        Surface::Floor(s) => Surface::Floor(groups[usize::from(s)]),
-        Surface::Ceiling(s) => Surface::Ceiling(groups[usize::from(s)]),
-        other => other,
-    };
+    let plane = |surface| plane_surface(groups, surface);
     let surface_at = |canvas: &RecordingCanvas, index: usize, rows: isize| {
         let row = (index / width) as isize + rows;
         (0..plain.resolution.height() as isize)

@@ -277,12 +277,7 @@ impl Frame {
     /// `surface`, a floor or a ceiling counted as its plane group's ([`Frame::plane_groups`]);
     /// any other surface as it is.
     pub fn plane_surface(&self, surface: Surface) -> Surface {
-        let group = |s: u16| self.plane_groups.get(usize::from(s)).copied().unwrap_or(s);
-        match surface {
-            Surface::Floor(s) => Surface::Floor(group(s)),
-            Surface::Ceiling(s) => Surface::Ceiling(group(s)),
-            other => other,
-        }
+        plane_surface(&self.plane_groups, surface)
     }
 
     /// The sector a surface belongs to, as its plane group ([`Frame::plane_groups`]): of the
@@ -305,5 +300,17 @@ impl Frame {
             Surface::Sky | Surface::None => None,
         };
         sector.map(group)
+    }
+}
+
+/// `surface`, a floor or a ceiling counted as its plane group's in `groups` (sector index →
+/// group, as [`plane_groups`] makes it; a sector past its end is a group of its own); any other
+/// surface as it is.
+pub fn plane_surface(groups: &[u16], surface: Surface) -> Surface {
+    let group = |s: u16| groups.get(usize::from(s)).copied().unwrap_or(s);
+    match surface {
+        Surface::Floor(s) => Surface::Floor(group(s)),
+        Surface::Ceiling(s) => Surface::Ceiling(group(s)),
+        other => other,
     }
 }
