@@ -512,15 +512,11 @@ impl<W: WindowStore> Renderer<W> {
     #[inline(never)]
     fn fill_column_angles(&mut self, viewport: &crate::math::Viewport) {
         let width = viewport.width as usize;
-        for (column, angle) in self.windows.windows().column_angles[..width]
-            .iter_mut()
-            .enumerate()
-        {
-            *angle = column_angle(
-                2 * (column as i32 - viewport.centre_x()) + 1,
-                2 * viewport.focal_x,
-            );
-        }
+        column_angles(
+            viewport.centre_x(),
+            viewport.focal_x,
+            &mut self.windows.windows().column_angles[..width],
+        );
         self.column_angles_width = viewport.width;
     }
 
@@ -1880,33 +1876,141 @@ pub(crate) fn is_sky(sector: &Sector) -> bool {
     sector.ceil_texture == SKY
 }
 
-/// The binary angle (65,536 per turn) from the view direction to a column's ray, whose slope is
-/// `q / twice_focal` (`q = 2(c − cx) + 1`): the largest angle with `tan ≤` the slope, found by
-/// bisection on the sine table, so the sky needs no arctangent table. Computed once per
-/// resolution.
-pub fn column_angle(q: i32, twice_focal: i32) -> i16 {
-    use crate::math::Angle;
-    // Angles within ±45° (a quarter turn is 16,384): the field of view is 90°.
-    let (mut low, mut high) = (-8192i32, 8192i32);
+/// Whether the binary angle `angle` (within ±45°) is at most the angle of the slope
+/// `q / twice_focal`: `tan(angle) ≤ q/2d  ⇔  sin·2d ≤ q·cos` (cos > 0 there).
+fn angle_within_slope(angle: i32, q: i32, twice_focal: i32) -> bool {
+    let (sin, cos) = crate::math::Angle::from_bits(angle as u16).sin_cos();
+    i64::from(sin.to_bits()) * i64::from(twice_focal) <= i64::from(q) * i64::from(cos.to_bits())
+}
+
+/// Angles within ±45° (a quarter turn is 16,384): the field of view is 90°.
+const COLUMN_ANGLE_LIMIT: i32 = 8192;
+
+/// The largest angle of `low..=high` within the slope `q / twice_focal`, `low` if none above
+/// it is (`low` itself is not tested): bisection on the sine table.
+fn bisect_column_angle(mut low: i32, mut high: i32, q: i32, twice_focal: i32) -> i32 {
     while low < high {
         let middle = (low + high + 1).div_euclid(2);
-        let (sin, cos) = Angle::from_bits(middle as u16).sin_cos();
-        // tan(middle) ≤ q/2d  ⇔  sin·2d ≤ q·cos (cos > 0 here).
-        if i64::from(sin.to_bits()) * i64::from(twice_focal)
-            <= i64::from(q) * i64::from(cos.to_bits())
-        {
+        if angle_within_slope(middle, q, twice_focal) {
             low = middle;
         } else {
             high = middle - 1;
         }
     }
-    low as i16
+    low
+}
+
+/// The binary angle (65,536 per turn) from the view direction to a column's ray, whose slope is
+/// `q / twice_focal` (`q = 2(c − cx) + 1`): the largest angle with `tan ≤` the slope, found by
+/// bisection on the sine table, so the sky needs no arctangent table. [`column_angles`] finds
+/// the same angles for a whole row of columns faster.
+pub fn column_angle(q: i32, twice_focal: i32) -> i16 {
+    bisect_column_angle(-COLUMN_ANGLE_LIMIT, COLUMN_ANGLE_LIMIT, q, twice_focal) as i16
+}
+
+/// [`column_angle`] of every column of `angles` (column 0 first) for a viewport centred on
+/// column `centre_x` with focal length `focal_x`. Once per resolution, inside the first frame
+/// drawn at it; the bisection's fourteen sines a column made the switch to 240 wide stall
+/// that frame by about 780,000 cycles from the cartridge (`pc-profile` over the bench scene's
+/// switch from 120×160 to 240×160; 70,000 now). Here each angle is searched for around the one
+/// its two neighbours on the left point to (they step almost evenly), a few sines a column,
+/// and bisected inside the bracket that search finds, so the angles are the bisection's.
+pub fn column_angles(centre_x: i32, focal_x: i32, angles: &mut [i16]) {
+    let twice_focal = 2 * focal_x;
+    let (mut before, mut step) = (None::<i32>, 0i32);
+    for (column, angle) in angles.iter_mut().enumerate() {
+        let q = 2 * (column as i32 - centre_x) + 1;
+        let found = match before {
+            None => bisect_column_angle(-COLUMN_ANGLE_LIMIT, COLUMN_ANGLE_LIMIT, q, twice_focal),
+            Some(previous) => {
+                // The answer is the largest angle within the slope, or the lower limit: find a
+                // bracket `low..=high` around the guess that holds it, by doubling strides.
+                let guess = (previous + step).clamp(-COLUMN_ANGLE_LIMIT, COLUMN_ANGLE_LIMIT);
+                let (mut low, mut high);
+                if guess == -COLUMN_ANGLE_LIMIT || angle_within_slope(guess, q, twice_focal) {
+                    low = guess;
+                    let mut stride = 1;
+                    loop {
+                        let probe = low + stride;
+                        if probe > COLUMN_ANGLE_LIMIT {
+                            high = COLUMN_ANGLE_LIMIT;
+                            break;
+                        }
+                        if !angle_within_slope(probe, q, twice_focal) {
+                            high = probe - 1;
+                            break;
+                        }
+                        low = probe;
+                        stride *= 2;
+                    }
+                } else {
+                    high = guess - 1;
+                    let mut stride = 1;
+                    loop {
+                        let probe = high - stride + 1;
+                        if probe <= -COLUMN_ANGLE_LIMIT {
+                            low = -COLUMN_ANGLE_LIMIT;
+                            break;
+                        }
+                        if angle_within_slope(probe, q, twice_focal) {
+                            low = probe;
+                            break;
+                        }
+                        high = probe - 1;
+                        stride *= 2;
+                    }
+                }
+                bisect_column_angle(low, high, q, twice_focal)
+            }
+        };
+        if let Some(previous) = before {
+            step = found - previous;
+        }
+        before = Some(found);
+        *angle = found as i16;
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    /// The row search finds the bisection's angle in every column of every resolution, and of
+    /// viewports of other widths and focal lengths.
+    #[test]
+    fn column_angles_are_the_bisection_s() {
+        let resolutions = crate::frame::Resolution::ALL
+            .iter()
+            .map(|resolution| (resolution.width() as i32, resolution.height() as i32));
+        let others = [(2, 2), (7, 5), (64, 160), (239, 16), (240, 2)];
+        for (width, height) in resolutions.chain(others) {
+            let viewport = crate::math::Viewport::new(width, height);
+            let mut angles = vec![0i16; width as usize];
+            column_angles(viewport.centre_x(), viewport.focal_x, &mut angles);
+            for (column, &angle) in angles.iter().enumerate() {
+                let q = 2 * (column as i32 - viewport.centre_x()) + 1;
+                assert_eq!(
+                    angle,
+                    column_angle(q, 2 * viewport.focal_x),
+                    "width {width}, column {column}"
+                );
+            }
+        }
+        // Focal lengths the viewports do not have: wide and narrow rows of slopes.
+        for focal_x in [1, 3, 17, 60, 120, 1000, 30000] {
+            let mut angles = vec![0i16; 240];
+            column_angles(120, focal_x, &mut angles);
+            for (column, &angle) in angles.iter().enumerate() {
+                let q = 2 * (column as i32 - 120) + 1;
+                assert_eq!(
+                    angle,
+                    column_angle(q, 2 * focal_x),
+                    "focal {focal_x}, column {column}"
+                );
+            }
+        }
+    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(5000))]
