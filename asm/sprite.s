@@ -27,6 +27,8 @@
 @                               texel over the one behind it, read back from VRAM
 @ The 240-wide blending runs sit in the VRAM Mode 4 leaves free, not IWRAM: they draw only the
 @ translucent things and middles at 240 wide, and IWRAM's bytes earn more in the wall stage.
+@ The frames that pay are 240-wide ones with translucent sprites across the screen near the
+@ eye (the long soak's, docs/RELIABILITY.md), where every pixel of them runs from VRAM.
 @ Cycles per pixel: docs/BENCH.md.
 
     .section .iwram.pc_sprite, "ax", %progbits
