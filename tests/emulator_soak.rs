@@ -23,7 +23,9 @@
 //! `PORTALCAST_SOAK_FRAMES` sets the emulator frames per map (default [`SHORT_SOAK_FRAMES`]);
 //! the long form, 100,000 frames per map, is
 //! `PORTALCAST_SOAK_FRAMES=100000 cargo test --test emulator_soak -- --nocapture`
-//! (docs/RELIABILITY.md records its last result).
+//! (docs/RELIABILITY.md records its last result). `PORTALCAST_SOAK_KEYS=DIR` also writes each
+//! map's buttons, from power-on, to `DIR/MAP.keys`, a key script `pc-run` and `pc-profile`
+//! take: a frame of the soak can be replayed and profiled alone.
 
 mod common;
 
@@ -162,6 +164,13 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
     let ticks = frames + 64;
     let plan = Plan::write(map, seed, ticks);
     let script = plan.script(start);
+    if let Some(directory) = std::env::var_os("PORTALCAST_SOAK_KEYS") {
+        let path = std::path::Path::new(&directory).join(format!("{map}.keys"));
+        let boot = KeyScript::new().hold(FRAME_LINES_HOLD, FRAME_LINES_KEY);
+        std::fs::create_dir_all(&directory)
+            .and_then(|()| std::fs::write(&path, format!("{boot}{script}")))
+            .map_err(|error| format!("writing {}: {error}", path.display()))?;
+    }
 
     let guarded: Vec<(&str, u32, u32)> = GUARDED
         .into_iter()

@@ -53,7 +53,7 @@ struct Options {
 }
 
 /// Frames `--from` runs at most before giving up: minutes of emulated time.
-const MAX_FRAMES_TO_FROM: u32 = 36_000;
+const MAX_FRAMES_TO_FROM: u32 = 200_000;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
