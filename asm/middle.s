@@ -213,20 +213,25 @@ pc_middle_columns:
     orr     r2, r2, r3, lsl #18
     str     r2, [r9, #12]                   @ scale
     @ Texels per row depth·(1/d_y) >> 22, one less where its product with the rows per texel
-    @ passes 2^32 (texels_per_row).
+    @ passes 2^32, and where it still does a thousandth less until it fits (texels_per_row).
     ldr     r0, [r11, #MR_IFOCAL_Y]
     smull   r0, r3, r1, r0
     mov     r0, r0, lsr #22
     orr     r0, r0, r3, lsl #10
     bic     r2, r2, r2, asr #31             @ the rows per texel, at least 0
+    mov     lr, #32                         @ the first cut is 1 (a shift by 32 is 0)
+11:
     umull   r3, r12, r2, r0
     cmp     r12, #1
-    bhi     11f
+    bhi     13f
     bne     12f
     cmp     r3, #0
     beq     12f
-11:
+13:
+    sub     r0, r0, r0, lsr lr
     sub     r0, r0, #1
+    mov     lr, #10                         @ the next a thousandth and 1
+    b       11b
 12:
     str     r0, [r9, #16]                   @ iscale
     add     r9, r9, #20

@@ -25,10 +25,6 @@
 @   pc_sprite_run_even, _odd    240 wide: read-modify-write of the halfword, keeping the other byte
 @   pc_sprite_run_blend_dbl, _blend_even, _blend_odd: the same, each pixel the blend of the lit
 @                               texel over the one behind it, read back from VRAM
-@ The 240-wide blending runs sit in the VRAM Mode 4 leaves free, not IWRAM: they draw only the
-@ translucent things and middles at 240 wide, and IWRAM's bytes earn more in the wall stage.
-@ The frames that pay are 240-wide ones with translucent sprites across the screen near the
-@ eye (the long soak's, docs/RELIABILITY.md), where every pixel of them runs from VRAM.
 @ Cycles per pixel: docs/BENCH.md.
 
     .section .iwram.pc_sprite, "ax", %progbits
@@ -274,32 +270,36 @@ pc_sprite_run_blend_dbl:
     bx      lr
     .size pc_sprite_run_blend_dbl, . - pc_sprite_run_blend_dbl
 
-    .macro RUN_BLEND_NATIVE name, odd
-    .global \name
-    .type \name, %function
+    @ 240 wide, blending: one loop for both bytes of the halfword, r4 the byte's shift (0 for
+    @ the even pixel, 8 for the odd), a few cycles a pixel dearer than a loop for each but half
+    @ their IWRAM.
+    .global pc_sprite_run_blend_odd
+    .type pc_sprite_run_blend_odd, %function
     .align 2
-\name:
+pc_sprite_run_blend_odd:
+    mov     r4, #8
+    b       1f
+    .size pc_sprite_run_blend_odd, . - pc_sprite_run_blend_odd
+
+    .global pc_sprite_run_blend_even
+    .type pc_sprite_run_blend_even, %function
+pc_sprite_run_blend_even:
+    mov     r4, #0
 1:
     LIT_TEXEL
     ldrh    r9, [r0]
-    .if \odd
-    mov     r3, r9, lsr #8
-    .else
-    and     r3, r9, #0xff
-    .endif
+    mov     r3, r9, lsr r4
+    and     r3, r3, #0xff
     add     r3, r10, r3, lsl #8
     ldrb    r10, [r1, r3]
-    STORE_NATIVE \odd
+    mov     r3, #0xff
+    bic     r9, r9, r3, lsl r4
+    orr     r9, r9, r10, lsl r4
+    strh    r9, [r0], #240
     subs    r11, r11, #1
     bne     1b
     bx      lr
-    .size \name, . - \name
-    .endm
-
-    .section .vram.pc_sprite_blend_native, "ax", %progbits
-    .arm
-    RUN_BLEND_NATIVE pc_sprite_run_blend_even, 0
-    RUN_BLEND_NATIVE pc_sprite_run_blend_odd, 1
+    .size pc_sprite_run_blend_even, . - pc_sprite_run_blend_even
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

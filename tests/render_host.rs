@@ -110,3 +110,79 @@ fn host_render_pngs_show_the_bench_map() {
         println!("{} {stats:?}", path.display());
     }
 }
+
+/// [`RecordingCanvas`], and every batch of sprite columns checked as the GBA's canvas checks it
+/// before its kernel runs (`hw::kernels::VramCanvas::sprite_columns`): each column's steps
+/// within the kernel's bound.
+struct StepsChecking(RecordingCanvas);
+
+impl portalcast::raster::Canvas for StepsChecking {
+    fn resolution(&self) -> Resolution {
+        self.0.resolution()
+    }
+    fn column(
+        &mut self,
+        x: usize,
+        row: usize,
+        count: usize,
+        texture: &portalcast::raster::column::ColumnTexture,
+    ) {
+        self.0.column(x, row, count, texture);
+    }
+    fn sprite_column(&mut self, x: usize, column: &portalcast::raster::sprite::SpriteColumn) {
+        self.0.sprite_column(x, column);
+    }
+    fn sprite_columns(&mut self, batch: &portalcast::raster::sprite::SpriteBatch) {
+        for record in batch.columns {
+            assert!(
+                portalcast::raster::sprite::steps_fit(record.y_top, record.scale, record.iscale),
+                "{record:?}"
+            );
+        }
+        self.0.sprite_columns(batch);
+    }
+    fn flat(
+        &mut self,
+        row: usize,
+        x: usize,
+        count: usize,
+        texture: &portalcast::raster::flat::FlatTexture,
+    ) {
+        self.0.flat(row, x, count, texture);
+    }
+    fn set_halved_flats(&mut self, halved: bool) {
+        self.0.set_halved_flats(halved);
+    }
+    fn set_surface(&mut self, surface: Surface) {
+        self.0.set_surface(surface);
+    }
+}
+
+/// The long soak's pose that stopped the ROM (its canvas refused a column of the gallery's
+/// translucent window): flying in the gallery near the window's wall line, where the window's
+/// depth, from the reciprocal of the wall's small constant, and its rows per texel disagreed
+/// by 5 in 10,000, and the texels per row went past the sprite kernel's bound.
+#[test]
+fn a_middle_seen_from_near_its_wall_line_keeps_its_steps_in_the_kernel_s_bound() {
+    use common::demos::{render_line_settings, PlayerLine, WorldLine};
+    let player = PlayerLine::parse(
+        "player frame=22956 vblank=48006 tick=48001 lost=0 keys=0x040 x=216977 y=-31764 \
+         z=40960 angle=43264 sector=27 look=6 ground=0 crouch=0 fly=1 run=1 menu=-1 hud=1 \
+         game_cycles=5557 ticks=2 tick_cycles=4888 tick_max_cycles=2444",
+    );
+    let world = WorldLine::parse("world frame=22956 heights=0,128 thrown=0 lights=90,168,21,60");
+    let line = "render map=bench frame=22956 res=120x80 lighting=depth tex=ewram prep=off \
+                floors=full things=on page=0x06000000 cycles=285819";
+    let (map, settings) = render_line_settings(line);
+    let view = View::new(&player.camera(), &settings).at_tick(player.tick);
+    let live = WorldLine::world_of(Some(&world), &map);
+    let mut canvas = StepsChecking(RecordingCanvas::new(settings.resolution));
+    let stats = Renderer::new().render(
+        &live.map(&map),
+        &portalcast::render::demo::render_assets(),
+        &view,
+        &mut canvas,
+    );
+    assert_eq!(stats.middles_drawn, 3, "the three windows: {stats:?}");
+    assert!(canvas.0.writes.iter().all(|&writes| writes == 1));
+}

@@ -772,19 +772,22 @@ fn ray_fraction(numerator: i64, denominator: u32) -> u32 {
 
 /// Texels per row at eye depth `depth` (24.8 bits), `z'/d_y` in 16.16, one less where its
 /// product with `rows_per_texel` would pass 2^32: the sprite kernel's bound on its steps
-/// (`SpriteColumn::reads_inside`). Both are rounded quotients of reciprocals good to 1e-9, so
-/// the product passes 2^32 by a few units at most, less than one step of `rows_per_texel`
-/// (at least `d_y / EYE_DEPTH_MAX`, about 170 in 16.16).
+/// (`SpriteColumn::reads_inside`). For a thing both are rounded quotients of reciprocals good
+/// to 1e-9, so the product passes 2^32 by a few units at most, less than one step of
+/// `rows_per_texel` (at least `d_y / EYE_DEPTH_MAX`, about 170 in 16.16). A middle's depth
+/// comes from the reciprocal of its wall's constant, which an eye near the wall's line makes
+/// small, and there the two disagree by more (the long soak found 5 in 10,000, in the bench
+/// gallery's window): a thousandth less, until the product fits.
 fn texels_per_row(depth: i32, rows_per_texel: i64, inverse_focal_y: i32) -> u32 {
     // Both below 2^32 (depths under 2^23 bits, 2.30 reciprocals): 32-bit factors.
-    let iscale = u64::from(((i64::from(depth) * i64::from(inverse_focal_y)) >> 22) as u32);
+    let mut iscale = u64::from(((i64::from(depth) * i64::from(inverse_focal_y)) >> 22) as u32);
     let rows = u64::from(rows_per_texel.max(0) as u32);
-    let iscale = if rows * iscale > 1 << 32 {
-        iscale - 1
-    } else {
-        iscale
-    };
-    debug_assert!(rows * iscale <= 1 << 32, "rows {rows} iscale {iscale}");
+    if rows * iscale > 1 << 32 {
+        iscale -= 1;
+        while rows * iscale > 1 << 32 {
+            iscale -= (iscale >> 10) + 1;
+        }
+    }
     iscale as u32
 }
 
