@@ -1789,7 +1789,6 @@ fn vertex(map: &MapTables, index: u16) -> WorldPoint {
     WorldPoint::from_int(v.x, v.y)
 }
 
-/// A wall's length in 24.8: the map compiler's ([`Wall::length_fx8`]).
 /// Whether sectors `a` and `b` have the same floor and ceiling: heights, flats and light. A
 /// portal between two such (without a middle image) shows nothing of itself: no strip, and the
 /// planes on either side meet in one (Doom's `R_AddLine` leaves such a line out).
@@ -1809,6 +1808,7 @@ pub fn same_planes(a: &Sector, b: &Sector) -> bool {
     )
 }
 
+/// A wall's length in 24.8: the map compiler's ([`Wall::length_fx8`]).
 fn wall_length(wall: &Wall) -> Fx24_8 {
     Fx24_8::from_bits(wall.length_fx8)
 }
@@ -1912,7 +1912,7 @@ pub fn column_angle(q: i32, twice_focal: i32) -> i16 {
 /// column `centre_x` with focal length `focal_x`. Once per resolution, inside the first frame
 /// drawn at it; the bisection's fourteen sines a column made the switch to 240 wide stall
 /// that frame by about 780,000 cycles from the cartridge (`pc-profile` over the bench scene's
-/// switch from 120×160 to 240×160; 70,000 now). Here each angle is searched for around the one
+/// switch from 120×160 to 240×160; about 85,000 now). Here each angle is searched for around the one
 /// its two neighbours on the left point to (they step almost evenly), a few sines a column,
 /// and bisected inside the bracket that search finds, so the angles are the bisection's.
 pub fn column_angles(centre_x: i32, focal_x: i32, angles: &mut [i16]) {
@@ -1923,42 +1923,26 @@ pub fn column_angles(centre_x: i32, focal_x: i32, angles: &mut [i16]) {
         let found = match before {
             None => bisect_column_angle(-COLUMN_ANGLE_LIMIT, COLUMN_ANGLE_LIMIT, q, twice_focal),
             Some(previous) => {
-                // The answer is the largest angle within the slope, or the lower limit: find a
-                // bracket `low..=high` around the guess that holds it, by doubling strides.
+                // The answer is the largest angle within the slope, or the lower limit: at
+                // least `low` once `low` is within it (or the limit), at most `high` once
+                // `high + 1` is not (or `high` is the limit). From the guess, each bound moves
+                // out by doubling strides until it holds, then the range is bisected.
                 let guess = (previous + step).clamp(-COLUMN_ANGLE_LIMIT, COLUMN_ANGLE_LIMIT);
-                let (mut low, mut high);
-                if guess == -COLUMN_ANGLE_LIMIT || angle_within_slope(guess, q, twice_focal) {
-                    low = guess;
-                    let mut stride = 1;
-                    loop {
-                        let probe = low + stride;
-                        if probe > COLUMN_ANGLE_LIMIT {
-                            high = COLUMN_ANGLE_LIMIT;
-                            break;
-                        }
-                        if !angle_within_slope(probe, q, twice_focal) {
-                            high = probe - 1;
-                            break;
-                        }
-                        low = probe;
-                        stride *= 2;
-                    }
-                } else {
-                    high = guess - 1;
-                    let mut stride = 1;
-                    loop {
-                        let probe = high - stride + 1;
-                        if probe <= -COLUMN_ANGLE_LIMIT {
-                            low = -COLUMN_ANGLE_LIMIT;
-                            break;
-                        }
-                        if angle_within_slope(probe, q, twice_focal) {
-                            low = probe;
-                            break;
-                        }
-                        high = probe - 1;
-                        stride *= 2;
-                    }
+                let beyond = |angle: i32| {
+                    angle > -COLUMN_ANGLE_LIMIT && !angle_within_slope(angle, q, twice_focal)
+                };
+                let (mut low, mut high) = (guess, guess);
+                let mut stride = 1;
+                while beyond(low) {
+                    high = low - 1;
+                    low = (low - stride).max(-COLUMN_ANGLE_LIMIT);
+                    stride *= 2;
+                }
+                stride = 1;
+                while high < COLUMN_ANGLE_LIMIT && !beyond(high + 1) {
+                    low = high + 1;
+                    high = (high + stride).min(COLUMN_ANGLE_LIMIT);
+                    stride *= 2;
                 }
                 bisect_column_angle(low, high, q, twice_focal)
             }
