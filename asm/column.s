@@ -1,5 +1,6 @@
 @ Column kernels (walls, strips, the sky): one texture column stepped down one screen column.
-@ ARM code in IWRAM (the even read-modify-write ones in the cartridge, below). Rust twins: src/raster/column.rs (identical pixels, tested).
+@ ARM code in IWRAM. Rust twins: src/raster/column.rs (identical pixels, tested; a pair
+@ kernel's twin is its two columns drawn one after the other, `Canvas::column_pair`).
 @
 @ r0 = *const ColumnJob:
 @   +0  dst       *mut u8    first pixel: page + row*240 + byte column (see the variants)
@@ -15,8 +16,9 @@
 @   pc_col_dbl_{unlit,lit}_hN   120-wide modes: STRB to VRAM writes the byte to both halves of
 @                               the halfword, so one store draws a logical pixel 2 screen pixels
 @                               wide. dst = page + row*240 + 2*x.
-@   pc_col_even_{unlit,lit}_hN  240-wide mode, even x: read-modify-write of the halfword, keeping
-@   pc_col_odd_{unlit,lit}_hN   the neighbour's byte. dst = page + row*240 + (x & ~1).
+@   pc_col_pair_{unlit,lit}_hN  240-wide mode: two jobs, the columns x and x + 1 (x even) that
+@                               share the halfwords (either may be left out), dst = page +
+@                               row*240 + x each; below, at PAIR_KERNEL.
 @ Per pixel (IWRAM texels and colormap): measured by the ROM's kernel check, see docs/BENCH.md.
 
     .macro PIXEL_DBL shift, lit
@@ -28,39 +30,7 @@
     strb    r0, [r1], #240
     .endm
 
-    .macro PIXEL_RMW shift, lit, odd
-    ldrb    r0, [r2, r3, lsr #\shift]
-    .if \lit
-    ldrb    r0, [r6, r0]
-    .endif
-    ldrh    r12, [r1]
-    add     r3, r3, r4
-    .if \odd
-    and     r12, r12, #0xff
-    orr     r12, r12, r0, lsl #8
-    .else
-    and     r12, r12, #0xff00
-    orr     r12, r12, r0
-    .endif
-    strh    r12, [r1], #240
-    .endm
-
-    @ One kernel: the remainder (count % block) one pixel at a time, then unrolled blocks of 4,
-    @ to keep the IWRAM footprint of the 36 variants down (blocks of 8 for the 120-wide ones
-    @ took 672 bytes more for about half a cycle a pixel less).
-    .macro PIXEL_ANY kind, shift, lit
-    .ifc \kind, dbl
-    PIXEL_DBL \shift, \lit
-    .endif
-    .ifc \kind, even
-    PIXEL_RMW \shift, \lit, 0
-    .endif
-    .ifc \kind, odd
-    PIXEL_RMW \shift, \lit, 1
-    .endif
-    .endm
-
-    .macro COLUMN_KERNEL name, kind, shift, lit, block_log2
+    .macro COLUMN_KERNEL name, shift, lit, block_log2
     .global \name
     .type \name, %function
     .align 2
@@ -70,7 +40,7 @@
     ands    r7, r5, #((1 << \block_log2) - 1)
     beq     2f
 1:
-    PIXEL_ANY \kind, \shift, \lit
+    PIXEL_DBL \shift, \lit
     subs    r7, r7, #1
     bne     1b
 2:
@@ -78,7 +48,7 @@
     beq     4f
 3:
     .rept (1 << \block_log2)
-    PIXEL_ANY \kind, \shift, \lit
+    PIXEL_DBL \shift, \lit
     .endr
     subs    r5, r5, #1
     bne     3b
@@ -88,31 +58,124 @@
     .size \name, . - \name
     .endm
 
-    @ Two banks share their IWRAM run addresses (linker.ld): the lit kernels and the unlit ones.
-    @ src/hw/kernels.rs copies in the bank a call needs before it calls into it.
-    .section .iwram_kernels_lit.pc_column, "ax", %progbits
+    @ One pixel of one column of a pair by read-modify-write of its halfword, keeping the
+    @ other byte (the even column's in the low byte): \dst, \tex, \v, \dv, \cmap its job's
+    @ registers; r0 and r12 scratch.
+    .macro PIXEL_ALONE dst, tex, v, dv, cmap, shift, lit, odd
+    ldrb    r0, [\tex, \v, lsr #\shift]
+    .if \lit
+    ldrb    r0, [\cmap, r0]
+    .endif
+    ldrh    r12, [\dst]
+    add     \v, \v, \dv
+    .if \odd
+    and     r12, r12, #0xff
+    orr     r12, r12, r0, lsl #8
+    .else
+    and     r12, r12, #0xff00
+    orr     r12, r12, r0
+    .endif
+    strh    r12, [\dst], #240
+    .endm
+
+    @ One row of both columns: one halfword store, no read. r1 the even column's dst (the odd
+    @ one's is the same); r0 and r7 scratch.
+    .macro PIXEL_PAIR shift, lit
+    ldrb    r0, [r2, r3, lsr #\shift]
+    ldrb    r7, [r8, r9, lsr #\shift]
+    add     r3, r3, r4
+    add     r9, r9, r10
+    .if \lit
+    ldrb    r0, [r6, r0]
+    ldrb    r7, [lr, r7]
+    .endif
+    orr     r0, r0, r7, lsl #8
+    strh    r0, [r1], #240
+    .endm
+
+    @ A pair kernel: the columns 2k and 2k + 1 of a 240-wide page, r0 = *const [ColumnJob; 2]
+    @ (the even column's job, then the odd one's), each dst = page + its top row·240 + 2k.
+    @ A count of 0 leaves that column out. The rows only one column draws (above and below
+    @ the other's) take a read-modify-write each; the rows both draw, one halfword store.
+    @ The pixels are those of the two columns drawn one after the other by read-modify-write.
+    .macro PAIR_KERNEL name, shift, lit
+    .global \name
+    .type \name, %function
+    .align 2
+\name:
+    push    {r4-r11, lr}
+    ldmia   r0!, {r1-r6}                    @ even: dst, texels, v, dv, count, colormap
+    ldmia   r0, {r7-r11, lr}                @ odd
+0:  @ A column left out, or done, is below every row: its dst the largest address.
+    cmp     r5, #0
+    mvneq   r1, #0
+    cmp     r11, #0
+    mvneq   r7, #0
+1:  @ The even column's rows above the odd one's.
+    cmp     r1, r7
+    bhs     2f
+    PIXEL_ALONE r1, r2, r3, r4, r6, \shift, \lit, 0
+    subs    r5, r5, #1
+    bne     1b
+    mvn     r1, #0
+2:  @ The odd column's rows above the even one's.
+    cmp     r7, r1
+    bhs     3f
+    PIXEL_ALONE r7, r8, r9, r10, lr, \shift, \lit, 1
+    subs    r11, r11, #1
+    bne     2b
+    b       0b
+3:  @ Both at one row, or both done.
+    cmn     r1, #1
+    beq     5f
+    cmp     r5, r11
+    movlo   r12, r5
+    movhs   r12, r11
+    sub     r5, r5, r12
+    sub     r11, r11, r12
+    @ Two rows a turn; an odd count enters at the second.
+    tst     r12, #1
+    addne   r12, r12, #1
+    bne     7f
+4:
+    PIXEL_PAIR \shift, \lit
+7:
+    PIXEL_PAIR \shift, \lit
+    subs    r12, r12, #2
+    bne     4b
+    mov     r7, r1
+    b       0b
+5:
+    pop     {r4-r11, lr}
+    bx      lr
+    .size \name, . - \name
+    .endm
+
+    @ Four banks share their IWRAM run addresses (linker.ld): by lighting, and by packing (a
+    @ resolution draws with one). src/hw/kernels.rs (`ColumnBank`) copies in the bank a call
+    @ needs before it calls into it.
+    .section .iwram_columns_dbl_lit.pc_column, "ax", %progbits
     .arm
     .irp log2h, 3, 4, 5, 6, 7, 8
-    COLUMN_KERNEL pc_col_dbl_lit_h\log2h, dbl, (32 - \log2h), 1, 2
-    COLUMN_KERNEL pc_col_odd_lit_h\log2h, odd, (32 - \log2h), 1, 2
+    COLUMN_KERNEL pc_col_dbl_lit_h\log2h, (32 - \log2h), 1, 2
     .endr
 
-    .section .iwram_kernels_unlit.pc_column, "ax", %progbits
+    .section .iwram_columns_dbl_unlit.pc_column, "ax", %progbits
     .arm
     .irp log2h, 3, 4, 5, 6, 7, 8
-    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, dbl, (32 - \log2h), 0, 2
-    COLUMN_KERNEL pc_col_odd_unlit_h\log2h, odd, (32 - \log2h), 0, 2
+    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, (32 - \log2h), 0, 2
     .endr
 
-    @ The even read-modify-write kernels run from the cartridge: a 240-wide even column takes
-    @ the byte-store kernel unless its odd neighbour is drawn already (the wall loop,
-    @ asm/wall.s), so they draw only the pixels beside an edge, and their 2 KB of IWRAM earn
-    @ more elsewhere (docs/BENCH.md's fast-memory table).
-    .section .text.pc_col_even, "ax", %progbits
+    .section .iwram_columns_pair_lit.pc_column, "ax", %progbits
     .arm
     .irp log2h, 3, 4, 5, 6, 7, 8
-    COLUMN_KERNEL pc_col_even_lit_h\log2h, even, (32 - \log2h), 1, 2
-    COLUMN_KERNEL pc_col_even_unlit_h\log2h, even, (32 - \log2h), 0, 2
+    PAIR_KERNEL pc_col_pair_lit_h\log2h, (32 - \log2h), 1
+    .endr
+
+    .section .iwram_columns_pair_unlit.pc_column, "ax", %progbits
+    .arm
+    .irp log2h, 3, 4, 5, 6, 7, 8
+    PAIR_KERNEL pc_col_pair_unlit_h\log2h, (32 - \log2h), 0
     .endr
 
 

@@ -17,17 +17,22 @@
 @  52 clip  56 ceiling  60 floor (Window arrays: a word per column, top in the low half)
 @  64 length  68 x_offset  72 inverse_focal_y  76 light_mode (0 off, 1 fixed, 2 depth)
 @  80 light_base  84 colormap  88 recip_seeds (u16[1024])  92 horizon_row  96 page  100 native
+@     (NATIVE_BIT where two pixels share a halfword, else 0)
 @ 104 column_pixels  108 strips_drawn  112 miss_ratio  116 resume  120 resume_rows[2]
-@ 128 strips[0], 164 strips[1]: +0 eye_to_anchor (low word)  +4 shape (level | log2 height << 8
+@ 128 strips[0], 156 strips[1]: +0 eye_to_anchor (low word)  +4 shape (level | log2 height << 8
 @     | log2 base height << 16)  +8 ratio_low  +12 ratio_high  +16 width_mask  +20 texels
-@     +24 kernel_even  +28 kernel_odd  +32 kernel_both (240 wide: the byte-store kernel that
-@     writes both pixels of a halfword)
-@ 200 window_columns  204 planes_seen (1: a ceiling window had rows, 2: a floor window)
+@     +24 kernel (120 wide: the doubled one; 240 wide: the pair kernel)
+@ 184 planes_seen (1: a ceiling window had rows, 2: a floor window)
 @
 @ Registers kept across columns: r11 the run, r10 1/z', r9 the column, r5 the pixels drawn,
-@ (from bit 16) the strips drawn, and in bits 30 and 31 whether a ceiling and a floor window had
-@ rows. The kernels keep r4-r11. The stack holds the column's strip
-@ rows and the kernels' argument block (asm/column.s).
+@ (from bit 16) the strips drawn, in bit 29 whether two pixels share a halfword (240 wide), and
+@ in bits 30 and 31 whether a ceiling and a floor window had rows. The kernels keep r4-r11. The
+@ stack holds the column's strip rows and, per strip, two kernel jobs (asm/column.s): at 120
+@ wide the column's, drawn at once; at 240 wide those of an even column and of the odd one
+@ beside it, which share VRAM halfwords: an even column's strip waits in its job (rows in it
+@ while it waits) until the odd column's is set up, and the pair kernel draws both, one
+@ halfword store a row where both have rows; one the odd column leaves alone is drawn after it
+@ (or when the run ends or stops).
 
     .equ RUN_INV, 0
     .equ RUN_INV_STEP, 4
@@ -61,8 +66,8 @@
     .equ RUN_RESUME, 116
     .equ RUN_RESUME_ROWS, 120
     .equ RUN_STRIP0, 128
-    .equ RUN_STRIP1, 164
-    .equ RUN_PLANES, 204
+    .equ RUN_STRIP1, 156
+    .equ RUN_PLANES, 184
 
     .equ STRIP_EYE, 0
     .equ STRIP_SHAPE, 4
@@ -70,16 +75,21 @@
     .equ STRIP_HIGH, 12
     .equ STRIP_WMASK, 16
     .equ STRIP_TEXELS, 20
-    .equ STRIP_K_EVEN, 24
-    .equ STRIP_K_ODD, 28
-    .equ STRIP_K_BOTH, 32
+    .equ STRIP_KERNEL, 24
 
-    @ The stack frame: the strips' rows, the kernels' job, and t/z' less x times its step.
+    @ The stack frame: the strips' rows, t/z' less x times its step, and each strip's two
+    @ kernel jobs (24 bytes each: the even column's, then the odd one's; +16 the rows).
     .equ SP_ROWS0, 0
     .equ SP_ROWS1, 4
-    .equ SP_JOB, 8
-    .equ SP_AOD, 32
-    .equ SP_FRAME, 40
+    .equ SP_AOD, 8
+    .equ SP_SLOTS0, 16
+    .equ SP_SLOTS1, 64
+    .equ SLOT_COUNT_EVEN, 16
+    .equ SLOT_COUNT_ODD, 40
+    .equ SP_FRAME, 112
+
+    @ r5's bit for a page whose halfwords hold two pixels.
+    .equ NATIVE_BIT, 0x20000000
 
     @ \dst = clamp((horizon − ((scale·inv + 2^29) >> 30)) >> 8, 0, height), as
     @ SteppedWall::rows, with r10 = 1/z'; \lo, \hi scratch (\dst may be \scale).
@@ -96,9 +106,10 @@
     movgt   \dst, \height
     .endm
 
-    @ Draws the strip at \strip, rows in r0, through .Lstrip.
-    .macro WALL_STRIP strip
+    @ Sets up the strip at \strip, rows in r0, in its jobs at \slots, through .Lstrip.
+    .macro WALL_STRIP strip, slots
     add     r2, r11, #\strip
+    mov     r3, #(\slots + 8)
     bl      .Lstrip
     .endm
 
@@ -131,7 +142,11 @@ pc_wall_run:
     mul     r2, r9, r1
     sub     r0, r0, r2
     str     r0, [sp, #SP_AOD]
-    mov     r5, #0
+    @ No strip waits; no pixels or strips drawn yet, and the packing's bit.
+    mov     r0, #0
+    str     r0, [sp, #SP_SLOTS0 + SLOT_COUNT_EVEN]
+    str     r0, [sp, #SP_SLOTS1 + SLOT_COUNT_EVEN]
+    ldr     r5, [r11, #RUN_NATIVE]
     ldr     r0, [r11, #RUN_RESUME]
     cmp     r0, #0
     beq     .Lcolumn
@@ -296,7 +311,7 @@ pc_wall_run:
     cmp     r0, #0
     beq     3f
     WALL_LEVEL_CHECK RUN_STRIP0
-    WALL_STRIP RUN_STRIP0
+    WALL_STRIP RUN_STRIP0, SP_SLOTS0
     mov     r0, #0
     str     r0, [sp, #SP_ROWS0]
 3:
@@ -304,17 +319,39 @@ pc_wall_run:
     cmp     r0, #0
     beq     .Lnext
     WALL_LEVEL_CHECK RUN_STRIP1
-    WALL_STRIP RUN_STRIP1
+    WALL_STRIP RUN_STRIP1, SP_SLOTS1
 
 .Lnext:
+    tst     r5, #NATIVE_BIT
+    bne     .Lnext_native
+.Lstep:
     ldr     r0, [r11, #RUN_INV_STEP]
     add     r9, r9, #1
     add     r10, r10, r0
     b       .Lcolumn
 
+.Lnext_native:
+    @ 240 wide: after an odd column, or an even one whose neighbour is not in the run, the
+    @ strips still waiting are drawn alone.
+    tst     r9, #1
+    bne     1f
+    ldr     r1, [r11, #RUN_STOP]
+    add     r0, r9, #1
+    cmp     r0, r1
+    blt     .Lstep
+1:
+    ldr     r0, [sp, #SP_SLOTS0 + SLOT_COUNT_EVEN]
+    ldr     r1, [sp, #SP_SLOTS1 + SLOT_COUNT_EVEN]
+    orrs    r0, r0, r1
+    blne    .Lflush
+    b       .Lstep
+
 .Lmiss:
-    @ Stop at this column, its windows written, its strips to draw when started again.
+    @ Stop at this column, its windows written, its strips to draw when started again; the
+    @ strips set up before it drawn now, with the kernels of their levels.
     str     r12, [r11, #RUN_MISS]
+    tst     r5, #NATIVE_BIT
+    blne    .Lflush
     ldr     r0, [sp, #SP_ROWS0]
     ldr     r1, [sp, #SP_ROWS1]
     str     r0, [r11, #RUN_RESUME_ROWS]
@@ -337,7 +374,7 @@ pc_wall_run:
     ldr     r1, [r11, #RUN_PLANES]
     orr     r1, r1, r5, lsr #30
     str     r1, [r11, #RUN_PLANES]
-    bic     r5, r5, #0xC0000000
+    bic     r5, r5, #0xE0000000
     ldr     r1, [r11, #RUN_PIXELS]
     ldr     r2, [r11, #RUN_STRIPS]
     mov     r3, r5, lsl #16
@@ -350,93 +387,113 @@ pc_wall_run:
     bx      lr
 
     @ One strip of column r9 (draw_strip): r0 its rows (top | bottom << 16, not 0), r2 the
-    @ strip; r4 = u (24.8), r6/r7 = z'/d_y (24.8 × 2^30), r8 = the colormap row (0: unlit).
-    @ Texture column, v and its step, then the kernel. Keeps r4-r11. The kernels' job sits
-    @ just above the return address this pushes.
+    @ strip, r3 the offset of its jobs from sp (plus the 8 this pushes); r4 = u (24.8), r6/r7 =
+    @ z'/d_y (24.8 × 2^30), r8 = the colormap row (0: unlit). The column's job: dst, texture
+    @ column, v and its step; then the kernel, or at 240 wide on an even column, the wait.
+    @ Keeps r4-r11.
 .Lstrip:
-    str     lr, [sp, #-4]!
+    push    {r3, lr}
+    add     r3, sp, r3
+    tst     r5, #NATIVE_BIT
+    tstne   r9, #1
+    addne   r3, r3, #24                     @ r3: the job (240 wide, an odd column: the second)
     mov     r1, r0, lsl #16
     mov     r1, r1, lsr #16                 @ r1: top
-    rsb     r0, r1, r0, lsr #16             @ r0: count
+    rsb     r0, r1, r0, lsr #16             @ count
     add     r5, r5, r0
     add     r5, r5, #0x10000
-    str     r0, [sp, #4 + SP_JOB + 16]
-    str     r8, [sp, #4 + SP_JOB + 20]
-    @ The texel column: ((u >> 8) >> level) & width mask, 2^h texels each.
-    ldr     r3, [r2, #STRIP_WMASK]
-    ldr     r0, [r2, #STRIP_SHAPE]
-    and     lr, r0, #0xff
-    mov     r12, r4, asr #8
-    and     r12, r3, r12, asr lr
-    mov     lr, r0, lsr #8
-    and     lr, lr, #0xff
-    ldr     r3, [r2, #STRIP_TEXELS]
-    add     r3, r3, r12, lsl lr
-    str     r3, [sp, #4 + SP_JOB + 4]
+    str     r0, [r3, #16]
+    str     r8, [r3, #20]
+    @ dst = page + top·240 + (2x at 120 wide, or x & ~1 where two pixels share a halfword).
+    ldr     r0, [r11, #RUN_PAGE]
+    rsb     r12, r1, r1, lsl #4
+    add     r0, r0, r12, lsl #4
+    tst     r5, #NATIVE_BIT
+    addeq   r0, r0, r9, lsl #1
+    bicne   r12, r9, #1
+    addne   r0, r0, r12
+    str     r0, [r3]
     @ v = (eye_to_anchor + ((2(top − cy) + 1)·z'/d_y >> 31)) << (24 − base log2), low words.
-    ldr     r3, [r11, #RUN_HORIZON_ROW]
-    sub     r3, r1, r3
-    mov     r3, r3, lsl #1
-    add     r3, r3, #1                      @ twice the row offset, signed
-    umull   r12, lr, r6, r3
-    cmp     r3, #0
+    ldr     r0, [r11, #RUN_HORIZON_ROW]
+    sub     r1, r1, r0
+    mov     r1, r1, lsl #1
+    add     r1, r1, #1                      @ twice the row offset, signed
+    umull   r12, lr, r6, r1
+    cmp     r1, #0
     sublt   lr, lr, r6                      @ a negative factor read as unsigned: take it back
-    mla     lr, r3, r7, lr
+    mla     lr, r1, r7, lr
     mov     r12, r12, lsr #31
     orr     r12, r12, lr, lsl #1
-    ldr     r3, [r2, #STRIP_EYE]
-    add     r12, r12, r3
-    mov     r0, r0, lsr #16                 @ log2 of the base height
-    rsb     r3, r0, #24
-    mov     r12, r12, lsl r3
-    str     r12, [sp, #4 + SP_JOB + 8]
+    ldr     r1, [r2, #STRIP_EYE]
+    add     r12, r12, r1
+    ldr     r0, [r2, #STRIP_SHAPE]
+    mov     lr, r0, lsr #16                 @ log2 of the base height
+    rsb     lr, lr, #24
+    mov     r12, r12, lsl lr
+    str     r12, [r3, #8]
+    @ The texel column: ((u >> 8) >> level) & width mask, 2^h texels each.
+    and     lr, r0, #0xff
+    mov     r12, r4, asr #8
+    ldr     r1, [r2, #STRIP_WMASK]
+    and     r12, r1, r12, asr lr
+    mov     lr, r0, lsr #8
+    and     lr, lr, #0xff
+    ldr     r1, [r2, #STRIP_TEXELS]
+    add     r1, r1, r12, lsl lr
+    str     r1, [r3, #4]
     @ dv = z'/d_y >> (6 + base log2), low word.
-    add     r3, r0, #6
-    mov     r12, r6, lsr r3
-    rsb     r3, r3, #32
-    orr     r12, r12, r7, lsl r3
-    str     r12, [sp, #4 + SP_JOB + 12]
-    @ dst = page + top·240 + (2x, or x & ~1 where two pixels share a halfword); the kernel.
-    ldr     r0, [r11, #RUN_PAGE]
-    rsb     r3, r1, r1, lsl #4
-    add     r0, r0, r3, lsl #4
-    ldr     r3, [r11, #RUN_NATIVE]
-    cmp     r3, #0
-    addeq   r0, r0, r9, lsl #1
-    ldreq   r12, [r2, #STRIP_K_EVEN]
-    beq     .Lstrip_call
-    tst     r9, #1
-    bne     .Lstrip_odd
-    @ 240 wide, an even column: read-modify-write keeps the odd neighbour's byte, unless
-    @ the neighbour's rows here are still undrawn (inside its clip window, which holds
-    @ exactly the rows some later wall, plane or sector draws): then one byte store writes
-    @ both, and the neighbour's own pixels overwrite its half later.
-    add     r0, r0, r9
-    ldr     r12, [r2, #STRIP_K_EVEN]
-    cmp     r9, #239
-    bge     .Lstrip_call
-    ldr     r3, [r11, #RUN_CLIP]
-    add     r3, r3, r9, lsl #2
-    ldr     r3, [r3, #4]                    @ the clip window of column x + 1
-    mov     lr, r3, lsl #16
-    cmp     r1, lr, asr #16
-    blt     .Lstrip_call                    @ the strip starts above it
-    ldr     lr, [sp, #4 + SP_JOB + 16]
-    add     lr, r1, lr                      @ the strip's bottom
-    cmp     lr, r3, asr #16
-    ldrle   r12, [r2, #STRIP_K_BOTH]
-    b       .Lstrip_call
-.Lstrip_odd:
-    bic     r3, r9, #1
-    add     r0, r0, r3
-    ldr     r12, [r2, #STRIP_K_ODD]
-.Lstrip_call:
-    str     r0, [sp, #4 + SP_JOB]
-    add     r0, sp, #4 + SP_JOB
+    mov     r0, r0, lsr #16
+    add     lr, r0, #6
+    mov     r12, r6, lsr lr
+    rsb     lr, lr, #32
+    orr     r12, r12, r7, lsl lr
+    str     r12, [r3, #12]
+    @ The kernel: at 120 wide the column's; at 240 on an odd column the pair's, the even
+    @ column's job first (without rows where it has none), which is then empty.
+    ldr     r12, [r2, #STRIP_KERNEL]
+    tst     r5, #NATIVE_BIT
+    bne     1f
+    mov     r0, r3
     mov     lr, pc
     bx      r12
-    ldr     lr, [sp], #4
-    bx      lr
+    pop     {r3, pc}
+1:
+    tst     r9, #1
+    popeq   {r3, pc}
+    sub     r0, r3, #24
+    mov     lr, pc
+    bx      r12
+    ldr     r3, [sp]
+    add     r3, sp, r3
+    mov     r0, #0
+    str     r0, [r3, #SLOT_COUNT_EVEN]
+    pop     {r3, pc}
+
+    @ Draws alone the strips of an even column still waiting (240 wide), each with its
+    @ kernel, the odd column's job left out. Keeps r4-r11.
+.Lflush:
+    push    {r4, r6, lr}
+    add     r4, sp, #12 + SP_SLOTS0
+    add     r6, r11, #RUN_STRIP0 + STRIP_KERNEL
+1:
+    ldr     r0, [r4, #SLOT_COUNT_EVEN]
+    cmp     r0, #0
+    beq     2f
+    mov     r0, #0
+    str     r0, [r4, #SLOT_COUNT_ODD]
+    ldr     r12, [r6]
+    mov     r0, r4
+    mov     lr, pc
+    bx      r12
+    mov     r0, #0
+    str     r0, [r4, #SLOT_COUNT_EVEN]
+2:
+    add     r4, r4, #SP_SLOTS1 - SP_SLOTS0
+    add     r6, r6, #RUN_STRIP1 - RUN_STRIP0
+    add     r0, sp, #12 + SP_SLOTS1
+    cmp     r4, r0
+    bls     1b
+    pop     {r4, r6, pc}
     .size pc_wall_run, . - pc_wall_run
 
     @ A column kernel that draws nothing: the set-up benchmark's stand-in (VramCanvas's

@@ -237,6 +237,39 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             &column,
         );
     }
+    // Pairs of neighbouring columns (one kernel at 240 wide): each column's rows drawn at
+    // random, so one starts or ends above the other, they share no row, or they match; one
+    // in four at two heights (two kernels), one in three with a column unlit.
+    for job in 0..JOBS_PER_KIND / 2 {
+        let log2_height = heights.start() + job % (heights.end() - heights.start() + 1);
+        let x = 2 * rng.below(width / 2) as usize;
+        let mut side = |log2_height: u32, lit: bool| {
+            let column_start = rng.below((TEXEL_POOL_SIZE >> log2_height) as u32) as usize;
+            let row = rng.below(height);
+            let count = 1 + rng.below(height - row);
+            let texture = ColumnTexture {
+                texels: &TEXEL_POOL[column_start << log2_height..(column_start + 1) << log2_height],
+                log2_height,
+                v: rng.next(),
+                dv: rng.next() >> rng.below(12),
+                colormap: lit.then_some(&COLORMAP),
+            };
+            (row as usize, count as usize, texture)
+        };
+        let second_height = if job % 4 == 3 {
+            heights.start() + (log2_height + 1 - heights.start()) % 6
+        } else {
+            log2_height
+        };
+        let first = side(log2_height, job % 3 != 1);
+        let second = side(second_height, job % 3 != 2);
+        canvas.prefer_lighting(job % 2 == 0);
+        canvas.column_pair(
+            x,
+            (first.0, first.1, &first.2),
+            (second.0, second.1, &second.2),
+        );
+    }
     for job in 0..JOBS_PER_KIND {
         let log2_side = sides.start() + job % (sides.end() - sides.start() + 1);
         let texels = &TEXEL_POOL[..1 << (2 * log2_side)];

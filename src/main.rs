@@ -676,6 +676,23 @@ mod rom {
         );
         let mut native = VramCanvas::new(page(), Resolution::R240x160);
         let col_native_lit = column_cost(&mut native, true, 7);
+        // Two neighbouring columns at once, per pixel of the two.
+        let col_pair_lit = {
+            native.prefer_lighting(true);
+            let mut run = |count: usize| {
+                let column = ColumnTexture {
+                    texels: &texels[..64],
+                    log2_height: 6,
+                    v: 0,
+                    dv: 0x0123_4567,
+                    colormap: Some(&colormap),
+                };
+                let started = meter::now();
+                native.column_pair(6, (0, count, &column), (0, count, &column));
+                meter::cycles_since(started)
+            };
+            (run(160) - run(32)) * 100 / 256
+        };
         let mut wide = VramCanvas::new(page(), Resolution::R240x160);
         let (flat_pair_unlit, flat_pair_lit) =
             (flat_cost(&mut wide, false), flat_cost(&mut wide, true));
@@ -733,7 +750,7 @@ mod rom {
         let sprite_native = sprite_cost(&mut native, 7, None);
         let sprite_blend_dbl = blend.map_or(0, |table| sprite_cost(&mut doubled, 7, Some(table)));
         log::info(format_args!(
-            "kernel-cycles-x100 col_dbl_unlit={col_unlit} col_dbl_lit={col_lit} col_native_lit={col_native_lit} \
+            "kernel-cycles-x100 col_dbl_unlit={col_unlit} col_dbl_lit={col_lit} col_native_lit={col_native_lit} col_pair_lit={col_pair_lit} \
              flat_dbl_unlit={flat_dbl_unlit} flat_dbl_lit={flat_dbl_lit} flat_pair_unlit={flat_pair_unlit} flat_pair_lit={flat_pair_lit} \
              sprite_dbl={sprite_dbl} sprite_native={sprite_native} sprite_blend_dbl={sprite_blend_dbl}"
         ));

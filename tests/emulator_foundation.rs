@@ -220,6 +220,7 @@ fn kernel_costs_are_measured_with_iwram_texels() {
         "col_dbl_unlit",
         "col_dbl_lit",
         "col_native_lit",
+        "col_pair_lit",
         "flat_dbl_unlit",
         "flat_dbl_lit",
         "flat_pair_unlit",

@@ -34,6 +34,10 @@ fn iwram_addresses_are_named_by_the_code_the_profiled_scene_runs() {
         unlit_kernels: true,
         ..Overlays::default()
     });
+    let pairs = load(Overlays {
+        pair_kernels: true,
+        ..Overlays::default()
+    });
     let is_math = |name: &&str| name.contains("math_bench") || name.starts_with("pc_mb_");
     let is_render_walk = |name: &&str| name.contains("portalcast::render::walk::Renderer");
 
@@ -73,4 +77,22 @@ fn iwram_addresses_are_named_by_the_code_the_profiled_scene_runs() {
     assert!(unlit
         .lookup(*bank_start)
         .is_none_or(|name| !name.contains("_lit_")));
+
+    // The column kernel banks: the doubled kernels by default, the pair ones on request, at
+    // the same addresses.
+    let doubled = |name: &&str| name.starts_with("pc_col_dbl_");
+    let paired = |name: &&str| name.starts_with("pc_col_pair_");
+    assert!(game_names.iter().any(doubled), "{game_names:?}");
+    assert!(!game_names.iter().any(paired), "{game_names:?}");
+    let pair_names = iwram_names(&pairs);
+    assert!(pair_names.iter().any(paired), "{pair_names:?}");
+    assert!(!pair_names.iter().any(doubled), "{pair_names:?}");
+    let (column_start, _, _) = game
+        .all()
+        .iter()
+        .find(|(_, _, name)| doubled(&name.as_str()))
+        .expect("a doubled column kernel");
+    assert!(pairs
+        .lookup(*column_start)
+        .is_none_or(|name| !name.starts_with("pc_col_dbl_")));
 }

@@ -179,14 +179,13 @@ const _: () = {
     assert!(offset_of!(WallRun, resume) == 116);
     assert!(offset_of!(WallRun, resume_rows) == 120);
     assert!(offset_of!(WallRun, strips) == 128);
-    assert!(size_of::<StripRun>() == 36);
+    assert!(size_of::<StripRun>() == 28);
     assert!(offset_of!(StripRun, shape) == 4);
     assert!(offset_of!(StripRun, width_mask) == 16);
     assert!(offset_of!(StripRun, texels) == 20);
-    assert!(offset_of!(StripRun, kernel_odd) == 28);
-    assert!(offset_of!(StripRun, kernel_both) == 32);
-    assert!(offset_of!(WallRun, planes_seen) == 204);
-    assert!(size_of::<WallRun>() == 208);
+    assert!(offset_of!(StripRun, kernel) == 24);
+    assert!(offset_of!(WallRun, planes_seen) == 184);
+    assert!(size_of::<WallRun>() == 188);
     // `asm/plane.s` reads the plane's run at these.
     assert!(offset_of!(PlaneRun, inverse_focal_y) == 12);
     assert!(offset_of!(PlaneRun, level) == 24);
@@ -242,7 +241,8 @@ const _: () = {
     assert!(offset_of!(SpriteBatchJob, native) == 44);
 };
 
-/// The argument block of the column kernels (`asm/column.s`).
+/// The argument block of the column kernels (`asm/column.s`); the pair kernels take two.
+#[derive(Clone, Copy)]
 #[repr(C)]
 struct ColumnJob {
     dst: *mut u8,
@@ -308,19 +308,16 @@ macro_rules! kernel_table {
     }};
 }
 
-/// Column kernels by `[packing][lit][log2_height - 3]`; packing 0 = doubled, 1 = even, 2 = odd.
-static COLUMN_KERNELS: [[[ColumnKernel; 6]; 2]; 3] = [
+/// Column kernels by `[packing][lit][log2_height - 3]`; packing 0 = doubled (120 wide), 1 = the
+/// pairs of columns that share halfwords (240 wide), which take two jobs.
+static COLUMN_KERNELS: [[[ColumnKernel; 6]; 2]; 2] = [
     [
         kernel_table!(ColumnJob; pc_col_dbl_unlit_h3, pc_col_dbl_unlit_h4, pc_col_dbl_unlit_h5, pc_col_dbl_unlit_h6, pc_col_dbl_unlit_h7, pc_col_dbl_unlit_h8),
         kernel_table!(ColumnJob; pc_col_dbl_lit_h3, pc_col_dbl_lit_h4, pc_col_dbl_lit_h5, pc_col_dbl_lit_h6, pc_col_dbl_lit_h7, pc_col_dbl_lit_h8),
     ],
     [
-        kernel_table!(ColumnJob; pc_col_even_unlit_h3, pc_col_even_unlit_h4, pc_col_even_unlit_h5, pc_col_even_unlit_h6, pc_col_even_unlit_h7, pc_col_even_unlit_h8),
-        kernel_table!(ColumnJob; pc_col_even_lit_h3, pc_col_even_lit_h4, pc_col_even_lit_h5, pc_col_even_lit_h6, pc_col_even_lit_h7, pc_col_even_lit_h8),
-    ],
-    [
-        kernel_table!(ColumnJob; pc_col_odd_unlit_h3, pc_col_odd_unlit_h4, pc_col_odd_unlit_h5, pc_col_odd_unlit_h6, pc_col_odd_unlit_h7, pc_col_odd_unlit_h8),
-        kernel_table!(ColumnJob; pc_col_odd_lit_h3, pc_col_odd_lit_h4, pc_col_odd_lit_h5, pc_col_odd_lit_h6, pc_col_odd_lit_h7, pc_col_odd_lit_h8),
+        kernel_table!(ColumnJob; pc_col_pair_unlit_h3, pc_col_pair_unlit_h4, pc_col_pair_unlit_h5, pc_col_pair_unlit_h6, pc_col_pair_unlit_h7, pc_col_pair_unlit_h8),
+        kernel_table!(ColumnJob; pc_col_pair_lit_h3, pc_col_pair_lit_h4, pc_col_pair_lit_h5, pc_col_pair_lit_h6, pc_col_pair_lit_h7, pc_col_pair_lit_h8),
     ],
 ];
 
@@ -375,13 +372,52 @@ extern "C" {
     static __kernels_unlit_start: u8;
     static __kernels_unlit_end: u8;
     static __kernels_unlit_position_in_rom: u8;
+    static __columns_dbl_lit_start: u8;
+    static __columns_dbl_lit_end: u8;
+    static __columns_dbl_lit_position_in_rom: u8;
+    static __columns_dbl_unlit_start: u8;
+    static __columns_dbl_unlit_end: u8;
+    static __columns_dbl_unlit_position_in_rom: u8;
+    static __columns_pair_lit_start: u8;
+    static __columns_pair_lit_end: u8;
+    static __columns_pair_lit_position_in_rom: u8;
+    static __columns_pair_unlit_start: u8;
+    static __columns_pair_unlit_end: u8;
+    static __columns_pair_unlit_position_in_rom: u8;
 }
 
-/// The bank of kernels in IWRAM ([`KernelBank::id`]; 0 at boot, none yet). linker.ld gives the
-/// two the same run addresses.
+/// The span kernels' bank in IWRAM ([`KernelBank::id`]; 0 at boot, none yet). linker.ld gives
+/// the two the same run addresses.
 static LOADED_BANK: gba::prelude::GbaCell<u8> = gba::prelude::GbaCell::new(0);
 
-/// The kernel banks: [`KernelBank::ensure`] is the only way to a bank's kernels.
+/// The column kernels' bank in IWRAM ([`ColumnBank::id`]; 0 at boot, none yet). linker.ld
+/// gives the four the same run addresses, after the span kernels' banks.
+static LOADED_COLUMN_BANK: gba::prelude::GbaCell<u8> = gba::prelude::GbaCell::new(0);
+
+/// Copies a bank's image (`start..end` in IWRAM, from `source` in ROM) over the run addresses
+/// the banks of its kind share.
+#[cold]
+#[inline(never)]
+fn copy_bank(start: usize, end: usize, source: usize) {
+    let blocks = (end - start) / 32;
+    // SAFETY: linker.ld places the bank's image at `source` in ROM and its run addresses
+    // `start..end` in IWRAM, word aligned (asserted there), over the other banks' code only.
+    // No kernel is running: the kernels are leaves, called from this file only, each call
+    // after its bank's `ensure`, and no interrupt handler calls one. The copy is the gba crate's
+    // eight-word LDM/STM loop (in IWRAM), then the last words one at a time; volatile, so
+    // the stores stay before the calls that follow (the compiler does not see the code it
+    // runs).
+    unsafe {
+        gba::mem::copy_u32x8_unchecked(start as *mut [u32; 8], source as *const [u32; 8], blocks);
+        for offset in (blocks * 32..end - start).step_by(4) {
+            let word = ((source + offset) as *const u32).read_volatile();
+            ((start + offset) as *mut u32).write_volatile(word);
+        }
+    }
+}
+
+/// The span kernels' banks, lit and unlit: [`KernelBank::ensure`] is the only way to a span
+/// kernel.
 struct KernelBank;
 
 impl KernelBank {
@@ -413,37 +449,19 @@ impl KernelBank {
     #[cold]
     #[inline(never)]
     fn load(lit: bool) {
-        let (start, end, source) = if lit {
-            (
+        // SAFETY (of the addresses): the linker's symbols, read for their addresses only.
+        if lit {
+            copy_bank(
                 &raw const __kernels_lit_start as usize,
                 &raw const __kernels_lit_end as usize,
                 &raw const __kernels_lit_position_in_rom as usize,
-            )
+            );
         } else {
-            (
+            copy_bank(
                 &raw const __kernels_unlit_start as usize,
                 &raw const __kernels_unlit_end as usize,
                 &raw const __kernels_unlit_position_in_rom as usize,
-            )
-        };
-        let blocks = (end - start) / 32;
-        // SAFETY: linker.ld places the bank's image at `source` in ROM and its run addresses
-        // `start..end` in IWRAM, word aligned (asserted there), over the other bank's code only.
-        // No kernel is running: the kernels are leaves, called from this file only, each call
-        // after `ensure`, and no interrupt handler calls one. The copy is the gba crate's
-        // eight-word LDM/STM loop (in IWRAM), then the last words one at a time; volatile, so
-        // the stores stay before the calls that follow (the compiler does not see the code it
-        // runs).
-        unsafe {
-            gba::mem::copy_u32x8_unchecked(
-                start as *mut [u32; 8],
-                source as *const [u32; 8],
-                blocks,
             );
-            for offset in (blocks * 32..end - start).step_by(4) {
-                let word = ((source + offset) as *const u32).read_volatile();
-                ((start + offset) as *mut u32).write_volatile(word);
-            }
         }
         LOADED_BANK.write(KernelBank::id(lit));
     }
@@ -461,6 +479,76 @@ impl KernelBank {
             None if KernelBank::lit_loaded() => (1, IDENTITY_ROW.as_ptr()),
             None => {
                 KernelBank::ensure(false);
+                (0, core::ptr::null())
+            }
+        }
+    }
+}
+
+/// The column kernels' banks, by lighting and by packing (a resolution draws with one packing:
+/// the doubled kernels at 120 wide, the pair kernels at 240): [`ColumnBank::ensure`] is the
+/// only way to a column kernel.
+struct ColumnBank;
+
+impl ColumnBank {
+    /// How [`LOADED_COLUMN_BANK`] names the bank of `packing` (an index of
+    /// [`COLUMN_KERNELS`]), lit or not.
+    #[inline(always)]
+    const fn id(lit: bool, packing: usize) -> u8 {
+        1 + !lit as u8 + 2 * packing as u8
+    }
+
+    /// Brings the bank of `packing`, lit or not, into IWRAM unless it is there.
+    #[inline(always)]
+    fn ensure(lit: bool, packing: usize) {
+        if LOADED_COLUMN_BANK.read() != ColumnBank::id(lit, packing) {
+            ColumnBank::load(lit, packing);
+        }
+    }
+
+    /// Copies a bank's image from ROM over the others' run addresses.
+    #[cold]
+    #[inline(never)]
+    fn load(lit: bool, packing: usize) {
+        // SAFETY (of the addresses): the linker's symbols, read for their addresses only.
+        match (lit, packing) {
+            (true, 0) => copy_bank(
+                &raw const __columns_dbl_lit_start as usize,
+                &raw const __columns_dbl_lit_end as usize,
+                &raw const __columns_dbl_lit_position_in_rom as usize,
+            ),
+            (false, 0) => copy_bank(
+                &raw const __columns_dbl_unlit_start as usize,
+                &raw const __columns_dbl_unlit_end as usize,
+                &raw const __columns_dbl_unlit_position_in_rom as usize,
+            ),
+            (true, _) => copy_bank(
+                &raw const __columns_pair_lit_start as usize,
+                &raw const __columns_pair_lit_end as usize,
+                &raw const __columns_pair_lit_position_in_rom as usize,
+            ),
+            (false, _) => copy_bank(
+                &raw const __columns_pair_unlit_start as usize,
+                &raw const __columns_pair_unlit_end as usize,
+                &raw const __columns_pair_unlit_position_in_rom as usize,
+            ),
+        }
+        LOADED_COLUMN_BANK.write(ColumnBank::id(lit, packing));
+    }
+
+    /// As [`KernelBank::for_colormap`], for the column kernels of `packing`.
+    #[inline(always)]
+    fn for_colormap(colormap: Option<&[u8; 256]>, packing: usize) -> (usize, *const u8) {
+        match colormap {
+            Some(row) => {
+                ColumnBank::ensure(true, packing);
+                (1, row.as_ptr())
+            }
+            None if LOADED_COLUMN_BANK.read() == ColumnBank::id(true, packing) => {
+                (1, IDENTITY_ROW.as_ptr())
+            }
+            None => {
+                ColumnBank::ensure(false, packing);
                 (0, core::ptr::null())
             }
         }
@@ -548,6 +636,50 @@ impl VramCanvas {
         run.width = self.resolution.width() as u32;
     }
 
+    /// Which column kernels draw on this page ([`COLUMN_KERNELS`]' first index): the doubled
+    /// ones where a halfword shows one pixel (120 wide), the pair ones where it holds two.
+    #[inline(always)]
+    fn column_packing(&self) -> usize {
+        usize::from(self.resolution.pixels_per_halfword() == 2)
+    }
+
+    /// The kernel job of `count` rows of column `x` from `row`, lit through `colormap` (null:
+    /// unlit), and its kernel's height index, after one test of every bound a column kernel
+    /// trusts: its pixels inside the page, a kernel for its height, and that many texels.
+    #[inline(always)]
+    fn column_job(
+        &self,
+        x: usize,
+        row: usize,
+        count: usize,
+        texture: &ColumnTexture,
+        colormap: *const u8,
+    ) -> (ColumnJob, usize) {
+        let height_index = texture
+            .log2_height
+            .wrapping_sub(*COLUMN_LOG2_HEIGHTS.start()) as usize;
+        assert!(
+            x < self.resolution.width()
+                && count > 0
+                && row + count <= self.resolution.height()
+                && height_index < COLUMN_KERNELS[0][0].len()
+                && texture.texels.len() == 1 << texture.log2_height
+        );
+        let byte_column = match self.resolution.pixels_per_halfword() {
+            1 => 2 * x,
+            _ => x & !1,
+        };
+        let job = ColumnJob {
+            dst: self.row_address(row).wrapping_add(byte_column),
+            texels: texture.texels.as_ptr(),
+            v: texture.v,
+            dv: texture.dv,
+            count: count as u32,
+            colormap,
+        };
+        (job, height_index)
+    }
+
     /// One native pixel written by read-modify-write of its halfword, keeping the neighbour.
     fn put_native(&mut self, x: usize, row: usize, index: u8) {
         let halfword = self.row_address(row).wrapping_add(x & !1).cast::<u16>();
@@ -575,45 +707,75 @@ impl Canvas for VramCanvas {
 
     #[inline(always)]
     fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture) {
-        // Every bound the kernel trusts, in one test: the column's pixels inside the page, a
-        // kernel for its height, and that many texels.
-        let height_index = texture
-            .log2_height
-            .wrapping_sub(*COLUMN_LOG2_HEIGHTS.start()) as usize;
-        assert!(
-            x < self.resolution.width()
-                && count > 0
-                && row + count <= self.resolution.height()
-                && height_index < COLUMN_KERNELS[0][0].len()
-                && texture.texels.len() == 1 << texture.log2_height
-        );
-        let (packing, byte_column) = match self.resolution.pixels_per_halfword() {
-            1 => (0, 2 * x),
-            _ => (1 + x % 2, x & !1),
-        };
+        let packing = self.column_packing();
         // An unlit column (the sky's) in a lit frame takes the lit kernel through the identity
-        // row (`KernelBank::for_colormap`): the same pixels, without loading the other bank.
+        // row (`ColumnBank::for_colormap`): the same pixels, without loading the other bank.
         let (bank, colormap) = if self.kernels {
-            KernelBank::for_colormap(texture.colormap)
+            ColumnBank::for_colormap(texture.colormap, packing)
         } else {
             let lit = texture.colormap.is_some();
             (usize::from(lit), colormap_pointer(texture.colormap))
         };
-        let kernel = COLUMN_KERNELS[packing][bank][height_index];
-        let job = ColumnJob {
-            dst: self.row_address(row).wrapping_add(byte_column),
-            texels: texture.texels.as_ptr(),
-            v: texture.v,
-            dv: texture.dv,
-            count: count as u32,
-            colormap,
+        let (job, height) = self.column_job(x, row, count, texture, colormap);
+        if !self.kernels {
+            return;
+        }
+        if packing == 0 {
+            // SAFETY: the column lies inside the page (`column_job` checked it), the texel
+            // column holds 2^log2_height bytes and every index the kernel forms is below that;
+            // the colormap, if used, has 256 entries; the kernel is its bank's, which
+            // `ColumnBank::for_colormap` brought in.
+            unsafe { COLUMN_KERNELS[0][bank][height](&job) };
+        } else {
+            // 240 wide: the pair kernel, the column's neighbour left out (no rows).
+            let mut jobs = [job; 2];
+            jobs[1 - x % 2].count = 0;
+            // SAFETY: as above; the pair kernel reads two jobs and draws none of a job with
+            // no rows.
+            unsafe { COLUMN_KERNELS[1][bank][height](jobs.as_ptr()) };
+        }
+    }
+
+    #[inline(never)]
+    fn column_pair(
+        &mut self,
+        x: usize,
+        first: (usize, usize, &ColumnTexture),
+        second: (usize, usize, &ColumnTexture),
+    ) {
+        let ((even_row, even_count, even_texture), (odd_row, odd_count, odd_texture)) =
+            (first, second);
+        if self.column_packing() == 0
+            || !x.is_multiple_of(2)
+            || even_texture.log2_height != odd_texture.log2_height
+        {
+            self.column(x, even_row, even_count, even_texture);
+            self.column(x + 1, odd_row, odd_count, odd_texture);
+            return;
+        }
+        // One bank for both: the lit one where either is lit, the other through the identity
+        // row.
+        let lit = even_texture.colormap.is_some() || odd_texture.colormap.is_some();
+        let (bank, unlit_row) = match (lit, self.kernels) {
+            (true, true) => {
+                ColumnBank::ensure(true, 1);
+                (1, IDENTITY_ROW.as_ptr())
+            }
+            (true, false) => (1, IDENTITY_ROW.as_ptr()),
+            (false, true) => ColumnBank::for_colormap(None, 1),
+            (false, false) => (0, core::ptr::null()),
         };
+        let row_of =
+            |texture: &ColumnTexture| texture.colormap.map_or(unlit_row, |row| row.as_ptr());
+        let (even_job, height) =
+            self.column_job(x, even_row, even_count, even_texture, row_of(even_texture));
+        let (odd_job, _) =
+            self.column_job(x + 1, odd_row, odd_count, odd_texture, row_of(odd_texture));
         if self.kernels {
-            // SAFETY: the column lies inside the page (checked above), the texel column holds
-            // 2^log2_height bytes and every index the kernel forms is below that; the
-            // colormap, if used, has 256 entries; the kernel is its bank's, which
-            // `KernelBank::for_colormap` brought in.
-            unsafe { kernel(&job) };
+            // SAFETY: both columns lie inside the page and hold their texels (`column_job`
+            // checked each), at one height, the kernel's; the colormaps, where used, have 256
+            // entries; the kernel is its bank's, brought in above.
+            unsafe { COLUMN_KERNELS[1][bank][height]([even_job, odd_job].as_ptr()) };
         }
     }
 
@@ -794,6 +956,7 @@ impl Canvas for VramCanvas {
     fn prefer_lighting(&mut self, lit: bool) {
         if self.kernels {
             KernelBank::ensure(lit);
+            ColumnBank::ensure(lit, self.column_packing());
         }
     }
 
@@ -803,14 +966,13 @@ impl Canvas for VramCanvas {
         assert!(
             (0..=self.resolution.width() as i32).contains(&run.stop)
                 && (0..=self.resolution.height() as i32).contains(&run.steps.height)
-                && run.window_columns as usize >= self.resolution.width()
         );
         let native = self.resolution.pixels_per_halfword() == 2;
         let lit = run.light_mode != 0;
         if self.kernels {
             // The loop hands its strips' kernels the run's row (none when unlit): the bank
-            // of its lighting.
-            KernelBank::ensure(lit);
+            // of its lighting and packing.
+            ColumnBank::ensure(lit, usize::from(native));
         }
         let lit = usize::from(lit);
         for strip in &mut run.strips {
@@ -819,23 +981,16 @@ impl Canvas for VramCanvas {
                 continue;
             }
             let height = (strip.height_log2() - COLUMN_LOG2_HEIGHTS.start()) as usize;
-            // Packing 0 stores a byte, which VRAM writes to both halves of its halfword: the
-            // doubled pixels at 120 wide, and at 240 an even column whose odd neighbour is
-            // still to be drawn.
-            let kernel = |packing: usize| {
-                if self.kernels {
-                    COLUMN_KERNELS[packing][lit][height] as usize
-                } else {
-                    pc_column_skip as ColumnKernel as usize
-                }
+            // At 120 wide the doubled kernels; at 240 the pair kernels, which the loop hands
+            // each strip of two neighbouring columns at once.
+            strip.kernel = if self.kernels {
+                COLUMN_KERNELS[usize::from(native)][lit][height] as usize
+            } else {
+                pc_column_skip as ColumnKernel as usize
             };
-            let (even, odd) = if native { (1, 2) } else { (0, 0) };
-            strip.kernel_even = kernel(even);
-            strip.kernel_odd = kernel(odd);
-            strip.kernel_both = kernel(0);
         }
         run.page = self.page.base.cast::<u8>();
-        run.native = u32::from(native);
+        run.native = if native { WallRun::NATIVE } else { 0 };
         // SAFETY: `WallRun::new` and `set_strip` checked every pointer the loop follows: the
         // window slices reach past `stop`, each strip with texels holds 2^(width + height)
         // of them at a kernel's height and its column index is masked to its width, the

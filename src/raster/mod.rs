@@ -113,6 +113,19 @@ pub trait Canvas {
     fn resolution(&self) -> Resolution;
     /// Draws `count` rows of logical column `x`, from row `row` down.
     fn column(&mut self, x: usize, row: usize, count: usize, texture: &ColumnTexture);
+    /// Draws columns `x` and `x + 1`, each `(row, count, texture)` as [`Canvas::column`]
+    /// draws it, the first then the second. A canvas whose halfwords hold two pixels (the
+    /// GBA's at 240 wide, `x` even) draws both with one kernel: one store a row where both
+    /// have rows, instead of a read-modify-write for each.
+    fn column_pair(
+        &mut self,
+        x: usize,
+        first: (usize, usize, &ColumnTexture),
+        second: (usize, usize, &ColumnTexture),
+    ) {
+        self.column(x, first.0, first.1, first.2);
+        self.column(x + 1, second.0, second.1, second.2);
+    }
     /// Draws the runs of sprite column `column` at logical column `x` (rows inside its clip
     /// window, which lies inside the screen).
     fn sprite_column(&mut self, x: usize, column: &sprite::SpriteColumn);

@@ -158,11 +158,9 @@ pub(crate) struct StripRun {
     pub(crate) ratio_high: i32,
     pub(crate) width_mask: u32,
     pub(crate) texels: *const u8,
-    /// The canvas's column kernels for this height: for even (or doubled) and odd columns, and
-    /// where two pixels share a halfword, the one that stores both with one byte store.
-    pub(crate) kernel_even: usize,
-    pub(crate) kernel_odd: usize,
-    pub(crate) kernel_both: usize,
+    /// The canvas's column kernel for this height: where two pixels share a halfword, the one
+    /// that draws two neighbouring columns at once (the loop hands it both).
+    pub(crate) kernel: usize,
 }
 
 impl StripRun {
@@ -183,9 +181,7 @@ impl StripRun {
             ratio_high: level.ratio_high,
             width_mask: (1 << level.width_log2) - 1,
             texels: level.texels.as_ptr(),
-            kernel_even: 0,
-            kernel_odd: 0,
-            kernel_both: 0,
+            kernel: 0,
         }
     }
 
@@ -202,9 +198,7 @@ impl StripRun {
         ratio_high: 0,
         width_mask: 0,
         texels: core::ptr::null(),
-        kernel_even: 0,
-        kernel_odd: 0,
-        kernel_both: 0,
+        kernel: 0,
     };
 }
 
@@ -241,7 +235,8 @@ pub struct WallRun<'a> {
     pub(crate) colormap: *const u8,
     pub(crate) recip_seeds: *const u16,
     pub(crate) horizon_row: i32,
-    /// Set by the canvas: the page's first byte, and 1 where two pixels share a halfword.
+    /// Set by the canvas: the page's first byte, and [`WallRun::NATIVE`] where two pixels
+    /// share a halfword (else 0).
     pub(crate) page: *mut u8,
     pub(crate) native: u32,
     pub(crate) column_pixels: u32,
@@ -252,9 +247,6 @@ pub struct WallRun<'a> {
     pub(crate) resume: u32,
     pub(crate) resume_rows: [u32; 2],
     pub(crate) strips: [StripRun; 2],
-    /// The columns every window slice holds (the loop reads the clip window one column past
-    /// the current one where two pixels share a halfword; the canvas checks it has them).
-    pub(crate) window_columns: u32,
     /// The plane windows the loop has written with rows in them: [`CEILING_SEEN`],
     /// [`FLOOR_SEEN`].
     pub(crate) planes_seen: u32,
@@ -267,6 +259,11 @@ pub const CEILING_SEEN: u32 = 1;
 pub const FLOOR_SEEN: u32 = 2;
 
 impl<'a> WallRun<'a> {
+    /// [`WallRun::native`] where two pixels share a halfword: the bit of the loop's flag word
+    /// that says so (`asm/wall.s`, `NATIVE_BIT`).
+    #[cfg_attr(not(target_os = "none"), allow(dead_code))]
+    pub(crate) const NATIVE: u32 = 1 << 29;
+
     /// The columns `start..stop` of a wall with `steps` at `start`, writing the windows
     /// `clip`, `ceiling` and `floor` (indexed by column), its strips (0 upper or solid, 1
     /// lower) at `strips` (see [`WallRun::set_strip`]); or `None` if a window slice is too
@@ -321,7 +318,6 @@ impl<'a> WallRun<'a> {
             resume: 0,
             resume_rows: [0; 2],
             strips: strips.map(StripRun::of),
-            window_columns: clip.len().min(ceiling.len()).min(floor.len()) as u32,
             planes_seen: 0,
             borrows: PhantomData,
         })

@@ -3,11 +3,14 @@
 //!
 //! The linker script overlays sections in IWRAM (linker.ld's `OVERLAY`s): `.iwram_render`, the
 //! renderer's hot code, and `.bench_iwram`, the math benchmark's loops, which the math scene
-//! copies over it; and the two kernel banks, `.iwram_kernels_lit` and `.iwram_kernels_unlit`,
-//! whichever of which the frame's lighting needs is copied in. Symbols of sections that share
-//! addresses would name each other's code, so only one of each pair names them: the renderer's
-//! by default (every scene but the math one runs it), the math benchmark's on request; the lit
-//! kernels by default (the default lighting lights), the unlit ones on request.
+//! copies over it; the two span kernel banks, `.iwram_kernels_lit` and `.iwram_kernels_unlit`,
+//! whichever of which the frame's lighting needs is copied in; and the four column kernel
+//! banks, `.iwram_columns_{dbl,pair}_{lit,unlit}`, by lighting and by the resolution's packing.
+//! Symbols of sections that share addresses would name each other's code, so only one of each
+//! set names them: the renderer's by default (every scene but the math one runs it), the math
+//! benchmark's on request; the lit kernels by default (the default lighting lights), the unlit
+//! ones on request; the doubled column kernels by default (120 wide), the pair ones (240 wide)
+//! on request.
 
 use std::path::Path;
 
@@ -21,14 +24,22 @@ pub const RENDER_OVERLAY_SECTION: &str = ".iwram_render";
 pub const LIT_KERNELS_SECTION: &str = ".iwram_kernels_lit";
 /// See [`LIT_KERNELS_SECTION`].
 pub const UNLIT_KERNELS_SECTION: &str = ".iwram_kernels_unlit";
+/// The column kernel banks, which share their addresses: by packing (doubled, pair), then by
+/// lighting (lit, unlit).
+pub const COLUMN_KERNEL_SECTIONS: [[&str; 2]; 2] = [
+    [".iwram_columns_dbl_lit", ".iwram_columns_dbl_unlit"],
+    [".iwram_columns_pair_lit", ".iwram_columns_pair_unlit"],
+];
 
 /// Which of the sections that share addresses name them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Overlays {
     /// The math benchmark's overlay instead of the renderer's code.
     pub math: bool,
-    /// The unlit kernel bank instead of the lit one.
+    /// The unlit kernel banks instead of the lit ones.
     pub unlit_kernels: bool,
+    /// The column kernels of 240-wide frames (pairs of columns) instead of 120-wide ones.
+    pub pair_kernels: bool,
 }
 
 /// Function symbols sorted by address, demangled without crate hashes.
@@ -49,18 +60,24 @@ impl FunctionSymbols {
                 elf.display()
             )
         })?;
-        let hidden = [
-            if overlays.math {
-                RENDER_OVERLAY_SECTION
-            } else {
-                MATH_OVERLAY_SECTION
-            },
-            if overlays.unlit_kernels {
-                LIT_KERNELS_SECTION
-            } else {
-                UNLIT_KERNELS_SECTION
-            },
-        ];
+        let shown_columns = COLUMN_KERNEL_SECTIONS[usize::from(overlays.pair_kernels)]
+            [usize::from(overlays.unlit_kernels)];
+        let mut hidden: Vec<&str> = COLUMN_KERNEL_SECTIONS
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|name| *name != shown_columns)
+            .collect();
+        hidden.push(if overlays.math {
+            RENDER_OVERLAY_SECTION
+        } else {
+            MATH_OVERLAY_SECTION
+        });
+        hidden.push(if overlays.unlit_kernels {
+            LIT_KERNELS_SECTION
+        } else {
+            UNLIT_KERNELS_SECTION
+        });
         let mut symbols: Vec<(u32, u32, String)> = file
             .symbols()
             .filter(|symbol| symbol.kind() == SymbolKind::Text && symbol.size() > 0)

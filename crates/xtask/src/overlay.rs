@@ -13,9 +13,10 @@
 //! `B`, `B<cond>`, `BL`) and refuses one that leaves the overlay for `.iwram_render`, or that lands
 //! on one of lld's thunks in `.iwram_render` under the overlay's own bytes.
 //!
-//! The kernel banks (`.iwram_kernels_lit`, `.iwram_kernels_unlit`) share their run addresses
-//! too, and one is copied over the other at run time: their code must branch only within its
-//! own bank, which this checks the same way.
+//! The kernel banks (the span kernels' `.iwram_kernels_lit` and `.iwram_kernels_unlit`, the
+//! column kernels' four `.iwram_columns_*`) share their run addresses too, and one is copied
+//! over another at run time: their code must branch only within its own bank, which this
+//! checks the same way.
 //!
 //! Indirect jumps (`BX`, loads into `pc`) are not followed: the overlay's are returns, its jump
 //! table and its own thunks, whose targets are in the ROM.
@@ -26,7 +27,14 @@ use object::{Object, ObjectSection, ObjectSymbol};
 const OVERLAY: &str = ".bench_iwram";
 const REPLACED: &str = ".iwram_render";
 /// The kernel banks, which share their run addresses (linker.ld).
-const KERNEL_BANKS: [&str; 2] = [".iwram_kernels_lit", ".iwram_kernels_unlit"];
+const KERNEL_BANKS: [&str; 6] = [
+    ".iwram_kernels_lit",
+    ".iwram_kernels_unlit",
+    ".iwram_columns_dbl_lit",
+    ".iwram_columns_dbl_unlit",
+    ".iwram_columns_pair_lit",
+    ".iwram_columns_pair_unlit",
+];
 
 /// A range of run addresses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -16,7 +16,8 @@ use portalcast_harness::{Emulator, KeyScript};
 
 const USAGE: &str =
     "usage: pc-profile ELF [--keys SCRIPTFILE] [--skip N] [--frames N] [--from TEXT] \
-[--until TEXT] [--per-line TEXT] [--period CYCLES] [--top K] [--math-overlay] [--unlit-kernels]";
+[--until TEXT] [--per-line TEXT] [--period CYCLES] [--top K] [--math-overlay] [--unlit-kernels] \
+[--pair-kernels]";
 
 const HELP: &str = "\
 Profiles a GBA ELF (it needs the symbols; the .gba has none) headless in mGBA.
@@ -35,7 +36,9 @@ Profiles a GBA ELF (it needs the symbols; the .gba has none) headless in mGBA.
   --math-overlay    name IWRAM addresses by the math benchmark's overlay (the L scene), whose
                     code shares its addresses with the renderer's: without it, by the renderer's
   --unlit-kernels   name the kernel banks' addresses by the unlit kernels (frames drawn with
-                    lighting=off), which share them with the lit ones: without it, by the lit";
+                    lighting=off), which share them with the lit ones: without it, by the lit
+  --pair-kernels    name the column kernel banks' addresses by the pair kernels (frames drawn
+                    240 wide), which share them with the doubled ones: without it, by those";
 
 struct Options {
     elf: PathBuf,
@@ -47,6 +50,7 @@ struct Options {
     addresses: usize,
     math_overlay: bool,
     unlit_kernels: bool,
+    pair_kernels: bool,
     from: Option<String>,
     until: Option<String>,
     per_line: Option<String>,
@@ -88,6 +92,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         addresses: 0,
         math_overlay: false,
         unlit_kernels: false,
+        pair_kernels: false,
         from: None,
         until: None,
         per_line: None,
@@ -115,6 +120,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
             }
             "--math-overlay" => options.math_overlay = true,
             "--unlit-kernels" => options.unlit_kernels = true,
+            "--pair-kernels" => options.pair_kernels = true,
             "--from" => options.from = Some(value("--from")?),
             "--until" => options.until = Some(value("--until")?),
             "--per-line" => options.per_line = Some(value("--per-line")?),
@@ -133,6 +139,7 @@ fn run(options: &Options) -> Result<(), String> {
         Overlays {
             math: options.math_overlay,
             unlit_kernels: options.unlit_kernels,
+            pair_kernels: options.pair_kernels,
         },
     )?;
     let script = match &options.keys {

@@ -24,7 +24,7 @@ fn target(resolution: &str) -> Option<(u64, u64)> {
 }
 
 /// What each measured kernel is, and its target in cycles per pixel where the brief sets one.
-const KERNELS: [(&str, &str, Option<f64>); 10] = [
+const KERNELS: [(&str, &str, Option<f64>); 11] = [
     (
         "col_dbl_unlit",
         "column, 120-wide (STRB mirrored), unlit",
@@ -33,7 +33,12 @@ const KERNELS: [(&str, &str, Option<f64>); 10] = [
     ("col_dbl_lit", "column, 120-wide, lit", Some(9.0)),
     (
         "col_native_lit",
-        "column, 240-wide (read-modify-write), lit",
+        "column, 240-wide, alone (read-modify-write), lit",
+        None,
+    ),
+    (
+        "col_pair_lit",
+        "column pair, 240-wide (one store for two pixels), lit",
         None,
     ),
     ("flat_dbl_unlit", "span, 120-wide, unlit", None),
