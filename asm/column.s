@@ -68,14 +68,20 @@
     .endif
     ldrh    r12, [\dst]
     add     \v, \v, \dv
-    .if \odd
-    and     r12, r12, #0xff
-    orr     r12, r12, r0, lsl #8
-    .else
-    and     r12, r12, #0xff00
-    orr     r12, r12, r0
-    .endif
+    PUT_BYTE r12, r0, \odd
     strh    r12, [\dst], #240
+    .endm
+
+    @ The rows of one column of a pair (\dst .. \cmap its job's registers, \count its rows)
+    @ above the other's first (\other): on to \past if there are none (left), else falls
+    @ through when its rows are done.
+    .macro ALONE_ROWS dst, tex, v, dv, cmap, count, other, shift, lit, odd, past
+9:
+    cmp     \dst, \other
+    bhs     \past
+    PIXEL_ALONE \dst, \tex, \v, \dv, \cmap, \shift, \lit, \odd
+    subs    \count, \count, #1
+    bne     9b
     .endm
 
     @ One row of both columns: one halfword store, no read. r1 the even column's dst (the odd
@@ -112,18 +118,10 @@
     cmp     r11, #0
     mvneq   r7, #0
 1:  @ The even column's rows above the odd one's.
-    cmp     r1, r7
-    bhs     2f
-    PIXEL_ALONE r1, r2, r3, r4, r6, \shift, \lit, 0
-    subs    r5, r5, #1
-    bne     1b
+    ALONE_ROWS r1, r2, r3, r4, r6, r5, r7, \shift, \lit, 0, 2f
     mvn     r1, #0
 2:  @ The odd column's rows above the even one's.
-    cmp     r7, r1
-    bhs     3f
-    PIXEL_ALONE r7, r8, r9, r10, lr, \shift, \lit, 1
-    subs    r11, r11, #1
-    bne     2b
+    ALONE_ROWS r7, r8, r9, r10, lr, r11, r1, \shift, \lit, 1, 3f
     b       0b
 3:  @ Both at one row, or both done.
     cmn     r1, #1
@@ -178,6 +176,11 @@
     PAIR_KERNEL pc_col_pair_unlit_h\log2h, (32 - \log2h), 0
     .endr
 
+
+    .purgem RECIP_MANTISSA
+    .purgem MUL_2_30
+    .purgem DEPTH_LIGHT_ROW
+    .purgem PUT_BYTE
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

@@ -239,6 +239,7 @@ BENCH_END pc_mb_project_x, r0
     .purgem RECIP_MANTISSA
     .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
+    .purgem PUT_BYTE
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

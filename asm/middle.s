@@ -256,6 +256,7 @@ pc_middle_columns:
     .purgem RECIP_MANTISSA
     .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
+    .purgem PUT_BYTE
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

@@ -518,3 +518,4 @@ pc_flat_skip:
     .purgem RECIP_MANTISSA
     .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
+    .purgem PUT_BYTE

@@ -1,5 +1,5 @@
-@ What the ARM loops share (asm/wall.s, asm/plane.s, asm/middle.s, and the math benchmark's
-@ asm/mathbench.s), as assembler macros:
+@ What the ARM loops and kernels share (asm/wall.s, asm/plane.s, asm/middle.s, asm/column.s,
+@ asm/sprite.s, and the math benchmark's asm/mathbench.s), as assembler macros:
 @ assembled at the start of each of them (src/hw/kernels.rs), which purge them at their end.
 @
 @ RECIP_MANTISSA m, s, table, seed, a, b: from \m > 0, \m = 2^63/(\m·2^\s) (2^31 over the
@@ -57,4 +57,16 @@
     cmp     \level, #255
     movgt   \level, #255
     mov     \level, \level, lsr #3
+    .endm
+
+@ PUT_BYTE half, byte, odd: \half with its byte \odd (1: the high one) replaced by \byte (under
+@ 256), the other kept: a 240-wide pixel's read-modify-write of its VRAM halfword.
+    .macro PUT_BYTE half, byte, odd
+    .if \odd
+    and     \half, \half, #0xff
+    orr     \half, \half, \byte, lsl #8
+    .else
+    and     \half, \half, #0xff00
+    orr     \half, \half, \byte
+    .endif
     .endm

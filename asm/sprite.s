@@ -226,13 +226,7 @@ pc_sprite_run_dbl:
 
     @ 240 wide: puts r10 into the byte `\odd` of the halfword in r9 and stores it, a row on.
     .macro STORE_NATIVE odd
-    .if \odd
-    and     r9, r9, #0xff
-    orr     r9, r9, r10, lsl #8
-    .else
-    and     r9, r9, #0xff00
-    orr     r9, r9, r10
-    .endif
+    PUT_BYTE r9, r10, \odd
     strh    r9, [r0], #240
     .endm
 
@@ -300,6 +294,11 @@ pc_sprite_run_blend_even:
     bne     1b
     bx      lr
     .size pc_sprite_run_blend_even, . - pc_sprite_run_blend_even
+
+    .purgem RECIP_MANTISSA
+    .purgem MUL_2_30
+    .purgem DEPTH_LIGHT_ROW
+    .purgem PUT_BYTE
 
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

@@ -635,17 +635,18 @@ mod rom {
             *texel = (index * 37 % 251) as u8;
         }
         let colormap: [u8; 256] = core::array::from_fn(|index| (255 - index) as u8);
+        let lab_column = |lit: bool| ColumnTexture {
+            texels: &texels[..64],
+            log2_height: 6,
+            v: 0,
+            dv: 0x0123_4567,
+            colormap: if lit { Some(&colormap) } else { None },
+        };
         let column_cost = |canvas: &mut VramCanvas, lit: bool, x: usize| {
             // The kernel bank of the lighting measured, brought in before the clock starts.
             canvas.prefer_lighting(lit);
             let mut run = |count: usize| {
-                let column = ColumnTexture {
-                    texels: &texels[..64],
-                    log2_height: 6,
-                    v: 0,
-                    dv: 0x0123_4567,
-                    colormap: if lit { Some(&colormap) } else { None },
-                };
+                let column = lab_column(lit);
                 let started = meter::now();
                 canvas.column(x, 0, count, &column);
                 meter::cycles_since(started)
@@ -680,13 +681,7 @@ mod rom {
         let col_pair_lit = {
             native.prefer_lighting(true);
             let mut run = |count: usize| {
-                let column = ColumnTexture {
-                    texels: &texels[..64],
-                    log2_height: 6,
-                    v: 0,
-                    dv: 0x0123_4567,
-                    colormap: Some(&colormap),
-                };
+                let column = lab_column(true);
                 let started = meter::now();
                 native.column_pair(6, (0, count, &column), (0, count, &column));
                 meter::cycles_since(started)

@@ -61,38 +61,46 @@ fn iwram_addresses_are_named_by_the_code_the_profiled_scene_runs() {
         .lookup(*start)
         .is_none_or(|name| !name.contains("render")));
 
-    // The kernel banks: lit names by default, unlit ones on request, at the same addresses.
-    let lit_kernel = |name: &&str| name.starts_with("pc_col_") && name.contains("_lit_");
-    let unlit_kernel = |name: &&str| name.starts_with("pc_col_") && name.contains("_unlit_");
-    assert!(game_names.iter().any(lit_kernel), "{game_names:?}");
-    assert!(!game_names.iter().any(unlit_kernel), "{game_names:?}");
-    let unlit_names = iwram_names(&unlit);
-    assert!(unlit_names.iter().any(unlit_kernel), "{unlit_names:?}");
-    assert!(!unlit_names.iter().any(lit_kernel), "{unlit_names:?}");
-    let (bank_start, _, _) = game
-        .all()
-        .iter()
-        .find(|(_, _, name)| lit_kernel(&name.as_str()))
-        .expect("a lit kernel");
-    assert!(unlit
-        .lookup(*bank_start)
-        .is_none_or(|name| !name.contains("_lit_")));
+    // The kernel banks: lit names by default, unlit ones on request; the doubled column
+    // kernels by default, the pair ones on request; each at the same addresses as the other.
+    let lit_kernel = |name: &str| name.starts_with("pc_col_") && name.contains("_lit_");
+    let unlit_kernel = |name: &str| name.starts_with("pc_col_") && name.contains("_unlit_");
+    banks_are_named_apart(&game, &unlit, lit_kernel, unlit_kernel);
+    let doubled = |name: &str| name.starts_with("pc_col_dbl_");
+    let paired = |name: &str| name.starts_with("pc_col_pair_");
+    banks_are_named_apart(&game, &pairs, doubled, paired);
+}
 
-    // The column kernel banks: the doubled kernels by default, the pair ones on request, at
-    // the same addresses.
-    let doubled = |name: &&str| name.starts_with("pc_col_dbl_");
-    let paired = |name: &&str| name.starts_with("pc_col_pair_");
-    assert!(game_names.iter().any(doubled), "{game_names:?}");
-    assert!(!game_names.iter().any(paired), "{game_names:?}");
-    let pair_names = iwram_names(&pairs);
-    assert!(pair_names.iter().any(paired), "{pair_names:?}");
-    assert!(!pair_names.iter().any(doubled), "{pair_names:?}");
-    let (column_start, _, _) = game
+/// `default` names kernels of one bank (`in_default`) and none of another (`in_other`), whose
+/// names `other` gives instead, at the same addresses.
+fn banks_are_named_apart(
+    default: &FunctionSymbols,
+    other: &FunctionSymbols,
+    in_default: impl Fn(&str) -> bool,
+    in_other: impl Fn(&str) -> bool,
+) {
+    let default_names = iwram_names(default);
+    assert!(
+        default_names.iter().any(|name| in_default(name)),
+        "{default_names:?}"
+    );
+    assert!(
+        !default_names.iter().any(|name| in_other(name)),
+        "{default_names:?}"
+    );
+    let other_names = iwram_names(other);
+    assert!(
+        other_names.iter().any(|name| in_other(name)),
+        "{other_names:?}"
+    );
+    assert!(
+        !other_names.iter().any(|name| in_default(name)),
+        "{other_names:?}"
+    );
+    let (start, _, _) = default
         .all()
         .iter()
-        .find(|(_, _, name)| doubled(&name.as_str()))
-        .expect("a doubled column kernel");
-    assert!(pairs
-        .lookup(*column_start)
-        .is_none_or(|name| !name.starts_with("pc_col_dbl_")));
+        .find(|(_, _, name)| in_default(name))
+        .expect("a kernel of the default bank");
+    assert!(other.lookup(*start).is_none_or(|name| !in_default(name)));
 }

@@ -111,11 +111,7 @@ impl SpanTarget for VramPage {
     }
 }
 
-core::arch::global_asm!(include_str!("../../asm/column.s"), options(raw));
-restore_code_mode!();
 core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
-restore_code_mode!();
-core::arch::global_asm!(include_str!("../../asm/sprite.s"), options(raw));
 restore_code_mode!();
 /// Assembles `asm/<file>` after the loops' shared macros (asm/shared.s), which the file purges
 /// at its end, then restores the code mode.
@@ -130,7 +126,10 @@ macro_rules! assemble_with_shared_macros {
     };
 }
 
-// The wall, plane and middle loops share macros (asm/shared.s), assembled with each of them.
+// The column and sprite kernels and the wall, plane and middle loops share macros
+// (asm/shared.s), assembled with each of them.
+assemble_with_shared_macros!("column.s");
+assemble_with_shared_macros!("sprite.s");
 assemble_with_shared_macros!("wall.s");
 assemble_with_shared_macros!("plane.s");
 assemble_with_shared_macros!("middle.s");
