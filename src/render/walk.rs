@@ -967,8 +967,9 @@ impl<W: WindowStore> Renderer<W> {
     }
 
     /// The last neighbour waiting in [`Renderer::see_through`] (there is one), counted as a
-    /// visit: its index, sector and columns. Out of line and from ROM: once per neighbour.
+    /// visit: its index, sector and columns. Out of line and in VRAM: once per neighbour.
     #[inline(never)]
+    #[cfg_attr(target_os = "none", link_section = ".vram.next_seen_through")]
     fn next_seen_through<'m>(
         &mut self,
         scene: &Scene<'m, '_>,
@@ -1692,9 +1693,10 @@ impl<'s> WallJob<'s> {
     /// column's level to their end. The mip ratio `z'/d_y` is `(1/d_y)/(1/z')`: taken here to
     /// its power of two by shifts, no reciprocal. A level missed near a power (the loop's own
     /// ratio is rounded) stops the loop at that column as no level did, so no pixel depends
-    /// on it. Once per wall: in the VRAM Mode 4 leaves free (IWRAM is full).
+    /// on it. Once per wall, in IWRAM (from the room the column kernels' banks gave back: it
+    /// was the VRAM code's hottest by its bytes).
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".vram.wall_first_levels")]
+    #[cfg_attr(target_os = "none", link_section = ".iwram_render.wall_first_levels")]
     fn take_first_levels(&mut self, drawn: [bool; 2], wall: &SteppedWall, inverse_focal_y: i64) {
         // Both in 2.30, positive: 32-bit words.
         let inverse_depth = wall.steps().inverse_depth.max(1) as u32;
