@@ -69,6 +69,7 @@ fn stage_meaning(stage: &str) -> &'static str {
         "wall" => "walls and strips: column ownership, projection, the wall and strip columns and their kernels",
         "plane" => "floors and ceilings: span set-up, `R_MakeSpans`, the span kernels (and the sky, while it has no stage of its own)",
         "sky" => "the sky's columns",
+        "thing" => "things and portal middles: their drawing, back to front (their collection, per visit, is in the wall stage)",
         _ => "(a stage this report has no description for yet)",
     }
 }
