@@ -166,6 +166,34 @@ const BATCHES: u32 = JOBS_PER_KIND / 4;
 /// The most columns a check batch has.
 const BATCH_COLUMNS_MAX: usize = 8;
 
+/// Portal middles set up per call, each over up to [`MIDDLE_COLUMNS_MAX`] columns.
+const MIDDLES: u32 = JOBS_PER_KIND / 8;
+
+/// The most columns a check middle has.
+const MIDDLE_COLUMNS_MAX: usize = 16;
+
+/// The check middles' image width: the sprite image's columns rounded up to a power of two
+/// (the routine masks the column; the last is past the image's offsets, and skipped).
+const MIDDLE_IMAGE_WIDTH: u16 = IMAGE_COLUMNS.next_power_of_two() as u16;
+
+/// The openings the check middles are seen through, by column: windows of every height inside
+/// the 80 rows every resolution has, and some empty.
+static MIDDLE_OPENINGS: [crate::raster::Window; 240] = {
+    let mut windows = [crate::raster::Window { top: 0, bottom: 0 }; 240];
+    let mut x = 0;
+    while x < 240 {
+        let top = ((x * 37 + 11) % 80) as i16;
+        let bottom = if x % 9 == 4 {
+            top
+        } else {
+            top + 1 + ((x * 53 + 7) % (80 - top as usize)) as i16
+        };
+        windows[x] = crate::raster::Window { top, bottom };
+        x += 1;
+    }
+    windows
+};
+
 /// A blend table for the check: every entry a function of both indices, so a wrong pixel
 /// behind or a wrong texel shows.
 static CHECK_BLEND: portalcast_format::BlendTable = mixed_table(3, 5, 7);
@@ -354,6 +382,73 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
             colormap: &CHECK_LIGHT_ROWS,
             // One batch in three translucent.
             blend: (batch % 3 == 2).then_some(&CHECK_BLEND),
+        });
+    }
+    draw_middles(canvas, &mut rng);
+}
+
+/// Portal middles on random walls in eye space: each one's columns from the canvas's routine
+/// (the GBA's `asm/middle.s`) or its twin, drawn by the batch kernel, so the pages differ where
+/// the two disagree on a column that shows. The walls lie in front of the eye or cross its
+/// plane, face it or not, from a unit to thousands away (the nearest clamp, rays past either
+/// end, steep and grazing angles), under every lighting rule.
+fn draw_middles(canvas: &mut impl Canvas, rng: &mut Lcg) {
+    use crate::math::{Angle, EyePoint, Fx24_8, WorldPoint};
+    use crate::render::light::Lighting;
+    use crate::render::things::{middle_columns_of, MiddleSetup};
+    use crate::render::view::{Camera, View};
+    let resolution = canvas.resolution();
+    let width = resolution.width() as u32;
+    let mut out = [crate::raster::sprite::BatchColumn::default(); MIDDLE_COLUMNS_MAX];
+    for job in 0..MIDDLES {
+        let lighting = [Lighting::Off, Lighting::Sector, Lighting::SectorDepth][job as usize % 3];
+        let settings = crate::render::view::Settings {
+            lighting,
+            ..crate::bench::default_settings(resolution)
+        };
+        let camera = Camera {
+            position: WorldPoint::default(),
+            eye_z: Fx24_8::from_int(32),
+            angle: Angle::from_bits(0),
+            sector: 0,
+            look_lines: rng.below(81) as i32 - 40,
+        };
+        let view = View::new(&camera, &settings);
+        // Up to 4,096 units across, from one unit deep (a sixteenth of the time 1/256 of one).
+        let point = |rng: &mut Lcg| {
+            let depth_bits = if rng.below(16) == 0 { 1 } else { 256 };
+            EyePoint {
+                x: Fx24_8::from_bits(rng.below(1 << 21) as i32 - (1 << 20)),
+                z: Fx24_8::from_bits(depth_bits + rng.below(1 << 20) as i32 - (1 << 18)),
+            }
+        };
+        let ends = (point(rng), point(rng));
+        let first = rng.below(width) as i32;
+        let end =
+            first + 1 + rng.below((width - first as u32).min(MIDDLE_COLUMNS_MAX as u32)) as i32;
+        let light = rng.below(256) as u8;
+        let setup = MiddleSetup::new(
+            &view,
+            ends,
+            first,
+            rng.below(256) as i32 - 64,
+            (rng.below(1 << 20) as i32, rng.below(256) as i16 - 128),
+            MIDDLE_IMAGE_WIDTH,
+            light,
+        );
+        let written = middle_columns_of(
+            canvas,
+            &setup,
+            first..end,
+            &MIDDLE_OPENINGS,
+            &mut out,
+            (light, lighting),
+        );
+        canvas.sprite_columns(&crate::raster::sprite::SpriteBatch {
+            posts: &SPRITE_IMAGE,
+            columns: &out[..written],
+            colormap: &CHECK_LIGHT_ROWS,
+            blend: None,
         });
     }
 }

@@ -128,8 +128,9 @@ fn asm_kernels_write_the_same_vram_as_their_twins() {
     // L+R held at boot selects the kernel check scene.
     emulator.set_keys(Keys::L | Keys::R);
     let mut checked = Vec::new();
-    // A check takes about 2.2 M cycles (eight frames) with the sprite columns; six of them.
-    for _ in 0..120 {
+    // A check takes about 4.5 M cycles (16 frames) with the sprite columns and the middles;
+    // six of them.
+    for _ in 0..160 {
         emulator
             .run_frame()
             .unwrap_or_else(|error| panic!("{error}"));

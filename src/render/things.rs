@@ -447,86 +447,25 @@ impl Things {
         let sector = &map.sectors[usize::from(sector_index)];
         let behind = &map.sectors[usize::from(neighbour)];
         let top = sector.ceil_z.min(behind.ceil_z) + i32::from(wall.y_offset);
-        let viewport = &view.viewport;
-        let twice_focal = 2 * i64::from(viewport.focal_x);
-        let (xa, za) = (i64::from(a.x.to_bits()), i64::from(a.z.to_bits()));
-        let (dx, dz) = (i64::from(b.x.to_bits()) - xa, i64::from(b.z.to_bits()) - za);
-        // The eye's height over the image's top edge, times d_y: a column's top row is this over
-        // its depth, from the centre row.
-        let above_eye_focal =
-            (i64::from(view.eye_z.to_bits()) - i64::from(top << 8)) * i64::from(viewport.focal_y);
-        // The numerator and the denominator of the ray's fraction along the wall are affine in
-        // the column: stepped from the column before the first, exactly.
-        let q_before = i64::from(2 * columns.start - 1 - viewport.width);
-        let numerator = q_before * za - twice_focal * xa;
-        let denominator = twice_focal * dx - q_before * dz;
-        let steps = (2 * za, -2 * dz);
-        // 1/z' is affine in the column: z' = za + t·dz = K/denominator, where
-        // K = za·denominator + numerator·dz = 2d_x·(za·dx − xa·dz) is the same in every column
-        // (positive where the wall is seen from the front). So 1/z' in 2.30, 2^38/z' in bits, is
-        // the denominator times 2^38/K: one product a column instead of a reciprocal. Below
-        // THING_DEPTH_MIN it is that depth's.
-        let nearest = recip_small(THING_DEPTH_MIN as u32).to_bits() as u32;
-        let wall_constant = za * denominator + numerator * dz;
-        let (wall_reciprocal, wall_shift) = match u64::try_from(wall_constant) {
-            // 2^38·d/K = d·(2^(30+p)/K) >> (p − 8); for p < 8, K < 256: z' under a unit for
-            // every d ≥ 1, nearer than THING_DEPTH_MIN.
-            Ok(constant) if constant >> 8 != 0 => {
-                let (reciprocal, p) = crate::math::recip_u64_with_bit_length(constant);
-                (reciprocal, p - 8)
-            }
-            _ => (0, 0),
-        };
-        // Per column, the products are of 32-bit factors (the module `limits`' world:
-        // eye-space coordinates and their differences under 2^24 bits, heights times d_y under
-        // 2^30): one multiply each on the ARM7TDMI, where 64-bit factors take three.
-        debug_assert!(
-            [za, dz, above_eye_focal]
-                .iter()
-                .all(|&value| i32::try_from(value).is_ok()),
-            "a middle's factors outside 32 bits"
+        let setup = MiddleSetup::new(
+            view,
+            (a, b),
+            columns.start,
+            top,
+            (wall.length_fx8, wall.x_offset),
+            sprite.width,
+            sector.light,
         );
-        let (light_mode, light_base) = light_rule(sector.light, view.lighting);
-        let shared = MiddleShared {
-            za: za as i32,
-            dz: dz as i32,
-            length_fx8: wall.length_fx8,
-            x_offset_fx8: i32::from(wall.x_offset) * 256,
-            wall_reciprocal,
-            wall_shift,
-            nearest,
-            horizon_fx16: viewport.horizon_y << 16,
-            above_eye_focal: above_eye_focal as i32,
-            focal_y: viewport.focal_y,
-            inverse_focal_y: frame.inverse_focal_y,
-            width: u32::from(sprite.width),
-            light_mode,
-            light_base,
-            depth_min: THING_DEPTH_MIN << 8,
-        };
         let start = self.middle_columns_used;
         let out = &mut self.middle_columns[start..start + count];
-        let from_canvas = MiddleRun::new(
-            shared,
-            numerator,
-            denominator,
-            steps,
-            columns.clone(),
+        let written = middle_columns_of(
+            canvas,
+            &setup,
+            columns,
             opening,
-        )
-        .and_then(|mut run| canvas.middle_columns(&mut run, out));
-        let written = match from_canvas {
-            Some(written) => written,
-            None => middle_columns(
-                &shared,
-                (numerator, denominator),
-                steps,
-                columns,
-                opening,
-                out,
-                (sector.light, view.lighting),
-            ),
-        };
+            out,
+            (sector.light, view.lighting),
+        );
         if written == 0 {
             return;
         }
@@ -671,6 +610,133 @@ fn wrap_column(u_fx8: i64, width: u32) -> u8 {
         (column as u32 & (width - 1)) as u8
     } else {
         column.rem_euclid(width as i32) as u8
+    }
+}
+
+/// What a middle's columns share and the ray fraction's numerator and denominator at the
+/// column before the first, with their steps: the set-up of the columns of a wall whose
+/// middle image is `width` columns wide with its top edge at height `top`, seen by `view`
+/// from eye-space `a` to `b`, lit by its sector's `light` level ([`Things::collect_middle`]'s,
+/// and the kernel check's, which hands it random walls).
+pub(crate) struct MiddleSetup {
+    /// What every column shares.
+    pub(crate) shared: MiddleShared,
+    /// The numerator of the ray's fraction along the wall at the column before the first.
+    pub(crate) numerator: i64,
+    /// Its denominator there.
+    pub(crate) denominator: i64,
+    /// Their steps per column.
+    pub(crate) steps: (i64, i64),
+}
+
+impl MiddleSetup {
+    /// The set-up of the middle columns from `first_column` on of the wall from `a` to `b`
+    /// (eye space), `(length_fx8, x_offset)` its length in 24.8 bits and its texture offset.
+    pub(crate) fn new(
+        view: &View,
+        (a, b): (EyePoint, EyePoint),
+        first_column: i32,
+        top: i32,
+        (length_fx8, x_offset): (i32, i16),
+        width: u16,
+        light: u8,
+    ) -> MiddleSetup {
+        let viewport = &view.viewport;
+        let twice_focal = 2 * i64::from(viewport.focal_x);
+        let (xa, za) = (i64::from(a.x.to_bits()), i64::from(a.z.to_bits()));
+        let (dx, dz) = (i64::from(b.x.to_bits()) - xa, i64::from(b.z.to_bits()) - za);
+        // The eye's height over the image's top edge, times d_y: a column's top row is this over
+        // its depth, from the centre row.
+        let above_eye_focal =
+            (i64::from(view.eye_z.to_bits()) - i64::from(top << 8)) * i64::from(viewport.focal_y);
+        // The numerator and the denominator of the ray's fraction along the wall are affine in
+        // the column: stepped from the column before the first, exactly.
+        let q_before = i64::from(2 * first_column - 1 - viewport.width);
+        let numerator = q_before * za - twice_focal * xa;
+        let denominator = twice_focal * dx - q_before * dz;
+        let steps = (2 * za, -2 * dz);
+        // 1/z' is affine in the column: z' = za + t·dz = K/denominator, where
+        // K = za·denominator + numerator·dz = 2d_x·(za·dx − xa·dz) is the same in every column
+        // (positive where the wall is seen from the front). So 1/z' in 2.30, 2^38/z' in bits, is
+        // the denominator times 2^38/K: one product a column instead of a reciprocal. Below
+        // THING_DEPTH_MIN it is that depth's.
+        let nearest = recip_small(THING_DEPTH_MIN as u32).to_bits() as u32;
+        let wall_constant = za * denominator + numerator * dz;
+        let (wall_reciprocal, wall_shift) = match u64::try_from(wall_constant) {
+            // 2^38·d/K = d·(2^(30+p)/K) >> (p − 8); for p < 8, K < 256: z' under a unit for
+            // every d ≥ 1, nearer than THING_DEPTH_MIN.
+            Ok(constant) if constant >> 8 != 0 => {
+                let (reciprocal, p) = crate::math::recip_u64_with_bit_length(constant);
+                (reciprocal, p - 8)
+            }
+            _ => (0, 0),
+        };
+        // Per column, the products are of 32-bit factors (the module `limits`' world:
+        // eye-space coordinates and their differences under 2^24 bits, heights times d_y under
+        // 2^30): one multiply each on the ARM7TDMI, where 64-bit factors take three.
+        debug_assert!(
+            [za, dz, above_eye_focal]
+                .iter()
+                .all(|&value| i32::try_from(value).is_ok()),
+            "a middle's factors outside 32 bits"
+        );
+        let (light_mode, light_base) = light_rule(light, view.lighting);
+        MiddleSetup {
+            shared: MiddleShared {
+                za: za as i32,
+                dz: dz as i32,
+                length_fx8,
+                x_offset_fx8: i32::from(x_offset) * 256,
+                wall_reciprocal,
+                wall_shift,
+                nearest,
+                horizon_fx16: viewport.horizon_y << 16,
+                above_eye_focal: above_eye_focal as i32,
+                focal_y: viewport.focal_y,
+                inverse_focal_y: recip_small(viewport.focal_y as u32).to_bits(),
+                width: u32::from(width),
+                light_mode,
+                light_base,
+                depth_min: THING_DEPTH_MIN << 8,
+            },
+            numerator,
+            denominator,
+            steps,
+        }
+    }
+}
+
+/// The columns `columns` of a middle, as the canvas's own loop makes them
+/// ([`Canvas::middle_columns`]) where it has one, else as [`middle_columns`], their twin, does;
+/// how many it wrote to `out`.
+pub(crate) fn middle_columns_of(
+    canvas: &mut impl Canvas,
+    setup: &MiddleSetup,
+    columns: core::ops::Range<i32>,
+    opening: &[Window],
+    out: &mut [BatchColumn],
+    (light, lighting): (u8, Lighting),
+) -> usize {
+    let from_canvas = MiddleRun::new(
+        setup.shared,
+        setup.numerator,
+        setup.denominator,
+        setup.steps,
+        columns.clone(),
+        opening,
+    )
+    .and_then(|mut run| canvas.middle_columns(&mut run, out));
+    match from_canvas {
+        Some(written) => written,
+        None => middle_columns(
+            &setup.shared,
+            (setup.numerator, setup.denominator),
+            setup.steps,
+            columns,
+            opening,
+            out,
+            (light, lighting),
+        ),
     }
 }
 
