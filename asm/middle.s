@@ -2,8 +2,9 @@
 @ column the batch kernel draws there (asm/sprite.s), in ARM code in IWRAM (with the wall loop:
 @ it costs its columns' set-up in the slowest frames, where the bench hall's grate is in view).
 @ Rust twin: src/render/things.rs (middle_columns), which the host draws with; the
-@ emulator's ROM-versus-host frame test compares the two pixel for pixel. The job is built and
-@ checked by MiddleRun::new and handed over by src/hw/kernels.rs.
+@ emulator's ROM-versus-host frame test compares the two pixel for pixel, and the kernel check
+@ (src/kernel_check.rs) on random walls. The job is built and checked by MiddleRun::new and
+@ handed over by src/hw/kernels.rs.
 @
 @ u32 pc_middle_columns(MiddleRun *r0): for columns run.x..run.end whose opening is not empty
 @ and whose denominator is in 1..2^32, writes a BatchColumn at run.out and advances it; returns

@@ -5,7 +5,7 @@
 //! depth's light row, the top row and the steps the sprite batch kernel draws with. The
 //! renderer's own loop (`render::things::middle_columns`) is its portable twin: the
 //! host draws with it, and the emulator's ROM-versus-host frame test compares the two pixel for
-//! pixel.
+//! pixel, as the kernel check does on random walls (`kernel_check`).
 //!
 //! Everything the routine reads through a pointer is checked here, and what it writes by the
 //! canvas, so building a run is safe and the routine can trust it.
