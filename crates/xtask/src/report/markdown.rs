@@ -1039,9 +1039,13 @@ fn sizes(doc: &mut String, measurements: &Measurements) {
             // The kernel banks swap at run time; the math benchmark's overlay replaces the
             // renderer for good (linker.ld says why each).
             let how = if section.name.starts_with(".iwram_kernels") {
-                ", the other kernel bank: whichever of the two a call needs is copied in (a frame \
-                 draws with one lighting, so it loads at most one; `hw::kernels::KernelBank`, \
-                 linker.ld). IWRAM's use above counts the larger once"
+                ", the other span kernel bank: whichever of the two a call needs is copied in (a \
+                 frame draws with one lighting, so it loads at most one; \
+                 `hw::kernels::KernelBank`, linker.ld). IWRAM's use above counts the larger once"
+            } else if section.name.starts_with(".iwram_columns") {
+                ", another of the four column kernel banks: whichever a call needs is copied in \
+                 (a frame draws with one lighting at one resolution, so it loads at most one; \
+                 `hw::kernels::ColumnBank`, linker.ld). IWRAM's use above counts the largest once"
             } else {
                 ": an overlay that the one scene using it copies over that code, which the scene \
                  never runs (linker.ld). IWRAM's use above counts those bytes once"
