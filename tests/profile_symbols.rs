@@ -79,28 +79,18 @@ fn banks_are_named_apart(
     in_default: impl Fn(&str) -> bool,
     in_other: impl Fn(&str) -> bool,
 ) {
-    let default_names = iwram_names(default);
-    assert!(
-        default_names.iter().any(|name| in_default(name)),
-        "{default_names:?}"
-    );
-    assert!(
-        !default_names.iter().any(|name| in_other(name)),
-        "{default_names:?}"
-    );
-    let other_names = iwram_names(other);
-    assert!(
-        other_names.iter().any(|name| in_other(name)),
-        "{other_names:?}"
-    );
-    assert!(
-        !other_names.iter().any(|name| in_default(name)),
-        "{other_names:?}"
-    );
+    names_one_bank(&iwram_names(default), &in_default, &in_other);
+    names_one_bank(&iwram_names(other), &in_other, &in_default);
     let (start, _, _) = default
         .all()
         .iter()
         .find(|(_, _, name)| in_default(name))
         .expect("a kernel of the default bank");
     assert!(other.lookup(*start).is_none_or(|name| !in_default(name)));
+}
+
+/// `names` include some that `shown` picks and none that `hidden` picks.
+fn names_one_bank(names: &[&str], shown: &impl Fn(&str) -> bool, hidden: &impl Fn(&str) -> bool) {
+    assert!(names.iter().any(|name| shown(name)), "{names:?}");
+    assert!(!names.iter().any(|name| hidden(name)), "{names:?}");
 }
