@@ -178,6 +178,8 @@
 
 
     .purgem RECIP_MANTISSA
+    .purgem RECIP_NORMALISE
+    .purgem RECIP_OF_NORMALISED
     .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
     .purgem PUT_BYTE

@@ -237,6 +237,8 @@ BENCH_END pc_mb_project_x, r0
     .balign 4
 
     .purgem RECIP_MANTISSA
+    .purgem RECIP_NORMALISE
+    .purgem RECIP_OF_NORMALISED
     .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
     .purgem PUT_BYTE

@@ -255,6 +255,8 @@ pc_middle_columns:
     .size pc_middle_columns, . - pc_middle_columns
 
     .purgem RECIP_MANTISSA
+    .purgem RECIP_NORMALISE
+    .purgem RECIP_OF_NORMALISED
     .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
     .purgem PUT_BYTE

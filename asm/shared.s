@@ -8,13 +8,24 @@
 @ The Rust twin is the function itself: the loops' ROM-versus-host frames compare them.
 
     .macro RECIP_MANTISSA m, s, table, seed, a, b
-    @ Normalised by compare-and-shift steps of 16, 8, 4, 2 and 1 bits.
+    RECIP_NORMALISE \m, \s
+    RECIP_OF_NORMALISED \m, \table, \seed, \a, \b
+    .endm
+
+@ RECIP_NORMALISE m, s: \m > 0 shifted left by \s until its top bit is set (RECIP_MANTISSA's
+@ first half), by compare-and-shift steps of 16, 8, 4, 2 and 1 bits.
+    .macro RECIP_NORMALISE m, s
     mov     \s, #0
     .irp    bits, 16, 8, 4, 2, 1
     cmp     \m, #(1 << (32 - \bits))
     movlo   \m, \m, lsl #\bits
     addlo   \s, \s, #\bits
     .endr
+    .endm
+
+@ RECIP_OF_NORMALISED m, table, seed, a, b: \m in [2^31, 2^32) becomes 2^63/\m (RECIP_MANTISSA's
+@ second half); \table as there.
+    .macro RECIP_OF_NORMALISED m, table, seed, a, b
     @ mantissa_reciprocal: the seed for its top 10 bits, then r·(1 + δ + δ²).
     mov     \seed, \m, lsr #21
     bic     \seed, \seed, #0x400

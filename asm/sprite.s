@@ -296,6 +296,8 @@ pc_sprite_run_blend_even:
     .size pc_sprite_run_blend_even, . - pc_sprite_run_blend_even
 
     .purgem RECIP_MANTISSA
+    .purgem RECIP_NORMALISE
+    .purgem RECIP_OF_NORMALISED
     .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
     .purgem PUT_BYTE

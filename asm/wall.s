@@ -77,11 +77,13 @@
     .equ STRIP_TEXELS, 20
     .equ STRIP_KERNEL, 24
 
-    @ The stack frame: the strips' rows, t/z' less x times its step, and each strip's two
+    @ The stack frame: the strips' rows, t/z' less x times its step, the last reciprocal's
+    @ shift (0 at first), and each strip's two
     @ kernel jobs (24 bytes each: the even column's, then the odd one's; +16 the rows).
     .equ SP_ROWS0, 0
     .equ SP_ROWS1, 4
     .equ SP_AOD, 8
+    .equ SP_SHIFT, 12
     .equ SP_SLOTS0, 16
     .equ SP_SLOTS1, 64
     .equ SLOT_COUNT_EVEN, 16
@@ -144,6 +146,7 @@ pc_wall_run:
     str     r0, [sp, #SP_AOD]
     @ No strip waits; no pixels or strips drawn yet, and the packing's bit.
     mov     r0, #0
+    str     r0, [sp, #SP_SHIFT]
     str     r0, [sp, #SP_SLOTS0 + SLOT_COUNT_EVEN]
     str     r0, [sp, #SP_SLOTS1 + SLOT_COUNT_EVEN]
     ldr     r5, [r11, #RUN_NATIVE]
@@ -265,10 +268,16 @@ pc_wall_run:
 
 .Ltexture:
     @ z' = 1/(1/z'): recip_pow2(1/z', 38) (src/math/recip.rs): r0 2^31 over the mantissa,
-    @ r1 its shift.
-    mov     r0, r10
+    @ r1 its shift. The mantissa is 1/z' shifted by the last textured column's shift where
+    @ that still normalises it (neighbouring columns' depths mostly share it), else found anew.
+    ldr     r1, [sp, #SP_SHIFT]
+    movs    r0, r10, lsl r1
+    bpl     .Lrenormalise                   @ top bit clear: it needs more
+    cmp     r10, r0, lsr r1
+    bne     .Lrenormalise                   @ bits shifted out: it needs less
+.Lnormalised:
     ldr     r2, [r11, #RUN_SEEDS]
-    RECIP_MANTISSA r0, r1, r2, r3, r4, r12
+    RECIP_OF_NORMALISED r0, r2, r3, r4, r12
     @ To 24.8, rounded: right by 62 − 38 − shift (the shift is 1..16 for 1/z' in
     @ [2^30 / EYE_DEPTH_MAX, 2^30], so 8..23).
     rsb     r1, r1, #23
@@ -345,6 +354,12 @@ pc_wall_run:
     orrs    r0, r0, r1
     blne    .Lflush
     b       .Lstep
+
+.Lrenormalise:
+    mov     r0, r10
+    RECIP_NORMALISE r0, r1
+    str     r1, [sp, #SP_SHIFT]
+    b       .Lnormalised
 
 .Lmiss:
     @ Stop at this column, its windows written, its strips to draw when started again; the
@@ -506,6 +521,8 @@ pc_column_skip:
     .size pc_column_skip, . - pc_column_skip
 
     .purgem RECIP_MANTISSA
+    .purgem RECIP_NORMALISE
+    .purgem RECIP_OF_NORMALISED
     .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
     .purgem PUT_BYTE
