@@ -236,12 +236,5 @@ BENCH_END pc_mb_project_x, r0
     .section .iwram_render_end, "aR", %progbits
     .balign 4
 
-    .purgem RECIP_MANTISSA
-    .purgem RECIP_NORMALISE
-    .purgem RECIP_OF_NORMALISED
-    .purgem MUL_2_30
-    .purgem DEPTH_LIGHT_ROW
-    .purgem PUT_BYTE
-
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

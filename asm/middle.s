@@ -254,12 +254,5 @@ pc_middle_columns:
     .ltorg
     .size pc_middle_columns, . - pc_middle_columns
 
-    .purgem RECIP_MANTISSA
-    .purgem RECIP_NORMALISE
-    .purgem RECIP_OF_NORMALISED
-    .purgem MUL_2_30
-    .purgem DEPTH_LIGHT_ROW
-    .purgem PUT_BYTE
-
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

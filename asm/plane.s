@@ -515,9 +515,3 @@ pc_flat_skip:
     bx      lr
     .size pc_flat_skip, . - pc_flat_skip
 
-    .purgem RECIP_MANTISSA
-    .purgem RECIP_NORMALISE
-    .purgem RECIP_OF_NORMALISED
-    .purgem MUL_2_30
-    .purgem DEPTH_LIGHT_ROW
-    .purgem PUT_BYTE

@@ -1,6 +1,7 @@
 @ What the ARM loops and kernels share (asm/wall.s, asm/plane.s, asm/middle.s, asm/column.s,
 @ asm/sprite.s, and the math benchmark's asm/mathbench.s), as assembler macros:
-@ assembled at the start of each of them (src/hw/kernels.rs), which purge them at their end.
+@ assembled at the start of each of them (src/hw/kernels.rs), and purged after each by
+@ asm/shared_end.s.
 @
 @ RECIP_MANTISSA m, s, table, seed, a, b: from \m > 0, \m = 2^63/(\m·2^\s) (2^31 over the
 @ normalised mantissa M = \m·2^\s in [2^31, 2^32)) and \s the shift; \table holds the seed

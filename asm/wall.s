@@ -520,12 +520,5 @@ pc_column_skip:
     bx      lr
     .size pc_column_skip, . - pc_column_skip
 
-    .purgem RECIP_MANTISSA
-    .purgem RECIP_NORMALISE
-    .purgem RECIP_OF_NORMALISED
-    .purgem MUL_2_30
-    .purgem DEPTH_LIGHT_ROW
-    .purgem PUT_BYTE
-
     @ The caller (src/hw/kernels.rs) restores the assembler's ARM/Thumb state for the code the
     @ compiler emits after this file.

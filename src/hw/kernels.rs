@@ -113,13 +113,14 @@ impl SpanTarget for VramPage {
 
 core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
 restore_code_mode!();
-/// Assembles `asm/<file>` after the loops' shared macros (asm/shared.s), which the file purges
-/// at its end, then restores the code mode.
+/// Assembles `asm/<file>` after the shared macros (asm/shared.s), purges them after it
+/// (asm/shared_end.s), then restores the code mode.
 macro_rules! assemble_with_shared_macros {
     ($file:literal) => {
         core::arch::global_asm!(
             include_str!("../../asm/shared.s"),
             include_str!(concat!("../../asm/", $file)),
+            include_str!("../../asm/shared_end.s"),
             options(raw)
         );
         restore_code_mode!();
