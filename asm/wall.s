@@ -219,9 +219,15 @@ pc_wall_run:
     b       .Lnext
 
 .Lstripped:
-    @ The neighbour's rows, clamped: r6 its ceiling's, r7 its floor's.
+    @ The neighbour's rows, clamped: r6 its ceiling's, r7 its floor's, each found only where
+    @ its strip is drawn. Without an upper strip r6 is the ceiling row: the same windows, as
+    @ the neighbour's floor row is never above its ceiling row (floor ≤ ceiling, rows
+    @ monotone), so the clamp of r7 below gives what the neighbour's own ceiling row would.
     add     r0, r11, #RUN_SCALE2
     ldmia   r0, {r6, r7, r8, r12}           @ its scales, horizon, height
+    tst     r1, #0x100
+    moveq   r6, r2
+    beq     1f
     WALL_ROW r6, r6, r8, r12, r0, lr
     cmp     r6, r2
     movlt   r6, r2                          @ max(neighbour ceiling, ceiling row)
@@ -230,6 +236,9 @@ pc_wall_run:
     movlt   r0, r2                          @ max(floor row, ceiling row)
     cmp     r6, r0
     movgt   r6, r0
+1:
+    tst     r1, #0x200
+    beq     2f
     WALL_ROW r7, r7, r8, r12, r0, lr
     cmp     r6, r3
     movlt   r0, r6
@@ -238,6 +247,7 @@ pc_wall_run:
     movlt   r7, r0
     cmp     r7, r3
     movgt   r7, r3
+2:
     @ The opening: from the neighbour's ceiling row (upper strip) or the ceiling row, to the
     @ neighbour's floor row (lower strip) or the floor row; the strips where drawn.
     tst     r1, #0x100
