@@ -37,12 +37,24 @@ pc_sprite:
     push    {r4-r11, lr}
     add     r8, r0, #28
     ldmia   r8, {r8, r9, r10}
-    push    {r8, r9, r10}           @ [sp]: the blend table, [sp, #4]: the run routine,
-                                    @ [sp, #8]: the column's end
+    push    {r8, r9, r10, r11}      @ .Lposts' frame: the blend table, the run routine, the
+                                    @ column's end, and a word for its return address
     ldmia   r0, {r1-r7}             @ dst, posts, y_top, scale, iscale, clip, colormap
     mov     r8, r6, lsl #16
     mov     r8, r8, asr #16         @ r8 = clip top
     mov     r6, r6, asr #16         @ r6 = clip bottom
+    bl      .Lposts
+    add     sp, sp, #16
+    pop     {r4-r11, lr}
+    bx      lr
+    .size pc_sprite, . - pc_sprite
+
+@ .Lposts: the posts of one column, drawn (pc_sprite's loop, shared with pc_sprite_columns).
+@ In: r1 dst, r2 the column's posts, r3 y_top, r4 scale, r5 iscale, r6 clip bottom, r8 clip
+@ top, r7 colormap; [sp] the blend table, [sp, #4] the run routine, [sp, #8] the column's end,
+@ [sp, #12] free (the return address goes there). Uses every register but sp.
+.Lposts:
+    str     lr, [sp, #12]
     ldrb    r9, [r2], #1            @ r9 = posts left
 1:
     subs    r9, r9, #1
@@ -92,10 +104,7 @@ pc_sprite:
     mov     r2, lr
     b       1b
 9:
-    add     sp, sp, #12
-    pop     {r4-r11, lr}
-    bx      lr
-    .size pc_sprite, . - pc_sprite
+    ldr     pc, [sp, #12]
 
 @ pc_sprite_columns, r0 = *const SpriteBatchJob: the columns of one sprite image, each drawn as
 @ pc_sprite draws it (src/raster/sprite.rs: SpriteBatch, its twin Canvas::sprite_columns):
@@ -120,8 +129,10 @@ pc_sprite:
     .align 2
 pc_sprite_columns:
     push    {r4-r11, lr}
-    sub     sp, sp, #40             @ pc_sprite's job for each column
+    sub     sp, sp, #28             @ .Lposts' frame (16 bytes), then r9-r11 across it
     mov     r11, r0
+    ldr     r0, [r11, #24]
+    str     r0, [sp]                @ the blend table
     ldr     r10, [r11]              @ r10 = the next column
     ldr     r9, [r11, #4]           @ r9 = columns left
 1:
@@ -144,49 +155,48 @@ pc_sprite_columns:
     orr     r0, r0, r12, lsl #24    @ r0 = the column's offset
     cmp     r0, r5
     bhs     8f
-    add     r0, r6, r0
-    str     r0, [sp, #4]            @ posts
-    str     r1, [sp, #36]           @ posts_end
+    add     r2, r6, r0              @ r2 = the column's posts
+    str     r1, [sp, #8]            @ the column's end
     ldrb    r1, [r10, #2]
     cmp     r1, #255
-    ldreq   r2, [r11, #20]
+    ldreq   r7, [r11, #20]
     beq     2f
     cmp     r1, #LIGHT_ROWS
     bhs     8f
-    ldr     r2, [r11, #16]
-    add     r2, r2, r1, lsl #8
+    ldr     r7, [r11, #16]
+    add     r7, r7, r1, lsl #8      @ r7 = the colormap row
 2:
-    str     r2, [sp, #24]           @ colormap
-    ldr     r1, [r10, #4]           @ clip
-    add     r0, r10, #8
-    ldmia   r0, {r2, r3, r4}        @ y_top, scale, iscale
-    add     r0, sp, #8
-    stmia   r0, {r2, r3, r4}
-    str     r1, [sp, #20]
-    ldr     r1, [r11, #24]
-    str     r1, [sp, #28]           @ blend
     ldrb    r1, [r10]               @ x
-    ldr     r2, [r11, #28]          @ the page
+    ldr     r0, [r11, #28]          @ the page
     ldr     r3, [r11, #44]
     cmp     r3, #0
-    addeq   r2, r2, r1, lsl #1      @ 120 wide: both bytes of halfword x
+    addeq   r0, r0, r1, lsl #1      @ 120 wide: both bytes of halfword x
     ldreq   r3, [r11, #32]
     beq     3f
-    bic     r0, r1, #1
-    add     r2, r2, r0              @ 240 wide: the halfword holding pixel x
+    bic     r12, r1, #1
+    add     r0, r0, r12             @ 240 wide: the halfword holding pixel x
     tst     r1, #1
     ldreq   r3, [r11, #36]
     ldrne   r3, [r11, #40]
 3:
-    str     r2, [sp]                @ dst
-    str     r3, [sp, #32]           @ run
-    mov     r0, sp
-    bl      pc_sprite
+    str     r3, [sp, #4]            @ the run routine
+    mov     r1, r0                  @ r1 = dst
+    ldr     r6, [r10, #4]           @ clip
+    mov     r8, r6, lsl #16
+    mov     r8, r8, asr #16         @ r8 = clip top
+    mov     r6, r6, asr #16         @ r6 = clip bottom
+    add     r0, r10, #8
+    ldmia   r0, {r3, r4, r5}        @ y_top, scale, iscale
+    add     r0, sp, #16
+    stmia   r0, {r9, r10, r11}
+    bl      .Lposts
+    add     r0, sp, #16
+    ldmia   r0, {r9, r10, r11}
 8:
     add     r10, r10, #BATCH_COLUMN_BYTES
     b       1b
 9:
-    add     sp, sp, #40
+    add     sp, sp, #28
     pop     {r4-r11, lr}
     bx      lr
     .size pc_sprite_columns, . - pc_sprite_columns
