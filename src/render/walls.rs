@@ -87,6 +87,20 @@ impl VertexSplit {
         {
             return split;
         }
+        VertexSplit::of_exact(viewport, exact, first, end)
+    }
+
+    /// [`VertexSplit::new_exact`] where the rounding could matter: the exact point's split.
+    /// Out of line and, on the GBA, in ROM: only a vertex within a rounding step of a column's
+    /// ray comes here, and the renderer's IWRAM has no room for it.
+    #[cold]
+    #[inline(never)]
+    fn of_exact(
+        viewport: &Viewport,
+        exact: impl FnOnce() -> ExactEyePoint,
+        first: i32,
+        end: i32,
+    ) -> VertexSplit {
         let q = exact();
         VertexSplit::by_side(first, end, |c| {
             viewport.side_of_exact_column_ray(q, c) == Side::Right
