@@ -15,7 +15,8 @@
 @ columns take the lit ones through the identity row in a lit frame:
 @   pc_col_dbl_{unlit,lit}_hN   120-wide modes: STRB to VRAM writes the byte to both halves of
 @                               the halfword, so one store draws a logical pixel 2 screen pixels
-@                               wide. dst = page + row*240 + 2*x.
+@                               wide. dst = page + row*240 + 2*x. The wall loop enters them
+@                               past their job load, its registers set (COLUMN_REGISTER_ENTRY).
 @   pc_col_pair_{unlit,lit}_hN  240-wide mode: two jobs, the columns x and x + 1 (x even) that
 @                               share the halfwords (either may be left out), dst = page +
 @                               row*240 + x each; below, at PAIR_KERNEL.
@@ -37,6 +38,9 @@
 \name:
     push    {r4-r7}
     ldmia   r0, {r1-r6}
+    @ The wall loop's entry (asm/wall.s, .Lstrip): r4-r7 pushed and r1-r6 loaded by it. The
+    @ assembler refuses the .org if the two instructions above grow.
+    .org    \name + COLUMN_REGISTER_ENTRY
     ands    r7, r5, #((1 << \block_log2) - 1)
     beq     2f
 1:

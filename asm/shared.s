@@ -3,6 +3,11 @@
 @ assembled at the start of each of them (src/hw/kernels.rs), and purged after each by
 @ asm/shared_end.s.
 @
+@ COLUMN_REGISTER_ENTRY: where a doubled column kernel (asm/column.s) goes on after loading
+@ its job: the wall loop at 120 wide (asm/wall.s, .Lstrip) pushes r4-r7 as the kernel does,
+@ loads r1-r6 itself and enters there; the kernel's epilogue pops them. The kernels check it.
+    .equ COLUMN_REGISTER_ENTRY, 8
+
 @ RECIP_MANTISSA m, s, table, seed, a, b: from \m > 0, \m = 2^63/(\m·2^\s) (2^31 over the
 @ normalised mantissa M = \m·2^\s in [2^31, 2^32)) and \s the shift; \table holds the seed
 @ table (u16[1024], RECIP_SEED_U16) and is used as scratch after; \seed, \a, \b scratch.

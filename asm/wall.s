@@ -26,13 +26,14 @@
 @
 @ Registers kept across columns: r11 the run, r10 1/z', r9 the column, r5 the pixels drawn,
 @ (from bit 16) the strips drawn, in bit 29 whether two pixels share a halfword (240 wide), and
-@ in bits 30 and 31 whether a ceiling and a floor window had rows. The kernels keep r4-r11. The
-@ stack holds the column's strip rows and, per strip, two kernel jobs (asm/column.s): at 120
-@ wide the column's, drawn at once; at 240 wide those of an even column and of the odd one
-@ beside it, which share VRAM halfwords: an even column's strip waits in its job (rows in it
-@ while it waits) until the odd column's is set up, and the pair kernel draws both, one
-@ halfword store a row where both have rows; one the odd column leaves alone is drawn after it
-@ (or when the run ends or stops).
+@ in bits 30 and 31 whether a ceiling and a floor window had rows. The kernels keep r4-r11. At
+@ 120 wide each strip is drawn at once, its doubled kernel entered with its registers set
+@ (COLUMN_REGISTER_ENTRY, asm/shared.s): no job is written. At 240 wide the stack holds, per
+@ strip, two kernel jobs (asm/column.s), those of an even column and of the odd one beside
+@ it, which share VRAM halfwords: an even column's strip waits in its job (rows in it while
+@ it waits) until the odd column's is set up, and the pair kernel draws both, one halfword
+@ store a row where both have rows; one the odd column leaves alone is drawn after it (or
+@ when the run ends or stops). The stack holds the column's strip rows too.
 
     .equ RUN_INV, 0
     .equ RUN_INV_STEP, 4
@@ -417,11 +418,68 @@ pc_wall_run:
     @ column, v and its step; then the kernel, or at 240 wide on an even column, the wait.
     @ Keeps r4-r11.
 .Lstrip:
+    tst     r5, #NATIVE_BIT
+    bne     .Lstrip_jobs
+    @ 120 wide: the doubled kernel's registers, set here, no job written or read. r4-r7 are
+    @ pushed as the kernel would push them, so the kernel's epilogue gives them back.
+    mov     r1, r0, lsl #16
+    mov     r1, r1, lsr #16                 @ r1: top
+    rsb     r0, r1, r0, lsr #16             @ count
+    add     r5, r5, r0
+    add     r5, r5, #0x10000
+    push    {r4-r7, lr}
+    mov     r5, r0                          @ r5: count
+    @ v, as below, in r3.
+    ldr     r0, [r11, #RUN_HORIZON_ROW]
+    sub     r12, r1, r0
+    mov     r12, r12, lsl #1
+    add     r12, r12, #1
+    umull   r3, lr, r6, r12
+    cmp     r12, #0
+    sublt   lr, lr, r6
+    mla     lr, r12, r7, lr
+    mov     r3, r3, lsr #31
+    orr     r3, r3, lr, lsl #1
+    ldr     r12, [r2, #STRIP_EYE]
+    add     r3, r3, r12
+    ldr     r0, [r2, #STRIP_SHAPE]
+    mov     lr, r0, lsr #16
+    rsb     lr, lr, #24
+    mov     r3, r3, lsl lr                  @ r3: v
+    @ dst = page + top·240 + 2x.
+    ldr     r12, [r11, #RUN_PAGE]
+    rsb     r1, r1, r1, lsl #4
+    add     r1, r12, r1, lsl #4
+    add     r1, r1, r9, lsl #1              @ r1: dst
+    @ The texel column, as below, in r12 (r4, u, is free after it).
+    and     lr, r0, #0xff
+    mov     r12, r4, asr #8
+    ldr     r4, [r2, #STRIP_WMASK]
+    and     r12, r4, r12, asr lr
+    mov     lr, r0, lsr #8
+    and     lr, lr, #0xff
+    ldr     r4, [r2, #STRIP_TEXELS]
+    add     r12, r4, r12, lsl lr
+    @ dv, as below.
+    mov     r0, r0, lsr #16
+    add     lr, r0, #6
+    mov     r4, r6, lsr lr
+    rsb     lr, lr, #32
+    orr     r4, r4, r7, lsl lr              @ r4: dv
+    ldr     r0, [r2, #STRIP_KERNEL]
+    mov     r2, r12                         @ r2: texels
+    mov     r6, r8                          @ r6: the colormap row
+    add     r0, r0, #COLUMN_REGISTER_ENTRY
+    mov     lr, pc
+    bx      r0
+    pop     {pc}
+
+.Lstrip_jobs:
+    @ 240 wide: the strip's job, in the even or the odd column's slot.
     push    {r3, lr}
     add     r3, sp, r3
-    tst     r5, #NATIVE_BIT
-    tstne   r9, #1
-    addne   r3, r3, #24                     @ r3: the job (240 wide, an odd column: the second)
+    tst     r9, #1
+    addne   r3, r3, #24                     @ r3: the job (an odd column: the second)
     mov     r1, r0, lsl #16
     mov     r1, r1, lsr #16                 @ r1: top
     rsb     r0, r1, r0, lsr #16             @ count
@@ -429,14 +487,12 @@ pc_wall_run:
     add     r5, r5, #0x10000
     str     r0, [r3, #16]
     str     r8, [r3, #20]
-    @ dst = page + top·240 + (2x at 120 wide, or x & ~1 where two pixels share a halfword).
+    @ dst = page + top·240 + (x & ~1): two pixels share a halfword.
     ldr     r0, [r11, #RUN_PAGE]
     rsb     r12, r1, r1, lsl #4
     add     r0, r0, r12, lsl #4
-    tst     r5, #NATIVE_BIT
-    addeq   r0, r0, r9, lsl #1
-    bicne   r12, r9, #1
-    addne   r0, r0, r12
+    bic     r12, r9, #1
+    add     r0, r0, r12
     str     r0, [r3]
     @ v = (eye_to_anchor + ((2(top − cy) + 1)·z'/d_y >> 31)) << (24 − base log2), low words.
     ldr     r0, [r11, #RUN_HORIZON_ROW]
@@ -473,16 +529,9 @@ pc_wall_run:
     rsb     lr, lr, #32
     orr     r12, r12, r7, lsl lr
     str     r12, [r3, #12]
-    @ The kernel: at 120 wide the column's; at 240 on an odd column the pair's, the even
-    @ column's job first (without rows where it has none), which is then empty.
+    @ The kernel, on an odd column: the pair's, the even column's job first (without rows
+    @ where it has none), which is then empty.
     ldr     r12, [r2, #STRIP_KERNEL]
-    tst     r5, #NATIVE_BIT
-    bne     1f
-    mov     r0, r3
-    mov     lr, pc
-    bx      r12
-    pop     {r3, pc}
-1:
     tst     r9, #1
     popeq   {r3, pc}
     sub     r0, r3, #24
@@ -522,11 +571,15 @@ pc_wall_run:
     .size pc_wall_run, . - pc_wall_run
 
     @ A column kernel that draws nothing: the set-up benchmark's stand-in (VramCanvas's
-    @ without_kernels), so that the loop is timed up to its kernel calls.
+    @ without_kernels), so that the loop is timed up to its kernel calls. Entered as a kernel is,
+    @ at its start or at its register entry, where the caller has pushed r4-r7 for it.
     .global pc_column_skip
     .type pc_column_skip, %function
     .align 2
 pc_column_skip:
+    bx      lr
+    .org    pc_column_skip + COLUMN_REGISTER_ENTRY
+    pop     {r4-r7}
     bx      lr
     .size pc_column_skip, . - pc_column_skip
 
