@@ -51,6 +51,9 @@
 \name:
     push    {r4-r8}
     ldmia   r0, {r1-r6}
+    @ The plane loop's entry (FLAT_REGISTER_ENTRY): the assembler refuses the .org if the two
+    @ instructions above grow.
+    .org    \name + FLAT_REGISTER_ENTRY
     mov     r7, #((1 << \k) - 1)
     mov     r7, r7, lsl #\k
     ands    r8, r5, #((1 << \block_log2) - 1)

@@ -405,9 +405,24 @@ pc_plane_run:
     movne   r12, r12, lsl #1
     b       .Lpl_call
 .Lpl_doubled:
-    @ 120 wide: a halfword a pixel.
-    add     r0, r4, r7, lsl #1
-    sub     r1, r8, r7
+    @ 120 wide: a halfword a pixel. The doubled kernel entered with its registers set
+    @ (FLAT_REGISTER_ENTRY), no job: dst, texels, pos, step, count, colormap in r1-r6, and
+    @ five words pushed for its epilogue to pop into r4-r8, which this routine restores itself.
+    ldr     r0, [r11, #PR_SIDE]
+    ldr     r2, [r11, #PR_KERNELS]
+    sub     r0, r0, #3
+    ldr     r0, [r2, r0, lsl #2]
+    add     r0, r0, #FLAT_REGISTER_ENTRY
+    add     r1, r4, r7, lsl #1
+    ldr     r2, [r11, #PR_TEXELS]
+    mov     r3, r6
+    mov     r4, r12
+    mov     r6, r5
+    sub     r5, r8, r7
+    sub     sp, sp, #20
+    mov     lr, pc
+    bx      r0
+    b       .Lpl_drawn
 .Lpl_call:
     @ The job: dst, texels, pos, step, count (halfwords), colormap.
     ldr     r2, [r11, #PR_TEXELS]
@@ -512,6 +527,9 @@ pc_plane_run:
     .type pc_flat_skip, %function
     .align 2
 pc_flat_skip:
+    bx      lr
+    .org    pc_flat_skip + FLAT_REGISTER_ENTRY
+    pop     {r4-r8}
     bx      lr
     .size pc_flat_skip, . - pc_flat_skip
 

@@ -8,6 +8,11 @@
 @ loads r1-r6 itself and enters there; the kernel's epilogue pops them. The kernels check it.
     .equ COLUMN_REGISTER_ENTRY, 8
 
+@ FLAT_REGISTER_ENTRY: the same for a span kernel (asm/flat.s), entered by the plane loop at
+@ 120 wide (asm/plane.s) with r1-r6 set and five words pushed, which the kernel's epilogue
+@ pops into r4-r8 (the loop keeps nothing there).
+    .equ FLAT_REGISTER_ENTRY, 8
+
 @ RECIP_MANTISSA m, s, table, seed, a, b: from \m > 0, \m = 2^63/(\m·2^\s) (2^31 over the
 @ normalised mantissa M = \m·2^\s in [2^31, 2^32)) and \s the shift; \table holds the seed
 @ table (u16[1024], RECIP_SEED_U16) and is used as scratch after; \seed, \a, \b scratch.
