@@ -41,22 +41,26 @@
     @ The wall loop's entry (asm/wall.s, .Lstrip): r4-r7 pushed and r1-r6 loaded by it. The
     @ assembler refuses the .org if the two instructions above grow.
     .org    \name + COLUMN_REGISTER_ENTRY
-    ands    r7, r5, #((1 << \block_log2) - 1)
-    beq     2f
-1:
-    PIXEL_DBL \shift, \lit
-    subs    r7, r7, #1
-    bne     1b
-2:
-    movs    r5, r5, lsr #\block_log2
-    beq     4f
+    @ Blocks of 2^block_log2 rows, the first entered part-way (Duff's device): r5 the blocks,
+    @ the count rounded up; the rows the first block skips, (−count) mod 2^block_log2, are
+    @ jumped over by their size in bytes (16 a lit row, 12 an unlit one).
+    add     r7, r5, #((1 << \block_log2) - 1)
+    mov     r5, r7, lsr #\block_log2
+    and     r7, r7, #((1 << \block_log2) - 1)
+    rsb     r7, r7, #((1 << \block_log2) - 1)
+    .if \lit
+    add     pc, pc, r7, lsl #4
+    .else
+    add     r7, r7, r7, lsl #1
+    add     pc, pc, r7, lsl #2
+    .endif
+    mov     r0, r0                          @ never run: pc reads two instructions ahead
 3:
     .rept (1 << \block_log2)
     PIXEL_DBL \shift, \lit
     .endr
     subs    r5, r5, #1
     bne     3b
-4:
     pop     {r4-r7}
     bx      lr
     .size \name, . - \name
@@ -159,13 +163,13 @@
     .section .iwram_columns_dbl_lit.pc_column, "ax", %progbits
     .arm
     .irp log2h, 3, 4, 5, 6, 7, 8
-    COLUMN_KERNEL pc_col_dbl_lit_h\log2h, (32 - \log2h), 1, 2
+    COLUMN_KERNEL pc_col_dbl_lit_h\log2h, (32 - \log2h), 1, 3
     .endr
 
     .section .iwram_columns_dbl_unlit.pc_column, "ax", %progbits
     .arm
     .irp log2h, 3, 4, 5, 6, 7, 8
-    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, (32 - \log2h), 0, 2
+    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, (32 - \log2h), 0, 3
     .endr
 
     .section .iwram_columns_pair_lit.pc_column, "ax", %progbits
