@@ -139,15 +139,25 @@
     movhs   r12, r11
     sub     r5, r5, r12
     sub     r11, r11, r12
-    @ Two rows a turn; an odd count enters at the second.
-    tst     r12, #1
-    addne   r12, r12, #1
-    bne     7f
+    @ Four rows a turn, the first entered part-way (Duff's device): r12 the turns, the
+    @ count rounded up; the rows the first turn skips, (−count) mod 4, are jumped over by
+    @ their size in bytes (32 a lit row, 24 an unlit one).
+    add     r12, r12, #3
+    and     r0, r12, #3
+    rsb     r0, r0, #3
+    mov     r12, r12, lsr #2
+    .if \lit
+    add     pc, pc, r0, lsl #5
+    .else
+    add     r0, r0, r0, lsl #1
+    add     pc, pc, r0, lsl #3
+    .endif
+    mov     r0, r0                          @ never run: pc reads two instructions ahead
 4:
+    .rept 4
     PIXEL_PAIR \shift, \lit
-7:
-    PIXEL_PAIR \shift, \lit
-    subs    r12, r12, #2
+    .endr
+    subs    r12, r12, #1
     bne     4b
     mov     r7, r1
     b       0b
