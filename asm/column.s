@@ -41,20 +41,13 @@
     @ The wall loop's entry (asm/wall.s, .Lstrip): r4-r7 pushed and r1-r6 loaded by it. The
     @ assembler refuses the .org if the two instructions above grow.
     .org    \name + COLUMN_REGISTER_ENTRY
-    @ Blocks of 2^block_log2 rows, the first entered part-way (Duff's device): r5 the blocks,
-    @ the count rounded up; the rows the first block skips, (−count) mod 2^block_log2, are
-    @ jumped over by their size in bytes (16 a lit row, 12 an unlit one).
-    add     r7, r5, #((1 << \block_log2) - 1)
-    mov     r5, r7, lsr #\block_log2
-    and     r7, r7, #((1 << \block_log2) - 1)
-    rsb     r7, r7, #((1 << \block_log2) - 1)
+    @ Blocks of 2^block_log2 rows, the first entered part-way: a lit row is 16 bytes, an
+    @ unlit one 12.
     .if \lit
-    add     pc, pc, r7, lsl #4
+    DUFF_ENTER r5, r7, \block_log2, 1, 4
     .else
-    add     r7, r7, r7, lsl #1
-    add     pc, pc, r7, lsl #2
+    DUFF_ENTER r5, r7, \block_log2, 3, 2
     .endif
-    mov     r0, r0                          @ never run: pc reads two instructions ahead
 3:
     .rept (1 << \block_log2)
     PIXEL_DBL \shift, \lit
@@ -139,20 +132,12 @@
     movhs   r12, r11
     sub     r5, r5, r12
     sub     r11, r11, r12
-    @ Four rows a turn, the first entered part-way (Duff's device): r12 the turns, the
-    @ count rounded up; the rows the first turn skips, (−count) mod 4, are jumped over by
-    @ their size in bytes (32 a lit row, 24 an unlit one).
-    add     r12, r12, #3
-    and     r0, r12, #3
-    rsb     r0, r0, #3
-    mov     r12, r12, lsr #2
+    @ Four rows a turn, the first entered part-way: a lit row is 32 bytes, an unlit one 24.
     .if \lit
-    add     pc, pc, r0, lsl #5
+    DUFF_ENTER r12, r0, 2, 1, 5
     .else
-    add     r0, r0, r0, lsl #1
-    add     pc, pc, r0, lsl #3
+    DUFF_ENTER r12, r0, 2, 3, 3
     .endif
-    mov     r0, r0                          @ never run: pc reads two instructions ahead
 4:
     .rept 4
     PIXEL_PAIR \shift, \lit

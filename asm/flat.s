@@ -56,25 +56,14 @@
     .org    \name + FLAT_REGISTER_ENTRY
     mov     r7, #((1 << \k) - 1)
     mov     r7, r7, lsl #\k
-    @ Blocks of 2^block_log2 halfwords, the first entered part-way (Duff's device): r5 the
-    @ blocks, the count rounded up; the halfwords the first block skips, (−count) mod
-    @ 2^block_log2, are jumped over by their size in bytes (FLAT_OUT's: 6 or 5 instructions
-    @ a doubled halfword, lit or not, 12 or 10 a pair's).
-    add     r8, r5, #((1 << \block_log2) - 1)
-    mov     r5, r8, lsr #\block_log2
-    and     r8, r8, #((1 << \block_log2) - 1)
-    rsb     r8, r8, #((1 << \block_log2) - 1)
-    .if \lit
-    add     r8, r8, r8, lsl #1              @ ×3: 24 bytes (doubled) or 48 (pair)
-    .else
-    add     r8, r8, r8, lsl #2              @ ×5: 20 bytes (doubled) or 40 (pair)
-    .endif
+    @ Blocks of 2^block_log2 halfwords, the first entered part-way: FLAT_OUT is 6 or 5
+    @ instructions a doubled halfword (lit or not), 12 or 10 a pair's: 3·8 or 5·4 bytes,
+    @ 3·16 or 5·8.
     .ifc \kind, dbl
-    add     pc, pc, r8, lsl #(3 - 1 + \lit)
+    DUFF_ENTER r5, r8, \block_log2, (5 - 2 * \lit), (2 + \lit)
     .else
-    add     pc, pc, r8, lsl #(4 - 1 + \lit)
+    DUFF_ENTER r5, r8, \block_log2, (5 - 2 * \lit), (3 + \lit)
     .endif
-    mov     r0, r0                          @ never run: pc reads two instructions ahead
 3:
     .rept (1 << \block_log2)
     FLAT_OUT \kind, \k, \lit

@@ -1,5 +1,5 @@
 @ What the ARM loops and kernels share (asm/wall.s, asm/plane.s, asm/middle.s, asm/column.s,
-@ asm/sprite.s, and the math benchmark's asm/mathbench.s), as assembler macros:
+@ asm/flat.s, asm/sprite.s, and the math benchmark's asm/mathbench.s), as assembler macros:
 @ assembled at the start of each of them (src/hw/kernels.rs), and purged after each by
 @ asm/shared_end.s.
 @
@@ -12,6 +12,24 @@
 @ 120 wide (asm/plane.s) with r1-r6 set and five words pushed, which the kernel's epilogue
 @ pops into r4-r8 (the loop keeps nothing there).
     .equ FLAT_REGISTER_ENTRY, 8
+
+@ DUFF_ENTER count, skip, log2, mul, shift: a kernel's loop over blocks of 2^\log2 unrolled
+@ steps, its first block entered part-way (Duff's device): \count (at least 1) becomes the
+@ blocks, the count rounded up, and the pc jumps over the (−count) mod 2^\log2 steps the first
+@ block skips, each \mul · 2^\shift bytes (\mul 1, 3 or 5); \skip scratch. The block follows.
+    .macro DUFF_ENTER count, skip, log2, mul, shift
+    add     \skip, \count, #((1 << \log2) - 1)
+    mov     \count, \skip, lsr #\log2
+    and     \skip, \skip, #((1 << \log2) - 1)
+    rsb     \skip, \skip, #((1 << \log2) - 1)
+    .if \mul == 3
+    add     \skip, \skip, \skip, lsl #1
+    .elseif \mul == 5
+    add     \skip, \skip, \skip, lsl #2
+    .endif
+    add     pc, pc, \skip, lsl #\shift
+    mov     r0, r0                          @ never run: pc reads two instructions ahead
+    .endm
 
 @ RECIP_MANTISSA m, s, table, seed, a, b: from \m > 0, \m = 2^63/(\m·2^\s) (2^31 over the
 @ normalised mantissa M = \m·2^\s in [2^31, 2^32)) and \s the shift; \table holds the seed

@@ -6,3 +6,4 @@
     .purgem MUL_2_30
     .purgem DEPTH_LIGHT_ROW
     .purgem PUT_BYTE
+    .purgem DUFF_ENTER

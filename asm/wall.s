@@ -128,6 +128,50 @@
     bgt     .Lmiss
     .endm
 
+    @ \dst = a strip's v at row \top: (eye_to_anchor + ((2(top − cy) + 1)·z'/d_y >> 31)) <<
+    @ (24 − base log2), low words, with r2 the strip and r6/r7 z'/d_y. Leaves the strip's shape
+    @ in r0; \t scratch (it may be \top), with lr.
+    .macro WALL_STRIP_V dst, top, t
+    ldr     r0, [r11, #RUN_HORIZON_ROW]
+    sub     \t, \top, r0
+    mov     \t, \t, lsl #1
+    add     \t, \t, #1                      @ twice the row offset, signed
+    umull   \dst, lr, r6, \t
+    cmp     \t, #0
+    sublt   lr, lr, r6                      @ a negative factor read as unsigned: take it back
+    mla     lr, \t, r7, lr
+    mov     \dst, \dst, lsr #31
+    orr     \dst, \dst, lr, lsl #1
+    ldr     \t, [r2, #STRIP_EYE]
+    add     \dst, \dst, \t
+    ldr     r0, [r2, #STRIP_SHAPE]
+    mov     lr, r0, lsr #16                 @ log2 of the base height
+    rsb     lr, lr, #24
+    mov     \dst, \dst, lsl lr
+    .endm
+
+    @ \dst = the strip's texel column: ((u >> 8) >> level) & width mask, 2^h texels each, with
+    @ r4 u and r0 the shape; \t scratch (it may be r4), with lr.
+    .macro WALL_STRIP_TEXELS dst, t
+    and     lr, r0, #0xff
+    mov     \dst, r4, asr #8
+    ldr     \t, [r2, #STRIP_WMASK]
+    and     \dst, \t, \dst, asr lr
+    mov     lr, r0, lsr #8
+    and     lr, lr, #0xff
+    ldr     \t, [r2, #STRIP_TEXELS]
+    add     \dst, \t, \dst, lsl lr
+    .endm
+
+    @ \dst = dv = z'/d_y >> (6 + base log2), low word, with r0 the shape (consumed); lr scratch.
+    .macro WALL_STRIP_DV dst
+    mov     r0, r0, lsr #16
+    add     lr, r0, #6
+    mov     \dst, r6, lsr lr
+    rsb     lr, lr, #32
+    orr     \dst, \dst, r7, lsl lr
+    .endm
+
     .section .iwram_render.pc_wall_run, "ax", %progbits
     .arm
     .global pc_wall_run
@@ -429,43 +473,14 @@ pc_wall_run:
     add     r5, r5, #0x10000
     push    {r4-r7, lr}
     mov     r5, r0                          @ r5: count
-    @ v, as below, in r3.
-    ldr     r0, [r11, #RUN_HORIZON_ROW]
-    sub     r12, r1, r0
-    mov     r12, r12, lsl #1
-    add     r12, r12, #1
-    umull   r3, lr, r6, r12
-    cmp     r12, #0
-    sublt   lr, lr, r6
-    mla     lr, r12, r7, lr
-    mov     r3, r3, lsr #31
-    orr     r3, r3, lr, lsl #1
-    ldr     r12, [r2, #STRIP_EYE]
-    add     r3, r3, r12
-    ldr     r0, [r2, #STRIP_SHAPE]
-    mov     lr, r0, lsr #16
-    rsb     lr, lr, #24
-    mov     r3, r3, lsl lr                  @ r3: v
+    WALL_STRIP_V r3, r1, r12                @ r3: v
     @ dst = page + top·240 + 2x.
     ldr     r12, [r11, #RUN_PAGE]
     rsb     r1, r1, r1, lsl #4
     add     r1, r12, r1, lsl #4
     add     r1, r1, r9, lsl #1              @ r1: dst
-    @ The texel column, as below, in r12 (r4, u, is free after it).
-    and     lr, r0, #0xff
-    mov     r12, r4, asr #8
-    ldr     r4, [r2, #STRIP_WMASK]
-    and     r12, r4, r12, asr lr
-    mov     lr, r0, lsr #8
-    and     lr, lr, #0xff
-    ldr     r4, [r2, #STRIP_TEXELS]
-    add     r12, r4, r12, lsl lr
-    @ dv, as below.
-    mov     r0, r0, lsr #16
-    add     lr, r0, #6
-    mov     r4, r6, lsr lr
-    rsb     lr, lr, #32
-    orr     r4, r4, r7, lsl lr              @ r4: dv
+    WALL_STRIP_TEXELS r12, r4               @ r12: texels (u is done with)
+    WALL_STRIP_DV r4                        @ r4: dv
     ldr     r0, [r2, #STRIP_KERNEL]
     mov     r2, r12                         @ r2: texels
     mov     r6, r8                          @ r6: the colormap row
@@ -494,40 +509,11 @@ pc_wall_run:
     bic     r12, r9, #1
     add     r0, r0, r12
     str     r0, [r3]
-    @ v = (eye_to_anchor + ((2(top − cy) + 1)·z'/d_y >> 31)) << (24 − base log2), low words.
-    ldr     r0, [r11, #RUN_HORIZON_ROW]
-    sub     r1, r1, r0
-    mov     r1, r1, lsl #1
-    add     r1, r1, #1                      @ twice the row offset, signed
-    umull   r12, lr, r6, r1
-    cmp     r1, #0
-    sublt   lr, lr, r6                      @ a negative factor read as unsigned: take it back
-    mla     lr, r1, r7, lr
-    mov     r12, r12, lsr #31
-    orr     r12, r12, lr, lsl #1
-    ldr     r1, [r2, #STRIP_EYE]
-    add     r12, r12, r1
-    ldr     r0, [r2, #STRIP_SHAPE]
-    mov     lr, r0, lsr #16                 @ log2 of the base height
-    rsb     lr, lr, #24
-    mov     r12, r12, lsl lr
+    WALL_STRIP_V r12, r1, r1
     str     r12, [r3, #8]
-    @ The texel column: ((u >> 8) >> level) & width mask, 2^h texels each.
-    and     lr, r0, #0xff
-    mov     r12, r4, asr #8
-    ldr     r1, [r2, #STRIP_WMASK]
-    and     r12, r1, r12, asr lr
-    mov     lr, r0, lsr #8
-    and     lr, lr, #0xff
-    ldr     r1, [r2, #STRIP_TEXELS]
-    add     r1, r1, r12, lsl lr
-    str     r1, [r3, #4]
-    @ dv = z'/d_y >> (6 + base log2), low word.
-    mov     r0, r0, lsr #16
-    add     lr, r0, #6
-    mov     r12, r6, lsr lr
-    rsb     lr, lr, #32
-    orr     r12, r12, r7, lsl lr
+    WALL_STRIP_TEXELS r12, r1
+    str     r12, [r3, #4]
+    WALL_STRIP_DV r12
     str     r12, [r3, #12]
     @ The kernel, on an odd column: the pair's, the even column's job first (without rows
     @ where it has none), which is then empty.

@@ -111,8 +111,6 @@ impl SpanTarget for VramPage {
     }
 }
 
-core::arch::global_asm!(include_str!("../../asm/flat.s"), options(raw));
-restore_code_mode!();
 /// Assembles `asm/<file>` after the shared macros (asm/shared.s), purges them after it
 /// (asm/shared_end.s), then restores the code mode.
 macro_rules! assemble_with_shared_macros {
@@ -127,9 +125,10 @@ macro_rules! assemble_with_shared_macros {
     };
 }
 
-// The column and sprite kernels and the wall, plane and middle loops share macros
+// The column, span and sprite kernels and the wall, plane and middle loops share macros
 // (asm/shared.s), assembled with each of them.
 assemble_with_shared_macros!("column.s");
+assemble_with_shared_macros!("flat.s");
 assemble_with_shared_macros!("sprite.s");
 assemble_with_shared_macros!("wall.s");
 assemble_with_shared_macros!("plane.s");
