@@ -158,13 +158,13 @@
     .section .iwram_columns_dbl_lit.pc_column, "ax", %progbits
     .arm
     .irp log2h, 3, 4, 5, 6, 7, 8
-    COLUMN_KERNEL pc_col_dbl_lit_h\log2h, (32 - \log2h), 1, 3
+    COLUMN_KERNEL pc_col_dbl_lit_h\log2h, (32 - \log2h), 1, 4
     .endr
 
     .section .iwram_columns_dbl_unlit.pc_column, "ax", %progbits
     .arm
     .irp log2h, 3, 4, 5, 6, 7, 8
-    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, (32 - \log2h), 0, 3
+    COLUMN_KERNEL pc_col_dbl_unlit_h\log2h, (32 - \log2h), 0, 4
     .endr
 
     .section .iwram_columns_pair_lit.pc_column, "ax", %progbits
