@@ -90,6 +90,15 @@
     add     \u, \v, \u, lsl #16
     .endm
 
+    @ \dst = the span kernel for the flat's side at the run's level (PR_KERNELS, by side from
+    @ 8); \t and r0 scratch (\dst may be r0).
+    .macro PLANE_KERNEL dst, t
+    ldr     r0, [r11, #PR_SIDE]
+    ldr     \t, [r11, #PR_KERNELS]
+    sub     r0, r0, #3
+    ldr     \dst, [\t, r0, lsl #2]
+    .endm
+
     @ Rows \row.. \end (r2 the span starts) start a span at column r4; \row ends at \end.
     .macro PLANE_START_ROWS row, end
 1:
@@ -408,10 +417,7 @@ pc_plane_run:
     @ 120 wide: a halfword a pixel. The doubled kernel entered with its registers set
     @ (FLAT_REGISTER_ENTRY), no job: dst, texels, pos, step, count, colormap in r1-r6, and
     @ five words pushed for its epilogue to pop into r4-r8, which this routine restores itself.
-    ldr     r0, [r11, #PR_SIDE]
-    ldr     r2, [r11, #PR_KERNELS]
-    sub     r0, r0, #3
-    ldr     r0, [r2, r0, lsl #2]
+    PLANE_KERNEL r0, r2
     add     r0, r0, #FLAT_REGISTER_ENTRY
     add     r1, r4, r7, lsl #1
     ldr     r2, [r11, #PR_TEXELS]
@@ -432,10 +438,7 @@ pc_plane_run:
     str     r12, [sp, #12]
     str     r1, [sp, #16]
     str     r5, [sp, #20]
-    ldr     r0, [r11, #PR_SIDE]
-    ldr     r1, [r11, #PR_KERNELS]
-    sub     r0, r0, #3
-    ldr     r12, [r1, r0, lsl #2]
+    PLANE_KERNEL r12, r1
     mov     r0, sp
     mov     lr, pc
     bx      r12

@@ -462,15 +462,15 @@ pc_wall_run:
     @ column, v and its step; then the kernel, or at 240 wide on an even column, the wait.
     @ Keeps r4-r11.
 .Lstrip:
-    tst     r5, #NATIVE_BIT
-    bne     .Lstrip_jobs
-    @ 120 wide: the doubled kernel's registers, set here, no job written or read. r4-r7 are
-    @ pushed as the kernel would push them, so the kernel's epilogue gives them back.
     mov     r1, r0, lsl #16
     mov     r1, r1, lsr #16                 @ r1: top
     rsb     r0, r1, r0, lsr #16             @ count
     add     r5, r5, r0
     add     r5, r5, #0x10000
+    tst     r5, #NATIVE_BIT
+    bne     .Lstrip_jobs
+    @ 120 wide: the doubled kernel's registers, set here, no job written or read. r4-r7 are
+    @ pushed as the kernel would push them, so the kernel's epilogue gives them back.
     push    {r4-r7, lr}
     mov     r5, r0                          @ r5: count
     WALL_STRIP_V r3, r1, r12                @ r3: v
@@ -495,11 +495,6 @@ pc_wall_run:
     add     r3, sp, r3
     tst     r9, #1
     addne   r3, r3, #24                     @ r3: the job (an odd column: the second)
-    mov     r1, r0, lsl #16
-    mov     r1, r1, lsr #16                 @ r1: top
-    rsb     r0, r1, r0, lsr #16             @ count
-    add     r5, r5, r0
-    add     r5, r5, #0x10000
     str     r0, [r3, #16]
     str     r8, [r3, #20]
     @ dst = page + top·240 + (x & ~1): two pixels share a halfword.
