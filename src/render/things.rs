@@ -13,8 +13,7 @@
 //! things wherever they overlap.
 
 use portalcast_format::{
-    Sprite, SpriteSet, Thing, Wall, NO_TEXTURE, THING_HANGING, THING_TRANSLUCENT,
-    WALL_MIDDLE_TRANSLUCENT,
+    Sprite, Thing, Wall, NO_TEXTURE, THING_HANGING, THING_TRANSLUCENT, WALL_MIDDLE_TRANSLUCENT,
 };
 
 use super::light::{light_row, light_rule, Lighting};
@@ -306,7 +305,7 @@ impl Things {
         columns: core::ops::Range<i32>,
         clip: &[Window],
     ) {
-        let (map, assets) = (frame.map, frame.assets);
+        let map = frame.map;
         let (first, end) = (columns.start, columns.end);
         let range = map.things_range(sector_index);
         if range.is_empty() {
@@ -315,37 +314,41 @@ impl Things {
         let cached = self.projections_of(frame, sector_index, range.clone());
         let sector = &map.sectors[usize::from(sector_index)];
         for (offset, (index, thing)) in range.clone().zip(&map.things[range]).enumerate() {
-            let mut seen = match cached {
-                Some(at) => self.projections[at + offset],
+            let projected;
+            let projection = match cached {
+                Some(at) => &self.projections[at + offset],
                 None => match frame.project_thing(sector, thing) {
-                    Some(seen) => seen,
+                    Some(seen) => {
+                        projected = seen;
+                        &projected
+                    }
                     None => continue,
                 },
             };
-            let columns_first = (seen.first as i32).max(first);
-            let columns_end = (seen.end as i32).min(end);
+            // Most of a sector's things lie outside a visit's columns: the test reads two
+            // fields of the projection (in EWRAM) and copies the whole only for the others.
+            let columns_first = i32::from(projection.first).max(first);
+            let columns_end = i32::from(projection.end).min(end);
             if columns_first >= columns_end {
                 continue;
             }
+            let mut seen = *projection;
             // Which image it shows (the rotation, the animation frame: a sine, products and
             // two divides) is found only for the things in a visit's columns, once a frame.
             let image = match seen.sprite {
                 IMAGE_UNKNOWN => {
-                    let Some(set) = assets.sprite_sets.get(usize::from(thing.sprite)) else {
+                    let Some(image) = image_of(frame, thing) else {
                         continue;
                     };
-                    let image = image_of(frame, thing, set);
                     if let Some(at) = cached {
                         self.projections[at + offset].sprite =
                             u16::try_from(image).unwrap_or(IMAGE_UNKNOWN);
                     }
                     image
                 }
+                // Kept only once `image_of` found it among the sprites.
                 known => usize::from(known),
             };
-            if assets.sprites.get(image).is_none() {
-                continue;
-            }
             let columns = (columns_end - columns_first) as usize;
             if self.count == VISIBLE_THINGS_MAX || self.clips_used + columns > THING_CLIP_COLUMNS {
                 self.stats.dropped += 1;
@@ -866,11 +869,14 @@ fn middle_image(assets: &RenderAssets, wall: &Wall) -> Option<usize> {
     Some(usize::from(set.first)).filter(|&image| image < assets.sprites.len())
 }
 
-/// The image of `thing`'s sprite set `set` the frame shows: its animation frame at the view's
-/// tick, seen from the eye's side of it. Out of line: [`Things::collect`] calls it once per thing
-/// a frame, and kept apart it leaves that loop small enough for the VRAM after a page.
+/// The image of `thing`'s sprite set the frame shows: its animation frame at the view's tick,
+/// seen from the eye's side of it; `None` if the set or the image is not among the assets.
+/// Out of line: [`Things::collect`] calls it once per thing a frame, and kept apart it leaves
+/// that loop small enough for the VRAM after a page.
 #[inline(never)]
-fn image_of(frame: &ThingView, thing: &Thing, set: &SpriteSet) -> usize {
+fn image_of(frame: &ThingView, thing: &Thing) -> Option<usize> {
+    let assets = frame.assets;
+    let set = assets.sprite_sets.get(usize::from(thing.sprite))?;
     let eye = frame.view.eye.position;
     let (sin, cos) = crate::math::Angle::from_bits(thing.angle).sin_cos();
     let rotation = set.rotation(
@@ -879,7 +885,8 @@ fn image_of(frame: &ThingView, thing: &Thing, set: &SpriteSet) -> usize {
         sin.to_bits(),
         cos.to_bits(),
     );
-    set.image(frame.view.tick, thing.frame_ticks.max(1), rotation)
+    let image = set.image(frame.view.tick, thing.frame_ticks.max(1), rotation);
+    assets.sprites.get(image).map(|_| image)
 }
 
 /// Whether `a` is drawn before `b`: of a later visit (behind), or of the same visit a middle
