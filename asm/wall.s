@@ -12,7 +12,7 @@
 @
 @ WallRun (words):
 @   0 inverse_depth  4 inverse_depth_step  8 along_over_depth  12 along_over_depth_step
-@  16..28 scales[4] (d_y·h, 24.8)  32 horizon (cy 24.8 + 127)  36 height
+@  16..28 negated_scales[4] (−d_y·h, 24.8)  32 row_base (the rows' base's high word)  36 height
 @  40 column  44 stop  48 kind (0 solid, 1 opening, 2 portal | upper << 8 | lower << 9)
 @  52 clip  56 ceiling  60 floor (Window arrays: a word per column, top in the low half)
 @  64 length  68 x_offset  72 inverse_focal_y  76 light_mode (0 off, 1 fixed, 2 depth)
@@ -39,11 +39,9 @@
     .equ RUN_INV_STEP, 4
     .equ RUN_AOD, 8
     .equ RUN_AOD_STEP, 12
-    .equ RUN_SCALE0, 16
-    .equ RUN_SCALE1, 20
-    .equ RUN_SCALE2, 24
-    .equ RUN_SCALE3, 28
-    .equ RUN_HORIZON, 32
+    .equ RUN_NEGATED_SCALE0, 16
+    .equ RUN_NEGATED_SCALE2, 24
+    .equ RUN_ROW_BASE, 32
     .equ RUN_HEIGHT, 36
     .equ RUN_COLUMN, 40
     .equ RUN_STOP, 44
@@ -94,16 +92,14 @@
     @ r5's bit for a page whose halfwords hold two pixels.
     .equ NATIVE_BIT, 0x20000000
 
-    @ \dst = clamp((horizon − ((scale·inv + 2^29) >> 30)) >> 8, 0, height), as
-    @ SteppedWall::rows, with r10 = 1/z'; \lo, \hi scratch (\dst may be \scale).
-    .macro WALL_ROW dst, scale, horizon, height, lo, hi
-    mov     \lo, #0x20000000
-    mov     \hi, #0
-    smlal   \lo, \hi, \scale, r10
-    mov     \lo, \lo, lsr #30
-    orr     \lo, \lo, \hi, lsl #2
-    rsb     \lo, \lo, \horizon
-    mov     \dst, \lo, asr #8
+    @ \dst = clamp((base − scale·inv) >> 38, 0, height), WallSteps::row, with \negated the
+    @ scale negated, \base the base's high word (its low word is ROW_BASE_LOW) and r10 = 1/z';
+    @ \lo, \hi scratch (\dst may be \negated).
+    .macro WALL_ROW dst, negated, base, height, lo, hi
+    mvn     \lo, #0x20000000               @ ROW_BASE_LOW
+    mov     \hi, \base
+    smlal   \lo, \hi, \negated, r10
+    mov     \dst, \hi, asr #6
     bic     \dst, \dst, \dst, asr #31
     cmp     \dst, \height
     movgt   \dst, \height
@@ -211,8 +207,8 @@ pc_wall_run:
     ldr     r0, [r11, #RUN_STOP]
     cmp     r9, r0
     bge     .Ldone
-    add     r0, r11, #RUN_SCALE0
-    ldmia   r0, {r1, r4, r6, r7, r8, r12}   @ the scales, horizon, height
+    add     r0, r11, #RUN_NEGATED_SCALE0
+    ldmia   r0, {r1, r4, r6, r7, r8, r12}   @ the negated scales, row base, height
     WALL_ROW r2, r1, r8, r12, r0, r3        @ r2: the ceiling's row
     WALL_ROW r3, r4, r8, r12, r0, r1        @ r3: the floor's row
     add     r0, r11, #RUN_KIND
@@ -268,8 +264,8 @@ pc_wall_run:
     @ its strip is drawn. Without an upper strip r6 is the ceiling row: the same windows, as
     @ the neighbour's floor row is never above its ceiling row (floor ≤ ceiling, rows
     @ monotone), so the clamp of r7 below gives what the neighbour's own ceiling row would.
-    add     r0, r11, #RUN_SCALE2
-    ldmia   r0, {r6, r7, r8, r12}           @ its scales, horizon, height
+    add     r0, r11, #RUN_NEGATED_SCALE2
+    ldmia   r0, {r6, r7, r8, r12}           @ its negated scales, row base, height
     tst     r1, #0x100
     moveq   r6, r2
     beq     1f

@@ -149,7 +149,7 @@ use crate::raster::flat::{FlatTexture, FLAT_LOG2_SIDES};
 use crate::raster::middle_run::{MiddleRun, MiddleShared};
 use crate::raster::plane_run::{PlaneRun, PlaneRunEnd};
 use crate::raster::sprite::{steps_fit, BatchColumn, SpriteBatch, SpriteColumn};
-use crate::raster::wall_run::{StripRun, WallRun, WallRunEnd};
+use crate::raster::wall_run::{StripRun, WallRun, WallRunEnd, WallSteps, ROW_BASE_LOW};
 use crate::raster::{Canvas, IDENTITY_ROW};
 
 extern "C" {
@@ -164,6 +164,10 @@ extern "C" {
 const _: () = {
     use core::mem::{offset_of, size_of};
     assert!(offset_of!(WallRun, steps) == 0);
+    assert!(offset_of!(WallSteps, negated_scales) == 16);
+    assert!(offset_of!(WallSteps, row_base) == 32);
+    // The loop makes the rows' base's low word with `mvn #0x20000000`.
+    assert!(ROW_BASE_LOW == !0x2000_0000);
     assert!(offset_of!(WallRun, column) == 40);
     assert!(offset_of!(WallRun, kind) == 48);
     assert!(offset_of!(WallRun, clip) == 52);

@@ -19,8 +19,8 @@ use super::Window;
 use portalcast_format::Colormap;
 
 /// A wall's column accumulators and row constants, as the renderer's `SteppedWall` steps them:
-/// `1/z'` and `t/z'` in 2.30 with their steps per column, `d_y·h` of its four heights (24.8),
-/// the horizon row in 24.8 plus 127, and the viewport's height.
+/// `1/z'` and `t/z'` in 2.30 with their steps per column, `−d_y·h` of its four heights (24.8),
+/// the high word of the rows' base ([`WallSteps::row`]), and the viewport's height.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C)]
 pub struct WallSteps {
@@ -32,12 +32,38 @@ pub struct WallSteps {
     pub along_over_depth: i32,
     /// Its step per column.
     pub along_over_depth_step: i32,
-    /// `d_y·h` of the sector's ceiling and floor, then the neighbour's.
-    pub scales: [i32; 4],
-    /// `cy` in 24.8 plus 127.
-    pub horizon: i32,
+    /// `−d_y·h` of the sector's ceiling and floor, then the neighbour's (`|d_y·h| < 2^29`).
+    pub negated_scales: [i32; 4],
+    /// The high word of the rows' base, [`WallSteps::row_base_of`] the horizon row.
+    pub row_base: i32,
     /// Rows are clamped to `[0, height]`.
     pub height: i32,
+}
+
+/// The low word of every row base ([`WallSteps::row_base_of`]).
+pub const ROW_BASE_LOW: u32 = 0xDFFF_FFFF;
+
+impl WallSteps {
+    /// The high word of the rows' base for the horizon at row `horizon_y`: the base is
+    /// `(256·cy + 127)·2^30 + 2^29 − 1`, whose low word is [`ROW_BASE_LOW`] for every `cy`
+    /// (`127·2^30` is `31·2^32 + 3·2^30`).
+    pub const fn row_base_of(horizon_y: i32) -> i32 {
+        (horizon_y << 6) + 31
+    }
+
+    /// The row of the height whose `−d_y·h` is `negated_scale` at the current column, clamped
+    /// to `[0, height]`: `(256·cy + 127 − ((d_y·h·(1/z') + 2^29) >> 30)) >> 8`, the 24.8 row
+    /// rounded to nearest and floored to its pixel, as one 64-bit sum and shift (`x − ⌊a⌋` is
+    /// `⌈x − a⌉`, and `⌊⌈b / 2^30⌉ / 2^8⌋` is `⌊(b + 2^30 − 1) / 2^38⌋`): the ARM loop's one
+    /// multiply-accumulate and shift a row.
+    #[inline(always)]
+    pub fn row(&self, negated_scale: i32) -> i32 {
+        let base = i64::from(self.row_base) << 32 | i64::from(ROW_BASE_LOW);
+        // |d_y·h·(1/z')| < 2^59: the row is below 2^21 in magnitude. max then min: `clamp`
+        // would carry a panic path for a bound it cannot miss.
+        let row = (base + i64::from(negated_scale) * i64::from(self.inverse_depth)) >> 38;
+        (row as i32).max(0).min(self.height)
+    }
 }
 
 /// What a wall's columns leave and draw: a solid wall (one strip, the clip window closed), a
@@ -379,8 +405,8 @@ mod tests {
             inverse_depth_step: 0,
             along_over_depth: 0,
             along_over_depth_step: 0,
-            scales: [0; 4],
-            horizon: 40 << 8,
+            negated_scales: [0; 4],
+            row_base: WallSteps::row_base_of(40),
             height: 80,
         }
     }

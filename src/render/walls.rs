@@ -503,14 +503,14 @@ impl SteppedWall {
             return None;
         }
         // |d_y·h| < 2^29: 24.8 heights within HEIGHT_DIFF_MAX, d_y ≤ 120.
-        let scale = |height: Fx24_8| height.mul_int(viewport.focal_y).to_bits();
+        let negated_scale = |height: Fx24_8| -height.mul_int(viewport.focal_y).to_bits();
         Some(SteppedWall(WallSteps {
             inverse_depth: first as i32,
             inverse_depth_step: step as i32,
             along_over_depth: 0,
             along_over_depth_step: 0,
-            scales: heights.map(scale),
-            horizon: (viewport.horizon_y << 8) + 127,
+            negated_scales: heights.map(negated_scale),
+            row_base: WallSteps::row_base_of(viewport.horizon_y),
             height: viewport.height,
         }))
     }
@@ -557,18 +557,11 @@ impl SteppedWall {
     #[inline(always)]
     pub fn rows(&self, neighbour: bool) -> [i32; ROW_HEIGHTS] {
         let wall = &self.0;
-        let inverse_depth = i64::from(wall.inverse_depth);
-        let row = |scale: i32| {
-            // d_y·h·(1/z') + ½ in 24.8 × 2^30: below 2^59. The offset in 24.8 is below 2^29 in
-            // magnitude. max then min: `clamp` would carry a panic path for a bound it cannot
-            // miss.
-            let offset = ((i64::from(scale) * inverse_depth + (1 << 29)) >> 30) as i32;
-            ((wall.horizon - offset) >> 8).max(0).min(wall.height)
-        };
+        let scales = &wall.negated_scales;
         if neighbour {
-            wall.scales.map(row)
+            scales.map(|scale| wall.row(scale))
         } else {
-            [row(wall.scales[0]), row(wall.scales[1]), 0, 0]
+            [wall.row(scales[0]), wall.row(scales[1]), 0, 0]
         }
     }
 
