@@ -116,8 +116,8 @@
     @ high word of z'/d_y). Keeps r0.
     .macro WALL_LEVEL_CHECK strip
     mov     r12, r7, asr #6
-    ldr     r1, [r11, #\strip + STRIP_LOW]
-    ldr     r2, [r11, #\strip + STRIP_HIGH]
+    add     r2, r11, #\strip + STRIP_LOW
+    ldmia   r2, {r1, r2}                    @ the level's lowest and highest ratio
     cmp     r12, r1
     blt     .Lmiss
     cmp     r12, r2
@@ -339,17 +339,14 @@ pc_wall_run:
     ldr     r1, [r11, #RUN_AOD_STEP]
     ldr     r2, [sp, #SP_AOD]
     mla     r1, r9, r1, r2
+    @ The product's high word below 2^6 (unsigned) leaves t in 0..2^30: no clamp (the others
+    @ are the columns at a wall's ends, .Lclamp_along).
     smull   r2, r3, r1, r8
+    cmp     r3, #64
+    bhs     .Lclamp_along
     mov     r4, r2, lsr #8
     orr     r4, r4, r3, lsl #24
-    movs    r12, r3, asr #8
-    movmi   r4, #0
-    bmi     1f
-    cmp     r12, #0
-    movne   r4, #0x40000000
-    cmp     r4, #0x40000000
-    movhi   r4, #0x40000000
-1:
+.Lalong:
     add     lr, r11, #RUN_LENGTH
     ldmia   lr, {r0, r1, r2, r3, r6, r7}    @ length, x offset, 1/d_y, light mode, base, colormap
     @ u = t·length >> 30, plus the x offset (24.8).
@@ -405,6 +402,13 @@ pc_wall_run:
     orrs    r0, r0, r1
     blne    .Lflush
     b       .Lstep
+
+.Lclamp_along:
+    @ A negative product gives t = 0; a high word of 2^6 or more t ≥ 2^30, so 2^30.
+    movs    r3, r3
+    movmi   r4, #0
+    movpl   r4, #0x40000000
+    b       .Lalong
 
 .Lrenormalise:
     mov     r0, r10
