@@ -124,48 +124,53 @@
     bgt     .Lmiss
     .endm
 
-    @ \dst = a strip's v at row \top: (eye_to_anchor + ((2(top − cy) + 1)·z'/d_y >> 31)) <<
-    @ (24 − base log2), low words, with r2 the strip and r6/r7 z'/d_y. Leaves the strip's shape
-    @ in r0; \t scratch (it may be \top), with lr.
-    .macro WALL_STRIP_V dst, top, t
+    @ \t = twice the row offset of row \top from the horizon, plus one: 2(top − cy) + 1, signed.
+    @ Uses r0.
+    .macro WALL_ROW_OFFSET t, top
     ldr     r0, [r11, #RUN_HORIZON_ROW]
     sub     \t, \top, r0
     mov     \t, \t, lsl #1
-    add     \t, \t, #1                      @ twice the row offset, signed
-    umull   \dst, lr, r6, \t
+    add     \t, \t, #1
+    .endm
+
+    @ \dst = a strip's v at the row whose WALL_ROW_OFFSET is \t: (eye_to_anchor +
+    @ (t·z'/d_y >> 31)) << (24 − base log2), low words, with r2 the strip and r6/r7 z'/d_y.
+    @ Leaves the strip's shape in \sh (it may be \t); \t and \s scratch.
+    .macro WALL_STRIP_V dst, t, s, sh
+    umull   \dst, \s, r6, \t
     cmp     \t, #0
-    sublt   lr, lr, r6                      @ a negative factor read as unsigned: take it back
-    mla     lr, \t, r7, lr
+    sublt   \s, \s, r6                      @ a negative factor read as unsigned: take it back
+    mla     \s, \t, r7, \s
     mov     \dst, \dst, lsr #31
-    orr     \dst, \dst, lr, lsl #1
+    orr     \dst, \dst, \s, lsl #1
     ldr     \t, [r2, #STRIP_EYE]
     add     \dst, \dst, \t
-    ldr     r0, [r2, #STRIP_SHAPE]
-    mov     lr, r0, lsr #16                 @ log2 of the base height
-    rsb     lr, lr, #24
-    mov     \dst, \dst, lsl lr
+    ldr     \sh, [r2, #STRIP_SHAPE]
+    mov     \s, \sh, lsr #16               @ log2 of the base height
+    rsb     \s, \s, #24
+    mov     \dst, \dst, lsl \s
     .endm
 
     @ \dst = the strip's texel column: ((u >> 8) >> level) & width mask, 2^h texels each, with
-    @ r4 u and r0 the shape; \t scratch (it may be r4), with lr.
-    .macro WALL_STRIP_TEXELS dst, t
-    and     lr, r0, #0xff
+    @ r4 u and \sh the shape; \t (it may be r4) and \s scratch.
+    .macro WALL_STRIP_TEXELS dst, t, s, sh
+    and     \s, \sh, #0xff
     mov     \dst, r4, asr #8
     ldr     \t, [r2, #STRIP_WMASK]
-    and     \dst, \t, \dst, asr lr
-    mov     lr, r0, lsr #8
-    and     lr, lr, #0xff
+    and     \dst, \t, \dst, asr \s
+    mov     \s, \sh, lsr #8
+    and     \s, \s, #0xff
     ldr     \t, [r2, #STRIP_TEXELS]
-    add     \dst, \t, \dst, lsl lr
+    add     \dst, \t, \dst, lsl \s
     .endm
 
-    @ \dst = dv = z'/d_y >> (6 + base log2), low word, with r0 the shape (consumed); lr scratch.
-    .macro WALL_STRIP_DV dst
-    mov     r0, r0, lsr #16
-    add     lr, r0, #6
-    mov     \dst, r6, lsr lr
-    rsb     lr, lr, #32
-    orr     \dst, \dst, r7, lsl lr
+    @ \dst = dv = z'/d_y >> (6 + base log2), low word, with \sh the shape (kept); \s scratch.
+    .macro WALL_STRIP_DV dst, s, sh
+    mov     \s, \sh, lsr #16
+    add     \s, \s, #6
+    mov     \dst, r6, lsr \s
+    rsb     \s, \s, #32
+    orr     \dst, \dst, r7, lsl \s
     .endm
 
     .section .iwram_render.pc_wall_run, "ax", %progbits
@@ -470,24 +475,25 @@ pc_wall_run:
     tst     r5, #NATIVE_BIT
     bne     .Lstrip_jobs
     @ 120 wide: the doubled kernel's registers, set here, no job written or read. r4-r7 are
-    @ pushed as the kernel would push them, so the kernel's epilogue gives them back.
-    push    {r4-r7, lr}
+    @ pushed as the kernel would push them, so the kernel's epilogue gives them back, and the
+    @ kernel is entered with lr untouched: it returns to the loop itself (a tail call).
+    push    {r4-r7}
     mov     r5, r0                          @ r5: count
-    WALL_STRIP_V r3, r1, r12                @ r3: v
+    WALL_ROW_OFFSET r12, r1
     @ dst = page + top·240 + 2x.
-    ldr     r12, [r11, #RUN_PAGE]
+    ldr     r0, [r11, #RUN_PAGE]
     rsb     r1, r1, r1, lsl #4
-    add     r1, r12, r1, lsl #4
+    add     r1, r0, r1, lsl #4
     add     r1, r1, r9, lsl #1              @ r1: dst
-    WALL_STRIP_TEXELS r12, r4               @ r12: texels (u is done with)
-    WALL_STRIP_DV r4                        @ r4: dv
+    WALL_STRIP_V r3, r12, r0, r12           @ r3: v; r12: the shape
+    WALL_STRIP_DV r6, r0, r12               @ r6: dv (z'/d_y is done with)
+    WALL_STRIP_TEXELS r7, r4, r0, r12       @ r7: texels (u is done with)
+    mov     r4, r6                          @ r4: dv
     ldr     r0, [r2, #STRIP_KERNEL]
-    mov     r2, r12                         @ r2: texels
+    mov     r2, r7                          @ r2: texels
     mov     r6, r8                          @ r6: the colormap row
     add     r0, r0, #COLUMN_REGISTER_ENTRY
-    mov     lr, pc
     bx      r0
-    pop     {pc}
 
 .Lstrip_jobs:
     @ 240 wide: the strip's job, in the even or the odd column's slot.
@@ -504,11 +510,12 @@ pc_wall_run:
     bic     r12, r9, #1
     add     r0, r0, r12
     str     r0, [r3]
-    WALL_STRIP_V r12, r1, r1
+    WALL_ROW_OFFSET r1, r1
+    WALL_STRIP_V r12, r1, lr, r0
     str     r12, [r3, #8]
-    WALL_STRIP_TEXELS r12, r1
+    WALL_STRIP_TEXELS r12, r1, lr, r0
     str     r12, [r3, #4]
-    WALL_STRIP_DV r12
+    WALL_STRIP_DV r12, lr, r0
     str     r12, [r3, #12]
     @ The kernel, on an odd column: the pair's, the even column's job first (without rows
     @ where it has none), which is then empty.
