@@ -276,11 +276,11 @@ pc_plane_run:
     mov     r7, r2                          @ r7: the first column
     mov     r8, r3                          @ r8: the column after the last
     @ Inside the viewport, not empty.
-    ldr     r0, [r11, #PR_HEIGHT]
+    add     r0, r11, #PR_HEIGHT
+    ldmia   r0, {r0, r1}                    @ height, width
     cmp     r9, r0
     bhs     .Lpl_decline
-    ldr     r0, [r11, #PR_WIDTH]
-    cmp     r8, r0
+    cmp     r8, r1
     bhi     .Lpl_decline
     cmp     r7, r8
     bhs     .Lpl_decline
@@ -340,22 +340,20 @@ pc_plane_run:
     sub     r0, r7, r0
     mla     r6, r12, r0, r6                 @ r6: the position of the first pixel
     @ The light: the run's row, or the row of base − z'/16 units, clamped to 0..255.
-    ldr     r0, [r11, #PR_LMODE]
-    ldr     r5, [r11, #PR_CMAP]
+    add     r1, r11, #PR_LMODE
+    ldmia   r1, {r0, r1, r5}                @ the light's mode, base and row (or colormap)
     cmp     r0, #2
     bne     1f
-    ldr     r0, [r11, #PR_LBASE]
-    DEPTH_LIGHT_ROW r0, r10
-    add     r5, r5, r0, lsl #8
+    DEPTH_LIGHT_ROW r1, r10
+    add     r5, r5, r1, lsl #8
 1:                                          @ r5: the colormap row (0: unlit)
     @ The span is drawn from here: counted.
-    ldr     r0, [r11, #PR_SPANS]
-    ldr     r1, [r11, #PR_PIXELS]
+    add     r2, r11, #PR_SPANS
+    ldmia   r2, {r0, r1}                    @ spans, pixels
     add     r0, r0, #1
     add     r1, r1, r8
     sub     r1, r1, r7
-    str     r0, [r11, #PR_SPANS]
-    str     r1, [r11, #PR_PIXELS]
+    stmia   r2, {r0, r1}
     ldr     r0, [r11, #PR_PAGE]
     rsb     r1, r9, r9, lsl #4
     add     r4, r0, r1, lsl #4              @ r4: the row's first byte (row·240)
@@ -426,9 +424,8 @@ pc_plane_run:
     mov     r6, r5
     sub     r5, r8, r7
     sub     sp, sp, #20
-    mov     lr, pc
+    adr     lr, .Lpl_drawn                  @ the kernel returns past the job call
     bx      r0
-    b       .Lpl_drawn
 .Lpl_call:
     @ The job: dst, texels, pos, step, count (halfwords), colormap.
     ldr     r2, [r11, #PR_TEXELS]
