@@ -1,7 +1,8 @@
 //! Reciprocals against exact integer division.
 
 use portalcast::math::{
-    recip_pow2, recip_pow2_exact, recip_small, Fx16_16, Fx24_8, Fx2_30, RECIP_SMALL_MAX,
+    quotient_small, recip_pow2, recip_pow2_exact, recip_small, Fx16_16, Fx24_8, Fx2_30,
+    RECIP_SMALL_MAX,
 };
 use portalcast_format::limits::{EYE_DEPTH_MAX, EYE_DEPTH_MIN};
 use proptest::prelude::*;
@@ -139,6 +140,23 @@ proptest! {
         let got = Fx16_16::from_bits(delta).div_small(n).to_bits() as f64;
         let exact = delta as f64 / n as f64;
         prop_assert!((got - exact).abs() <= 0.5 + delta.unsigned_abs() as f64 / (1u64 << 31) as f64);
+    }
+
+    #[test]
+    fn small_quotients_are_exact(n in any::<u32>(), d in 1u32..=RECIP_SMALL_MAX) {
+        prop_assert_eq!(quotient_small(n, d), n / d);
+    }
+}
+
+/// The quotient at the ends of its range and next to every multiple the table's rounding
+/// could misplace: every divisor, with the largest dividends and those around its multiples.
+#[test]
+fn small_quotients_at_the_edges() {
+    for d in 1..=RECIP_SMALL_MAX {
+        let top = u32::MAX / d * d;
+        for n in [0, 1, d - 1, d, d + 1, top - 1, top, u32::MAX, u32::MAX - 1] {
+            assert_eq!(quotient_small(n, d), n / d, "{n} / {d}");
+        }
     }
 }
 

@@ -236,6 +236,13 @@ impl SpriteSet<'_> {
         } else {
             (tick / frame_ticks as u32) % self.frames as u32
         };
+        self.image_at(frame, rotation)
+    }
+
+    /// The image of animation frame `frame` (below [`SpriteSet::frames`]) from rotation
+    /// `rotation`: [`SpriteSet::image`] with the frame found by the caller.
+    #[inline]
+    pub const fn image_at(&self, frame: u32, rotation: u8) -> usize {
         self.first as usize + frame as usize * self.rotations as usize + rotation as usize
     }
 
