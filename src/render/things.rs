@@ -876,7 +876,8 @@ fn middle_image(assets: &RenderAssets, wall: &Wall) -> Option<usize> {
 /// Out of line: [`Things::collect`] calls it once per thing a frame, and kept apart it leaves
 /// that loop small enough for the VRAM after a page. It runs from the cartridge, where a sine
 /// costs about 280 cycles and a divide 450: the facing's sine only for a set with rotations,
-/// the animation's quotients by the reciprocal table ([`SpriteSet::image`]'s, exactly).
+/// the animation's quotients by the reciprocal table
+/// ([`SpriteSet::image`](portalcast_format::SpriteSet::image)'s, exactly).
 #[inline(never)]
 fn image_of(frame: &ThingView, thing: &Thing) -> Option<usize> {
     let assets = frame.assets;
