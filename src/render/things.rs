@@ -78,8 +78,22 @@ pub const VISIBLE_MIDDLES_MAX: usize = 32;
 /// Columns of portal middles a frame keeps at most.
 pub const MIDDLE_COLUMNS_MAX: usize = 240;
 
-/// Columns of a thing handed to the canvas in one call at most.
-const THING_BATCH_COLUMNS: usize = 64;
+/// Columns of a thing handed to the canvas in one call at most. Measured on the bench map
+/// (`cargo bench-rom`), against 16 and 32: a smaller batch is cleared sooner each frame
+/// ([`empty_batch`]), a larger one calls the canvas fewer times for a wide thing.
+const THING_BATCH_COLUMNS: usize = 8;
+
+/// The columns of the thing being drawn, handed to the canvas a batch at a time. The renderer
+/// keeps it on the stack (IWRAM on the GBA, where the thing's column loop writes it and the
+/// kernel reads it a cycle a word, against EWRAM's three): 160 bytes, at a depth far above the
+/// walk's, each column filled before it is read.
+pub(crate) type ThingBatch = [BatchColumn; THING_BATCH_COLUMNS];
+
+/// A [`ThingBatch`] to fill (zeros: the filling is never read).
+#[inline(always)]
+pub(crate) fn empty_batch() -> ThingBatch {
+    [BatchColumn::default(); THING_BATCH_COLUMNS]
+}
 
 /// A batch column that draws nothing (the arrays' filling).
 const BATCH_COLUMN_EMPTY: BatchColumn = BatchColumn {
@@ -182,8 +196,6 @@ pub struct Things {
     middle_count: usize,
     middle_columns: [BatchColumn; MIDDLE_COLUMNS_MAX],
     middle_columns_used: usize,
-    /// The columns of the thing being drawn, handed to the canvas a batch at a time.
-    thing_batch: [BatchColumn; THING_BATCH_COLUMNS],
     order: [Drawn; VISIBLE_THINGS_MAX + VISIBLE_MIDDLES_MAX],
     /// This frame's projections of the things of the sectors in `projected_sectors`, over the
     /// whole width, a sector's things in the map's order.
@@ -265,7 +277,6 @@ impl Things {
             }; VISIBLE_MIDDLES_MAX],
             middle_count: 0,
             middle_columns: [BATCH_COLUMN_EMPTY; MIDDLE_COLUMNS_MAX],
-            thing_batch: [BATCH_COLUMN_EMPTY; THING_BATCH_COLUMNS],
             middle_columns_used: 0,
             order: [Drawn::Thing(0); VISIBLE_THINGS_MAX + VISIBLE_MIDDLES_MAX],
             projections: [OFF_SCREEN; PROJECTIONS_MAX],
@@ -491,7 +502,12 @@ impl Things {
     /// cost most in the slowest frames, which have the most things.
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".vram.things_draw")]
-    pub(crate) fn draw(&mut self, assets: &RenderAssets, canvas: &mut impl Canvas) -> ThingStats {
+    pub(crate) fn draw(
+        &mut self,
+        assets: &RenderAssets,
+        canvas: &mut impl Canvas,
+        batch: &mut ThingBatch,
+    ) -> ThingStats {
         let drawn = self.count + self.middle_count;
         let (visible, middles) = (&self.visible, &self.middles);
         // Both lists are in the walk's order of visits, and the drawing goes the other way:
@@ -522,7 +538,7 @@ impl Things {
         }
         for at in 0..drawn {
             match self.order[at] {
-                Drawn::Thing(index) => self.draw_thing(assets, canvas, usize::from(index)),
+                Drawn::Thing(index) => self.draw_thing(assets, canvas, usize::from(index), batch),
                 Drawn::Middle(index) => self.draw_middle(assets, canvas, usize::from(index)),
             }
         }
@@ -539,11 +555,17 @@ impl Things {
         self.stats
     }
 
-    /// Thing `index`'s columns, in batches to the canvas's sprite loop. In the VRAM Mode 4
-    /// leaves free on the GBA: its loop runs for every column of every thing drawn.
+    /// Thing `index`'s columns, in batches (in `batch`) to the canvas's sprite loop. In the VRAM
+    /// Mode 4 leaves free on the GBA: its loop runs for every column of every thing drawn.
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".vram.things_draw_thing")]
-    fn draw_thing(&mut self, assets: &RenderAssets, canvas: &mut impl Canvas, index: usize) {
+    fn draw_thing(
+        &self,
+        assets: &RenderAssets,
+        canvas: &mut impl Canvas,
+        index: usize,
+        batch: &mut ThingBatch,
+    ) {
         let seen = self.visible[index];
         let sprite = &assets.sprites[usize::from(seen.sprite)];
         let blend = if seen.translucent { assets.blend } else { None };
@@ -554,7 +576,7 @@ impl Things {
         let mut filled = 0;
         for (x, clip) in (seen.first..seen.end).zip(clips) {
             if !clip.is_empty() {
-                self.thing_batch[filled] = BatchColumn {
+                batch[filled] = BatchColumn {
                     x: x as u8,
                     column: ((u >> 16) as usize).min(last_column) as u8,
                     light_row: seen.light_row,
@@ -567,7 +589,7 @@ impl Things {
                 if filled == THING_BATCH_COLUMNS {
                     canvas.sprite_columns(&SpriteBatch {
                         posts: sprite.posts,
-                        columns: &self.thing_batch,
+                        columns: batch,
                         colormap: assets.colormap,
                         blend,
                     });
@@ -579,7 +601,7 @@ impl Things {
         if filled > 0 {
             canvas.sprite_columns(&SpriteBatch {
                 posts: sprite.posts,
-                columns: &self.thing_batch[..filled],
+                columns: &batch[..filled],
                 colormap: assets.colormap,
                 blend,
             });
