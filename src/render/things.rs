@@ -497,12 +497,21 @@ impl Things {
         self.middle_columns_used = start + written;
     }
 
-    /// Draws the collected things and middles back to front, and returns the frame's counts.
+    /// Draws the collected things and middles back to front, and returns the frame's counts,
+    /// with the things' column batch ([`ThingBatch`]) on the stack of this routine's frame:
+    /// called after the walk, so the walk's stack is no deeper for it. From ROM: once a frame.
+    #[inline(never)]
+    pub(crate) fn draw(&mut self, assets: &RenderAssets, canvas: &mut impl Canvas) -> ThingStats {
+        let mut batch = empty_batch();
+        self.draw_batched(assets, canvas, &mut batch)
+    }
+
+    /// [`Things::draw`]'s work, with `batch` for the things' columns.
     /// In the VRAM Mode 4 leaves free: once a frame, but its sort and loop over the things
     /// cost most in the slowest frames, which have the most things.
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".vram.things_draw")]
-    pub(crate) fn draw(
+    fn draw_batched(
         &mut self,
         assets: &RenderAssets,
         canvas: &mut impl Canvas,

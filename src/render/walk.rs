@@ -497,8 +497,7 @@ impl<W: WindowStore> Renderer<W> {
         }
         if !map.things.is_empty() || self.any_middles {
             let things_started = (self.clock)();
-            let mut batch = super::things::empty_batch();
-            let things = self.things.draw(assets, canvas, &mut batch);
+            let things = self.things.draw(assets, canvas);
             stats.things_drawn = things.drawn;
             stats.things_dropped = things.dropped;
             stats.middles_drawn = things.middles;
