@@ -1,8 +1,7 @@
 //! Reciprocals against exact integer division.
 
 use portalcast::math::{
-    quotient_small, recip_pow2, recip_pow2_exact, recip_small, Fx16_16, Fx24_8, Fx2_30,
-    RECIP_SMALL_MAX,
+    quotient, recip_pow2, recip_pow2_exact, recip_small, Fx16_16, Fx24_8, Fx2_30, RECIP_SMALL_MAX,
 };
 use portalcast_format::limits::{EYE_DEPTH_MAX, EYE_DEPTH_MIN};
 use proptest::prelude::*;
@@ -144,7 +143,12 @@ proptest! {
 
     #[test]
     fn small_quotients_are_exact(n in any::<u32>(), d in 1u32..=RECIP_SMALL_MAX) {
-        prop_assert_eq!(quotient_small(n, d), n / d);
+        prop_assert_eq!(quotient(n, d), n / d);
+    }
+
+    #[test]
+    fn large_quotients_are_exact(n in any::<u32>(), d in RECIP_SMALL_MAX + 1..) {
+        prop_assert_eq!(quotient(n, d), n / d);
     }
 }
 
@@ -155,7 +159,7 @@ fn small_quotients_at_the_edges() {
     for d in 1..=RECIP_SMALL_MAX {
         let top = u32::MAX / d * d;
         for n in [0, 1, d - 1, d, d + 1, top - 1, top, u32::MAX, u32::MAX - 1] {
-            assert_eq!(quotient_small(n, d), n / d, "{n} / {d}");
+            assert_eq!(quotient(n, d), n / d, "{n} / {d}");
         }
     }
 }

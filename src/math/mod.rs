@@ -81,6 +81,6 @@ pub use projection::{
     clip_to_near_plane, ClippedSegment, ExactEyePoint, EyeFrame, EyePoint, Viewport, NEAR_DEPTH,
 };
 pub use recip::{
-    quotient_small, recip_pow2, recip_pow2_exact, recip_small, recip_u64_with_bit_length,
+    quotient, recip_pow2, recip_pow2_exact, recip_small, recip_u64_with_bit_length,
     recip_with_bit_length, RECIP_SMALL_MAX,
 };

@@ -162,13 +162,16 @@ pub const fn recip_small(n: u32) -> Fx2_30 {
     Fx2_30::from_bits(RECIP_SMALL_FX2_30[n as usize])
 }
 
-/// `n / d`, the integer quotient, for `1 ≤ d ≤ RECIP_SMALL_MAX` (511), with no divide (the
-/// ARM7TDMI has none; the library's costs about 450 cycles): the product with
+/// `n / d`, the integer quotient, for `d ≥ 1`. Up to `RECIP_SMALL_MAX` (511) with no divide
+/// (the ARM7TDMI has none; the library's costs about 450 cycles): the product with
 /// [`recip_small`] lands within 3 of the quotient (the table's `2^-31` over `n < 2^32`, and the
-/// floor), and the steps below make it exact.
+/// floor), and the steps below make it exact. A larger `d` takes the library's divide.
 #[inline]
 #[track_caller]
-pub const fn quotient_small(n: u32, d: u32) -> u32 {
+pub const fn quotient(n: u32, d: u32) -> u32 {
+    if d > RECIP_SMALL_MAX {
+        return n / d;
+    }
     let mut quotient = ((n as u64 * recip_small(d).to_bits() as u64) >> 30) as u32;
     while quotient as u64 * d as u64 > n as u64 {
         quotient -= 1;

@@ -20,9 +20,7 @@ use super::light::{light_row, light_rule, Lighting};
 use super::surface::{Surface, THING_DEPTH_MIN};
 use super::view::View;
 use super::RenderAssets;
-use crate::math::{
-    quotient_small, recip_small, EyePoint, Fx16_16, Fx24_8, WorldPoint, RECIP_SMALL_MAX,
-};
+use crate::math::{quotient, recip_small, EyePoint, Fx16_16, Fx24_8, WorldPoint};
 use crate::raster::middle_run::{MiddleRun, MiddleShared};
 use crate::raster::sprite::{BatchColumn, SpriteBatch};
 use crate::raster::{Canvas, Window};
@@ -89,7 +87,7 @@ const THING_BATCH_COLUMNS: usize = 8;
 /// walk's, each column filled before it is read.
 pub(crate) type ThingBatch = [BatchColumn; THING_BATCH_COLUMNS];
 
-/// A [`ThingBatch`] to fill (zeros: the filling is never read).
+/// A [`ThingBatch`] to fill: zeros, which clear fastest (the filling is never read).
 #[inline(always)]
 pub(crate) fn empty_batch() -> ThingBatch {
     [BatchColumn::default(); THING_BATCH_COLUMNS]
@@ -906,14 +904,14 @@ fn middle_image(assets: &RenderAssets, wall: &Wall) -> Option<usize> {
 /// seen from the eye's side of it; `None` if the set or the image is not among the assets.
 /// Out of line: [`Things::collect`] calls it once per thing a frame, and kept apart it leaves
 /// that loop small enough for the VRAM after a page. It runs from the cartridge, where a sine
-/// costs about 280 cycles and a divide 450: the facing's sine only for a set with rotations,
-/// the animation's quotients by the reciprocal table
-/// ([`SpriteSet::image`](portalcast_format::SpriteSet::image)'s, exactly).
+/// costs about 280 cycles and a divide 450: the facing's sine only for a set that rotates, the
+/// animation's quotients by the reciprocal table ([`quotient`], through
+/// [`SpriteSet::image_by`](portalcast_format::SpriteSet::image_by)).
 #[inline(never)]
 fn image_of(frame: &ThingView, thing: &Thing) -> Option<usize> {
     let assets = frame.assets;
     let set = assets.sprite_sets.get(usize::from(thing.sprite))?;
-    let rotation = if set.rotations > 1 {
+    let rotation = if set.rotates() {
         let eye = frame.view.eye.position;
         let (sin, cos) = crate::math::Angle::from_bits(thing.angle).sin_cos();
         set.rotation(
@@ -925,16 +923,7 @@ fn image_of(frame: &ThingView, thing: &Thing) -> Option<usize> {
     } else {
         0
     };
-    let frame_ticks = u32::from(thing.frame_ticks.max(1));
-    let frames = u32::from(set.frames);
-    let image = if frames <= 1 {
-        set.image_at(0, rotation)
-    } else if frame_ticks <= RECIP_SMALL_MAX && frames <= RECIP_SMALL_MAX {
-        let shown = quotient_small(frame.view.tick, frame_ticks);
-        set.image_at(shown - quotient_small(shown, frames) * frames, rotation)
-    } else {
-        set.image(frame.view.tick, thing.frame_ticks.max(1), rotation)
-    };
+    let image = set.image_by(frame.view.tick, thing.frame_ticks, rotation, quotient);
     assets.sprites.get(image).map(|_| image)
 }
 

@@ -226,24 +226,38 @@ const TAN_22_5_FX16: i64 = 27_146;
 
 impl SpriteSet<'_> {
     /// The image (index in the sprites table) shown at game tick `tick` (60 a second), each
-    /// frame shown for `frame_ticks` ticks (at least 1), from rotation `rotation` (below
+    /// frame shown for `frame_ticks` ticks (0 counts as 1), from rotation `rotation` (below
     /// [`SpriteSet::rotations`]).
     #[inline]
-    pub const fn image(&self, tick: u32, frame_ticks: u16, rotation: u8) -> usize {
-        // A still set (most are) needs no divide: the ARM7TDMI has none.
-        let frame = if self.frames <= 1 {
-            0
-        } else {
-            (tick / frame_ticks as u32) % self.frames as u32
-        };
-        self.image_at(frame, rotation)
+    pub fn image(&self, tick: u32, frame_ticks: u16, rotation: u8) -> usize {
+        self.image_by(tick, frame_ticks, rotation, |n, d| n / d)
     }
 
-    /// The image of animation frame `frame` (below [`SpriteSet::frames`]) from rotation
-    /// `rotation`: [`SpriteSet::image`] with the frame found by the caller.
+    /// [`SpriteSet::image`] with its quotients taken by `quotient(n, d)` (`n / d`, `d ≥ 1`): the
+    /// ROM's runs from the cartridge, where the library's divide costs about 450 cycles.
     #[inline]
-    pub const fn image_at(&self, frame: u32, rotation: u8) -> usize {
+    pub fn image_by(
+        &self,
+        tick: u32,
+        frame_ticks: u16,
+        rotation: u8,
+        quotient: impl Fn(u32, u32) -> u32,
+    ) -> usize {
+        // A still set (most are) needs no divide: the ARM7TDMI has none.
+        let frame = match self.frames as u32 {
+            0 | 1 => 0,
+            frames => {
+                let shown = quotient(tick, frame_ticks.max(1) as u32);
+                shown - quotient(shown, frames) * frames
+            }
+        };
         self.first as usize + frame as usize * self.rotations as usize + rotation as usize
+    }
+
+    /// Whether the image depends on the side it is seen from: eight rotations (one otherwise).
+    #[inline]
+    pub const fn rotates(&self) -> bool {
+        self.rotations == 8
     }
 
     /// Which of the set's rotations shows a thing facing `facing` (binary angle, 65536 a turn)
@@ -252,7 +266,7 @@ impl SpriteSet<'_> {
     /// the thing faces the eye). Always 0 for a set with one rotation. `sin` and `cos` are the
     /// facing's, 16.16.
     pub fn rotation(&self, dx: i32, dy: i32, sin: i32, cos: i32) -> u8 {
-        if self.rotations != 8 {
+        if !self.rotates() {
             return 0;
         }
         let (dx, dy, sin, cos) = (dx as i64, dy as i64, sin as i64, cos as i64);
