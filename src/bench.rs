@@ -194,9 +194,9 @@ impl fmt::Display for BenchLine<'_> {
 }
 
 /// One frame's set-up line: `setup map=NAME <settings> frame=N cycles=C <stages> <counts>`,
-/// a [`BenchLine`] of a frame drawn without kernels, with the counts the report divides by:
-/// wall columns, wall strips, spans, and the pixels of the wall stage (strips) and of the
-/// plane stage (spans and sky).
+/// a [`BenchLine`] of a frame drawn without kernels, with the counts the report divides by and
+/// fits its cost model to: sector visits, things drawn, wall columns, wall strips, spans, and
+/// the pixels of the wall stage (strips) and of the plane stage (spans and sky).
 pub struct SetupLine<'l>(pub BenchLine<'l>);
 
 impl fmt::Display for SetupLine<'_> {
@@ -206,7 +206,9 @@ impl fmt::Display for SetupLine<'_> {
         self.0.write_body(f)?;
         write!(
             f,
-            " cols={} strips={} spans={} wall_px={} plane_px={}",
+            " visits={} things={} cols={} strips={} spans={} wall_px={} plane_px={}",
+            stats.sector_visits,
+            stats.things_drawn,
             stats.wall_columns,
             stats.strips,
             stats.spans,

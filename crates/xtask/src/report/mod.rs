@@ -11,6 +11,7 @@
 //! their lines are read generically (see `portalcast_xtask::bench_log`).
 
 mod chart;
+mod cost_model;
 mod markdown;
 mod profile;
 mod sizes;
