@@ -13,6 +13,7 @@
 //! ([`CompileErrors`]); on any error nothing is written.
 
 mod diag;
+pub mod doom;
 mod emit;
 mod geometry;
 mod images;

@@ -64,8 +64,10 @@ pub fn engine_isa() -> TaskResult<EngineIsa> {
         )),
     }
 }
-/// Debian packages the harness (libmgba) and the play command (an mGBA window) need.
-pub const DEBIAN_PACKAGES: [&str; 2] = ["libmgba-dev", "mgba-sdl"];
+/// Debian packages the harness (libmgba), the play command (an mGBA window) and the Doom
+/// importer's tests (Freedoom's WADs, and glbsp, the node builder that cuts their maps into
+/// convex subsectors) need.
+pub const DEBIAN_PACKAGES: [&str; 4] = ["libmgba-dev", "mgba-sdl", "freedoom", "glbsp"];
 
 /// A failed step, with the one line that says what to do.
 #[derive(Debug)]
@@ -218,7 +220,7 @@ pub fn ensure_debian_packages() -> TaskResult<()> {
     }
     let list = missing.join(" ");
     if !tool_exists("apt-get") {
-        return fail(format!("missing {list} and no apt-get here: install mGBA's library and player ({list}) with your package manager"));
+        return fail(format!("missing {list} and no apt-get here: install them ({list}: mGBA's library and player, Freedoom's WADs, the glbsp node builder) with your package manager"));
     }
     let is_root = Command::new("id")
         .arg("-u")
