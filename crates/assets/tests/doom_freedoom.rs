@@ -161,3 +161,76 @@ fn a_missing_wad_says_what_to_do() {
         "{error}"
     );
 }
+
+/// The names `level`'s sidedefs and sectors use: wall textures, then flats (`-`: none).
+fn used_names(level: &DoomLevel) -> (Vec<String>, Vec<String>) {
+    let mut textures: Vec<String> = level
+        .sidedefs
+        .iter()
+        .flat_map(|side| [&side.upper, &side.lower, &side.middle])
+        .filter(|name| name.as_str() != "-")
+        .cloned()
+        .collect();
+    textures.sort();
+    textures.dedup();
+    let mut flats: Vec<String> = level
+        .sectors
+        .iter()
+        .flat_map(|sector| [&sector.floor_flat, &sector.ceiling_flat])
+        .cloned()
+        .collect();
+    flats.sort();
+    flats.dedup();
+    (textures, flats)
+}
+
+#[test]
+fn freedoom_e1m1_s_textures_compose_and_its_flats_and_light_tables_read() {
+    let wad = Wad::open(&wad_path("freedoom1.wad")).unwrap();
+    let level = DoomLevel::read(&wad, "E1M1").unwrap();
+    let palette = doom::palette(&wad).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(palette[0], [0, 0, 0], "Doom's palette starts with black");
+    assert_eq!(
+        doom::colormaps(&wad).unwrap().len(),
+        34,
+        "32 light rows, invulnerability, black"
+    );
+    let textures = doom::Textures::read(&wad).unwrap_or_else(|e| panic!("{e}"));
+    let (used, flats) = used_names(&level);
+    let mut odd_sizes = Vec::new();
+    for name in &used {
+        let image = textures
+            .compose(&wad, name)
+            .unwrap_or_else(|e| panic!("{e}"));
+        if !image.width.is_power_of_two() || !image.height.is_power_of_two() {
+            odd_sizes.push(format!("{name} {}x{}", image.width, image.height));
+        }
+    }
+    println!(
+        "E1M1: {} wall textures, {} flats; not powers of two: {odd_sizes:?}",
+        used.len(),
+        flats.len()
+    );
+    // Issue 19's facts: four textures of E1M1 are not powers of two in one side.
+    assert_eq!(
+        odd_sizes,
+        [
+            "COMPUTE2 256x56",
+            "DOOR1 64x72",
+            "EXITDOOR 128x72",
+            "MIDBARS3 64x72"
+        ]
+    );
+    let bars = textures.compose(&wad, "MIDBARS3").unwrap();
+    assert!(bars.gaps() > 0, "a see-through middle texture has gaps");
+    for name in &flats {
+        let flat = doom::flat(&wad, name).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((flat.width, flat.height, flat.gaps()), (64, 64, 0));
+    }
+    assert!(flats.iter().any(|name| name == "F_SKY1"), "E1M1 has sky");
+    let error = textures.compose(&wad, "NOSUCHTX").unwrap_err().to_string();
+    assert!(
+        error.contains("lump NOSUCHTX: is not a texture of this WAD"),
+        "{error}"
+    );
+}

@@ -5,6 +5,7 @@
 
 mod cells;
 mod gl;
+mod graphics;
 mod level;
 mod wad;
 
@@ -13,6 +14,9 @@ use std::path::{Path, PathBuf};
 
 pub use cells::{cells, reflex_depth, Cell, CellError, CellWall};
 pub use gl::{build_gwa, FixedVertex, GlNodes, GlSeg, NODE_BUILDER};
+pub use graphics::{
+    colormaps, flat, palette, patch, IndexedImage, Patch, TextureDef, TexturePatch, Textures,
+};
 pub use level::{
     is_map_name, DoomLevel, DoomSector, DoomThing, DoomVertex, Linedef, Sidedef, NONE,
 };

@@ -109,6 +109,24 @@ impl Wad {
         Some(&self.bytes[entry.offset..entry.offset + entry.size])
     }
 
+    /// The last lump named `name` between a start marker and its end marker (`F_START`/`F_END`
+    /// or `FF_START`/`FF_END` for flats: a PWAD's own use the doubled names): a namespace, as
+    /// Doom's flats and sprites are.
+    pub fn lump_in(&self, name: &str, starts: &[&str], ends: &[&str]) -> Option<&[u8]> {
+        let mut inside = false;
+        let mut found = None;
+        for entry in &self.entries {
+            if starts.contains(&entry.name.as_str()) {
+                inside = true;
+            } else if ends.contains(&entry.name.as_str()) {
+                inside = false;
+            } else if inside && entry.name == name {
+                found = Some(entry);
+            }
+        }
+        found.map(|entry| &self.bytes[entry.offset..entry.offset + entry.size])
+    }
+
     /// The lumps after the marker lump `marker` (a map's name, or `GL_` and it), up to the next
     /// lump not in `members`: a map's lumps by name. `None` if there is no such marker.
     pub fn group(&self, marker: &str, members: &[&str]) -> Option<Vec<(&str, &[u8])>> {
