@@ -88,12 +88,29 @@ fn least_squares(rows: &[Vec<f64>], values: &[f64]) -> Option<Vec<f64>> {
     )
 }
 
-/// The stage `stage_name`'s cycles of the frames of `run` fitted to `terms` and a constant.
-fn fit(run: &Run, stage_name: &str, terms: &[(&str, &str)]) -> Option<Fit> {
+/// The frame's count `name`: from its set-up line, or else from the bench line of the drawn
+/// frame at the same place on the path (the visits and things drawn, the same in both runs).
+fn count_of(setup: &Frame, drawn: Option<&Frame>, name: &str) -> f64 {
+    if setup.counts.iter().any(|(key, _)| key == name) {
+        count(setup, name)
+    } else {
+        drawn.map_or(0.0, |frame| count(frame, name))
+    }
+}
+
+/// The drawn frame of `drawn` at `setup`'s place on the path.
+fn drawn_frame<'r>(drawn: &'r Run, setup: &Frame) -> Option<&'r Frame> {
+    drawn.frames.iter().find(|frame| frame.index == setup.index)
+}
+
+/// The stage `stage_name`'s cycles of the frames of the set-up run `run` fitted to `terms`
+/// and a constant (`drawn`: the same run with kernels, for the counts its lines carry).
+fn fit(run: &Run, drawn: &Run, stage_name: &str, terms: &[(&str, &str)]) -> Option<Fit> {
     let features = |frame: &Frame| -> Vec<f64> {
+        let bench = drawn_frame(drawn, frame);
         terms
             .iter()
-            .map(|(name, _)| count(frame, name))
+            .map(|(name, _)| count_of(frame, bench, name))
             .chain(std::iter::once(1.0))
             .collect()
     };
@@ -135,14 +152,15 @@ pub fn section(runs: &[Run], setup_runs: &[Run]) -> String {
     let mut doc = String::from(
         "## What is left: the set-up as a cost model\n\n\
          Each set-up run's stage cycles (the table above, frame by frame) fitted by least \
-         squares over its frames to the frame's counts from the same line: the wall stage to \
-         its sector visits, wall columns, strips and things drawn, the plane stage to its \
-         visits and spans, each with a constant. A unit's cost is then what one more of it adds \
+         squares over its frames to the frame's counts (from the same line, and the sector \
+         visits and things drawn from the bench line of the same frame drawn with its kernels): \
+         the wall stage to its sector visits, wall columns, strips and things drawn, the plane \
+         stage to its visits and spans, each with a constant. A unit's cost is then what one more of it adds \
          to a frame, everything it brings along included: a visit's walls' set-up (ownership, \
          projection, the steppers, the run's entry), its things' collection and its plane's \
          job; a thing's projection, collection and clip windows. R² is how much of the frames' \
          spread the fit explains. `cargo bench-report` fits it from the bench scene's set-up \
-         lines (`portalcast::bench::SetupLine`).\n\n",
+         and bench lines (`portalcast::bench::SetupLine`, `BenchLine`).\n\n",
     );
     let mut fits = Vec::new();
     doc.push_str("| resolution | wall stage: ");
@@ -165,9 +183,12 @@ pub fn section(runs: &[Run], setup_runs: &[Run]) -> String {
     doc.push_str(&"---|".repeat(WALL_TERMS.len() + PLANE_TERMS.len() + 4));
     doc.push('\n');
     for setup in setup_runs {
+        let Some(drawn) = runs.iter().find(|run| run.key() == setup.key()) else {
+            continue;
+        };
         let (Some(wall), Some(plane)) = (
-            fit(setup, "wall", &WALL_TERMS),
-            fit(setup, "plane", &PLANE_TERMS),
+            fit(setup, drawn, "wall", &WALL_TERMS),
+            fit(setup, drawn, "plane", &PLANE_TERMS),
         ) else {
             continue;
         };
@@ -215,7 +236,7 @@ pub fn section(runs: &[Run], setup_runs: &[Run]) -> String {
         let mean = |value: &dyn Fn(&Frame, &Frame) -> f64| -> f64 {
             over.iter().map(|(d, s)| value(d, s)).sum::<f64>() / over.len() as f64
         };
-        let mean_count = |name: &str| mean(&|_, s| count(s, name));
+        let mean_count = |name: &str| mean(&|d, s| count_of(s, Some(d), name));
         let (visits, columns, strips, things, spans) = (
             mean_count("visits"),
             mean_count("cols"),
