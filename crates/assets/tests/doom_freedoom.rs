@@ -234,3 +234,132 @@ fn freedoom_e1m1_s_textures_compose_and_its_flats_and_light_tables_read() {
         "{error}"
     );
 }
+
+/// Twice the signed area of a loop of map vertices (anticlockwise positive, y up).
+fn area2(level: &DoomLevel, outline: &[u16]) -> i128 {
+    let point = |v: u16| {
+        let v = level.vertices[usize::from(v)];
+        (i128::from(v.x), i128::from(v.y))
+    };
+    (0..outline.len())
+        .map(|k| {
+            let (a, b) = (point(outline[k]), point(outline[(k + 1) % outline.len()]));
+            a.0 * b.1 - b.0 * a.1
+        })
+        .sum()
+}
+
+/// The map's own partition: every piece convex in whole units (clockwise, straight corners
+/// allowed, no wall of zero length), each sector's pieces covering exactly its area, every
+/// portal and opening paired with one back along the same two vertices. Returns the pieces.
+fn assert_partition(map: &str, level: &DoomLevel) -> usize {
+    let pieces = doom::partition(level).unwrap_or_else(|e| panic!("{map}: {e:?}"));
+    let point = |v: u16| {
+        let v = level.vertices[usize::from(v)];
+        (i64::from(v.x), i64::from(v.y))
+    };
+    let mut covered = std::collections::BTreeMap::<u16, i128>::new();
+    for (index, piece) in pieces.iter().enumerate() {
+        let n = piece.outline.len();
+        assert!(n >= 3, "{map}: piece {index} has {n} corners");
+        for k in 0..n {
+            let (a, b, c) = (
+                point(piece.outline[(k + n - 1) % n]),
+                point(piece.outline[k]),
+                point(piece.outline[(k + 1) % n]),
+            );
+            assert!(a != b, "{map}: piece {index} has a wall of zero length");
+            let turn = i128::from(b.0 - a.0) * i128::from(c.1 - b.1)
+                - i128::from(b.1 - a.1) * i128::from(c.0 - b.0);
+            assert!(
+                turn <= 0,
+                "{map}: piece {index} turns left at corner {k}: {:?}",
+                piece.outline
+            );
+        }
+        *covered.entry(piece.sector).or_default() += area2(level, &piece.outline);
+        for (k, wall) in piece.walls.iter().enumerate() {
+            let (a, b) = (piece.outline[k], piece.outline[(k + 1) % n]);
+            let back = match *wall {
+                doom::PieceWall::Solid { .. } => continue,
+                doom::PieceWall::Portal { piece, .. } | doom::PieceWall::Open { piece } => piece,
+            };
+            let other = &pieces[back as usize];
+            let m = other.outline.len();
+            assert!(
+                (0..m).any(|j| other.outline[j] == b && other.outline[(j + 1) % m] == a),
+                "{map}: piece {index}'s wall {k} leads to piece {back}, which has no wall back"
+            );
+        }
+    }
+    // Each sector's area, from its sides: the sector on the right of each.
+    let mut area = std::collections::BTreeMap::<u16, i128>::new();
+    for line in &level.linedefs {
+        let sector_of =
+            |side: u16| (side != doom::NONE).then(|| level.sidedefs[usize::from(side)].sector);
+        let (right, left) = (sector_of(line.sides[0]), sector_of(line.sides[1]));
+        if right == left {
+            continue;
+        }
+        let (a, b) = (point(line.start), point(line.end));
+        let twice = i128::from(a.0) * i128::from(b.1) - i128::from(b.0) * i128::from(a.1);
+        if let Some(sector) = right {
+            *area.entry(sector).or_default() += twice;
+        }
+        if let Some(sector) = left {
+            *area.entry(sector).or_default() -= twice;
+        }
+    }
+    // A sector of no area (two lines over each other) has no piece.
+    area.retain(|_, twice| *twice != 0);
+    assert_eq!(
+        covered, area,
+        "{map}: the pieces cover each sector's area exactly"
+    );
+    pieces.len()
+}
+
+#[test]
+fn every_freedoom_map_partitions_into_exactly_convex_pieces_on_its_own_vertices() {
+    let mut total = (0, 0, 0);
+    for wad_name in ["freedoom1.wad", "freedoom2.wad"] {
+        let wad = Wad::open(&wad_path(wad_name)).unwrap();
+        let maps: Vec<String> = wad
+            .names()
+            .filter(|name| doom::is_map_name(name))
+            .map(str::to_string)
+            .collect();
+        for map in maps {
+            let level = DoomLevel::read(&wad, &map).unwrap_or_else(|e| panic!("{e}"));
+            let pieces = assert_partition(&map, &level);
+            total = (total.0 + 1, total.1 + level.sectors.len(), total.2 + pieces);
+            if map == "E1M1" || map == "MAP01" {
+                println!(
+                    "{map}: {} sectors, {pieces} convex pieces",
+                    level.sectors.len()
+                );
+            }
+        }
+    }
+    println!(
+        "{} maps, {} sectors, {} convex pieces",
+        total.0, total.1, total.2
+    );
+    assert_eq!(
+        total.0, 68,
+        "Freedoom's 36 Phase 1 maps and 32 Phase 2 maps"
+    );
+}
+
+#[test]
+fn the_own_partition_cuts_e1m1_and_map01_into_fewer_pieces_than_the_node_builder() {
+    for (wad_name, map) in [("freedoom1.wad", "E1M1"), ("freedoom2.wad", "MAP01")] {
+        let (level, nodes, _) = import(wad_name, map);
+        let pieces = doom::partition(&level).unwrap().len();
+        println!(
+            "{map}: {pieces} pieces, {} GL subsectors",
+            nodes.subsectors.len()
+        );
+        assert!(pieces < nodes.subsectors.len());
+    }
+}
