@@ -363,3 +363,44 @@ fn the_own_partition_cuts_e1m1_and_map01_into_fewer_pieces_than_the_node_builder
         assert!(pieces < nodes.subsectors.len());
     }
 }
+
+#[test]
+fn the_map_compiler_takes_e1m1_and_map01_s_pieces_but_for_closed_sectors_textures_and_depth() {
+    for (wad_name, map) in [("freedoom1.wad", "E1M1"), ("freedoom2.wad", "MAP01")] {
+        let wad = Wad::open(&wad_path(wad_name)).unwrap();
+        let level = DoomLevel::read(&wad, map).unwrap();
+        let pieces = doom::partition(&level).unwrap();
+        // As Doom draws it: the compiler's first stage refuses the closed sectors (issue 19: 22
+        // on E1M1) and, on MAP01, one-sided walls without a texture.
+        let findings = doom::compiler_findings(&level, &pieces, doom::StandIns::Off);
+        let closed: std::collections::BTreeSet<u16> = pieces
+            .iter()
+            .filter(|piece| {
+                let sector = &level.sectors[usize::from(piece.sector)];
+                sector.floor >= sector.ceiling
+            })
+            .map(|piece| piece.sector)
+            .collect();
+        let refused_closed = findings
+            .iter()
+            .filter(|f| f.contains("is not below ceiling"))
+            .count();
+        let untextured = findings.iter().filter(|f| f.contains("needs tex=")).count();
+        println!(
+            "{map}: {} closed sectors ({refused_closed} pieces refused), {untextured} walls without a texture, {} other findings",
+            closed.len(),
+            findings.len() - refused_closed - untextured
+        );
+        assert_eq!(findings.len(), refused_closed + untextured, "{findings:#?}");
+        assert!(refused_closed >= closed.len());
+        if map == "E1M1" {
+            assert_eq!((closed.len(), untextured), (22, 0));
+        }
+        // With those stood in for, every outline, portal and overlap check passes; what is
+        // left is the renderer's portal depth.
+        let findings = doom::compiler_findings(&level, &pieces, doom::StandIns::On);
+        println!("{map} with stand-ins: {findings:?}");
+        assert_eq!(findings.len(), 1, "{findings:#?}");
+        assert!(findings[0].contains("portals in a row"), "{}", findings[0]);
+    }
+}

@@ -85,7 +85,7 @@ pub struct DoomSector {
 }
 
 /// A thing: where, facing where (degrees), its type and its flags.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct DoomThing {
     /// East.
     pub x: i16,
