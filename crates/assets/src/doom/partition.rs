@@ -722,3 +722,191 @@ fn merge(
     }
     Some(result)
 }
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::doom::level::{DoomSector, DoomVertex, Linedef, Sidedef};
+
+    fn level(
+        vertices: Vec<(i16, i16)>,
+        lines: Vec<(u16, u16, u16, u16)>,
+        sectors: u16,
+    ) -> DoomLevel {
+        let sidedef = |sector: u16| Sidedef {
+            x_offset: 0,
+            y_offset: 0,
+            upper: "-".into(),
+            lower: "-".into(),
+            middle: "WALL".into(),
+            sector,
+        };
+        let mut sidedefs = Vec::new();
+        let linedefs = lines
+            .into_iter()
+            .map(|(start, end, right, left)| {
+                let mut sides = [NONE; 2];
+                for (slot, sector) in sides.iter_mut().zip([right, left]) {
+                    if sector != NONE {
+                        *slot = sidedefs.len() as u16;
+                        sidedefs.push(sidedef(sector));
+                    }
+                }
+                Linedef {
+                    start,
+                    end,
+                    flags: 0,
+                    special: 0,
+                    tag: 0,
+                    sides,
+                }
+            })
+            .collect();
+        DoomLevel {
+            name: "TEST".into(),
+            vertices: vertices
+                .into_iter()
+                .map(|(x, y)| DoomVertex { x, y })
+                .collect(),
+            linedefs,
+            sidedefs,
+            sectors: (0..sectors)
+                .map(|_| DoomSector {
+                    floor: 0,
+                    ceiling: 128,
+                    floor_flat: "F".into(),
+                    ceiling_flat: "C".into(),
+                    light: 160,
+                    special: 0,
+                    tag: 0,
+                })
+                .collect(),
+            things: Vec::new(),
+        }
+    }
+
+    /// Every piece turns right (clockwise, y up) or goes straight, with no wall of zero length.
+    fn convex(level: &DoomLevel, piece: &Piece) -> bool {
+        let p = |v: u16| {
+            let v = level.vertices[usize::from(v)];
+            (i64::from(v.x), i64::from(v.y))
+        };
+        let n = piece.outline.len();
+        (0..n).all(|k| {
+            let (a, b, c) = (
+                p(piece.outline[(k + n - 1) % n]),
+                p(piece.outline[k]),
+                p(piece.outline[(k + 1) % n]),
+            );
+            a != b && cross(a, b, c) <= 0
+        })
+    }
+
+    #[test]
+    fn a_u_shaped_room_round_a_pillar_cuts_into_convex_pieces() {
+        // A 4×3 room (clockwise, y up) with a notch in its top, and a square pillar (a hole:
+        // its lines face the room) in its bottom half.
+        let vertices = vec![
+            (0, 0),
+            (0, 30),
+            (10, 30),
+            (10, 20),
+            (20, 20),
+            (20, 30),
+            (40, 30),
+            (40, 0),
+            (25, 5),
+            (30, 5),
+            (30, 10),
+            (25, 10),
+        ];
+        let mut lines: Vec<(u16, u16, u16, u16)> =
+            (0..8).map(|k| (k, (k + 1) % 8, 0, NONE)).collect();
+        // The pillar's sides, the room on their right: anticlockwise round the pillar.
+        lines.extend([
+            (8, 9, 0, NONE),
+            (9, 10, 0, NONE),
+            (10, 11, 0, NONE),
+            (11, 8, 0, NONE),
+        ]);
+        let level = level(vertices, lines, 1);
+        let pieces = partition(&level).unwrap();
+        assert!(pieces.len() >= 3, "{pieces:?}");
+        assert!(pieces.iter().all(|piece| convex(&level, piece)));
+        let area: i128 = pieces
+            .iter()
+            .map(|piece| {
+                let points: Vec<Point> = piece
+                    .outline
+                    .iter()
+                    .map(|&v| {
+                        let v = level.vertices[usize::from(v)];
+                        (i64::from(v.x), i64::from(v.y))
+                    })
+                    .collect();
+                area2(&points)
+            })
+            .sum();
+        assert_eq!(area, -2 * (40 * 30 - 10 * 10 - 5 * 5));
+    }
+
+    #[test]
+    fn a_gap_in_a_sector_s_outline_is_named() {
+        let level = level(
+            vec![(0, 0), (0, 10), (10, 10), (10, 0)],
+            vec![(0, 1, 0, NONE), (1, 2, 0, NONE), (2, 3, 0, NONE)],
+            1,
+        );
+        assert!(matches!(
+            partition(&level),
+            Err(PartitionError::Unclosed { sector: 0, .. })
+        ));
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        /// Any map, however tangled, is cut or refused, never a panic; what is cut is convex.
+        #[test]
+        fn any_map_is_cut_into_convex_pieces_or_refused(
+            vertices in prop::collection::vec((-20i16..20, -20i16..20), 3..10),
+            lines in prop::collection::vec((0u16..10, 0u16..10, 0u16..3, prop_oneof![Just(NONE), 0u16..3]), 3..14),
+        ) {
+            let count = vertices.len() as u16;
+            let lines = lines.into_iter().map(|(a, b, r, l)| (a % count, b % count, r, l)).collect();
+            let level = level(vertices, lines, 3);
+            if let Ok(pieces) = partition(&level) {
+                prop_assert!(pieces.iter().all(|piece| convex(&level, piece)));
+            }
+        }
+
+        /// A random closed loop (clockwise or not, crossing itself or not) is cut into convex
+        /// pieces covering its area exactly, or refused.
+        #[test]
+        fn a_random_loop_is_cut_exactly_or_refused(
+            vertices in prop::collection::vec((-30i16..30, -30i16..30), 3..12),
+        ) {
+            let n = vertices.len() as u16;
+            let lines = (0..n).map(|k| (k, (k + 1) % n, 0, NONE)).collect();
+            let level = level(vertices, lines, 1);
+            if let Ok(pieces) = partition(&level) {
+                prop_assert!(pieces.iter().all(|piece| convex(&level, piece)));
+                let points = |outline: &[u16]| -> Vec<Point> {
+                    outline
+                        .iter()
+                        .map(|&v| {
+                            let v = level.vertices[usize::from(v)];
+                            (i64::from(v.x), i64::from(v.y))
+                        })
+                        .collect()
+                };
+                let covered: i128 = pieces.iter().map(|piece| area2(&points(&piece.outline))).sum();
+                let whole = area2(&points(&(0..n).collect::<Vec<_>>()));
+                // The loop's own area if it runs clockwise (the sector on its right); a loop
+                // running the other way bounds the sector from outside: nothing to cut.
+                prop_assert_eq!(covered, if whole < 0 { whole } else { 0 });
+            }
+        }
+    }
+}
