@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use portalcast_assets::doom::{self, Cell, CellWall, DoomLevel, GlNodes, Wad};
+use portalcast_assets::doom::{self, Cell, DoomLevel, GlNodes, PieceWall, Wad};
 
 const FREEDOOM: &str = "/usr/share/games/doom";
 
@@ -40,7 +40,7 @@ fn import(wad_name: &str, map: &str) -> (DoomLevel, GlNodes, Vec<Cell>) {
 fn assert_portals_pair(map: &str, cells: &[Cell]) {
     for (index, cell) in cells.iter().enumerate() {
         for (offset, wall) in cell.walls.iter().enumerate() {
-            let (CellWall::Portal { cell: other, .. } | CellWall::Open { cell: other }) = wall
+            let (PieceWall::Portal { piece: other, .. } | PieceWall::Open { piece: other }) = wall
             else {
                 continue;
             };
@@ -51,7 +51,7 @@ fn assert_portals_pair(map: &str, cells: &[Cell]) {
             let behind = &cells[*other as usize];
             let back = (0..behind.outline.len()).any(|at| {
                 let (c, d) = (behind.outline[at], behind.outline[(at + 1) % behind.outline.len()]);
-                let leads_back = matches!(behind.walls[at], CellWall::Portal { cell, .. } | CellWall::Open { cell } if cell as usize == index);
+                let leads_back = matches!(behind.walls[at], PieceWall::Portal { piece, .. } | PieceWall::Open { piece } if piece as usize == index);
                 leads_back && (c, d) == (b, a)
             });
             assert!(

@@ -4,35 +4,11 @@
 
 use super::gl::{FixedVertex, GlNodes};
 use super::level::{DoomLevel, NONE};
-
-/// What a cell's wall shows and where it leads.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum CellWall {
-    /// A one-sided linedef's side: its middle texture.
-    Solid {
-        /// The linedef.
-        linedef: u16,
-        /// Its side: 0 right, 1 left.
-        side: u16,
-    },
-    /// A two-sided linedef's side, into the cell behind it.
-    Portal {
-        /// The linedef.
-        linedef: u16,
-        /// Its side: 0 right, 1 left.
-        side: u16,
-        /// The cell behind.
-        cell: u32,
-    },
-    /// A mini-seg: a partition line through one Doom sector, into the cell beside it.
-    Open {
-        /// The cell beside.
-        cell: u32,
-    },
-}
+use super::partition::PieceWall;
 
 /// A convex cell: its outline (vertices in 16.16 units, each wall from one vertex to the next,
-/// in the map's seg order) and the Doom sector it is part of.
+/// in the map's seg order) and the Doom sector it is part of. Its walls' `piece` fields name
+/// cells.
 #[derive(Clone, Debug)]
 pub struct Cell {
     /// The Doom sector.
@@ -40,7 +16,7 @@ pub struct Cell {
     /// Its corners in order; wall `k` runs from corner `k` to corner `k + 1`.
     pub outline: Vec<FixedVertex>,
     /// Its walls.
-    pub walls: Vec<CellWall>,
+    pub walls: Vec<PieceWall>,
 }
 
 /// Why a subsector does not make a cell.
@@ -97,8 +73,8 @@ pub fn cells(level: &DoomLevel, nodes: &GlNodes) -> Result<Vec<Cell>, CellError>
                     return Err(CellError::Open { subsector, seg: at });
                 }
                 let wall = match seg.linedef {
-                    None => CellWall::Open {
-                        cell: cell_of_seg[seg
+                    None => PieceWall::Open {
+                        piece: cell_of_seg[seg
                             .partner
                             .ok_or(CellError::NoPartner { subsector, seg: at })?
                             as usize],
@@ -122,13 +98,13 @@ pub fn cells(level: &DoomLevel, nodes: &GlNodes) -> Result<Vec<Cell>, CellError>
                             let partner = seg
                                 .partner
                                 .ok_or(CellError::NoPartner { subsector, seg: at })?;
-                            CellWall::Portal {
+                            PieceWall::Portal {
                                 linedef,
                                 side: seg.side,
-                                cell: cell_of_seg[partner as usize],
+                                piece: cell_of_seg[partner as usize],
                             }
                         } else {
-                            CellWall::Solid {
+                            PieceWall::Solid {
                                 linedef,
                                 side: seg.side,
                             }

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use super::level::DoomVertex;
-use super::wad::Wad;
+use super::wad::{member, Wad};
 use super::DoomError;
 
 /// The node builder's program name.
@@ -124,17 +124,13 @@ impl GlNodes {
                 )
             })?;
         let lump = |wanted: &str| {
-            lumps
-                .iter()
-                .find(|(lump, _)| *lump == wanted)
-                .map(|(_, bytes)| *bytes)
-                .ok_or_else(|| {
-                    DoomError::new(
-                        gwa.path(),
-                        Some(&format!("{marker}/{wanted}")),
-                        "is missing: the node builder's output is incomplete".to_string(),
-                    )
-                })
+            member(
+                gwa,
+                &lumps,
+                &marker,
+                wanted,
+                "the node builder's output is incomplete",
+            )
         };
         let fail = |wanted: &str, message: String| {
             DoomError::new(gwa.path(), Some(&format!("{marker}/{wanted}")), message)

@@ -1,7 +1,7 @@
 //! A Doom map's lumps in the Doom (not Hexen) format: vertices, linedefs, sidedefs, sectors and
 //! things, as the Doom specs lay them out (all little-endian; "none" is 0xFFFF).
 
-use super::wad::{name8, Wad};
+use super::wad::{member, name8, Wad};
 use super::DoomError;
 
 /// The lumps a map's marker is followed by (Doom's order; `BEHAVIOR` marks a Hexen map).
@@ -154,19 +154,7 @@ impl DoomLevel {
                 format!("has no map {marker}: its maps are {}", maps.join(", ")),
             )
         })?;
-        let lump = |wanted: &str| -> Result<&[u8], DoomError> {
-            lumps
-                .iter()
-                .find(|(lump, _)| *lump == wanted)
-                .map(|(_, bytes)| *bytes)
-                .ok_or_else(|| {
-                    DoomError::new(
-                        wad.path(),
-                        Some(&format!("{marker}/{wanted}")),
-                        "is missing: the map is damaged".to_string(),
-                    )
-                })
-        };
+        let lump = |wanted: &str| member(wad, &lumps, &marker, wanted, "the map is damaged");
         if lumps.iter().any(|(lump, _)| *lump == "BEHAVIOR") {
             return Err(DoomError::new(
                 wad.path(),

@@ -32,7 +32,7 @@ mod wad;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-pub use cells::{cells, reflex_depth, Cell, CellError, CellWall};
+pub use cells::{cells, reflex_depth, Cell, CellError};
 pub use convert::{compiler_findings, StandIns, STAND_IN_TEXTURE};
 pub use gl::{build_gwa, FixedVertex, GlNodes, GlSeg, NODE_BUILDER};
 pub use graphics::{

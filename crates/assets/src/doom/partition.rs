@@ -17,7 +17,7 @@ use super::level::{DoomLevel, NONE};
 
 type Point = (i64, i64);
 
-/// What a piece's wall shows and where it leads.
+/// What a piece's (or a GL cell's) wall shows and where it leads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PieceWall {
     /// A side of a linedef whose other side is no sector's (one-sided).

@@ -149,6 +149,28 @@ impl Wad {
     }
 }
 
+/// Lump `wanted` of a group read with [`Wad::group`] after marker `marker`, or an error naming
+/// `marker/wanted` in `wad` with `what_to_do`.
+pub(crate) fn member<'a>(
+    wad: &Wad,
+    lumps: &[(&str, &'a [u8])],
+    marker: &str,
+    wanted: &str,
+    what_to_do: &str,
+) -> Result<&'a [u8], DoomError> {
+    lumps
+        .iter()
+        .find(|(lump, _)| *lump == wanted)
+        .map(|(_, bytes)| *bytes)
+        .ok_or_else(|| {
+            DoomError::new(
+                wad.path(),
+                Some(&format!("{marker}/{wanted}")),
+                format!("is missing: {what_to_do}"),
+            )
+        })
+}
+
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
