@@ -404,3 +404,53 @@ fn the_map_compiler_takes_e1m1_and_map01_s_pieces_but_for_closed_sectors_texture
         assert!(findings[0].contains("portals in a row"), "{}", findings[0]);
     }
 }
+
+/// What stops each Freedoom map, its pieces checked by the map compiler with stand-ins for
+/// closed sectors and missing textures: no outline, portal or overlap finding on any map (the
+/// partition's pieces meet every geometric rule); what is left is the renderer's portal depth
+/// (every map but four), a player start on a wall line of the partition (four maps) and
+/// coordinates beyond the world's limits (E3M5). Prints each map's.
+#[test]
+fn on_every_freedoom_map_what_is_left_is_depth_start_places_and_limits() {
+    let (mut passing, mut deepest) = (Vec::new(), (0, String::new()));
+    for wad_name in ["freedoom1.wad", "freedoom2.wad"] {
+        let wad = Wad::open(&wad_path(wad_name)).unwrap();
+        let maps: Vec<String> = wad
+            .names()
+            .filter(|name| doom::is_map_name(name))
+            .map(str::to_string)
+            .collect();
+        for map in maps {
+            let level = DoomLevel::read(&wad, &map).unwrap();
+            let pieces = doom::partition(&level).unwrap();
+            let findings = doom::compiler_findings(&level, &pieces, doom::StandIns::On);
+            let depth: Option<usize> = findings
+                .iter()
+                .find_map(|f| f.split("can pass ").nth(1)?.split(' ').next()?.parse().ok());
+            println!(
+                "{map}: {} pieces, portal depth {depth:?}, {} findings",
+                pieces.len(),
+                findings.len()
+            );
+            for finding in &findings {
+                assert!(
+                    finding.contains("portals in a row")
+                        || finding.contains("lies on a wall line")
+                        || finding.contains("outside the map limits"),
+                    "{map}: {finding}"
+                );
+            }
+            if findings.is_empty() {
+                passing.push(map.clone());
+            }
+            if let Some(depth) = depth.filter(|&d| d > deepest.0) {
+                deepest = (depth, map.clone());
+            }
+        }
+    }
+    println!(
+        "passing whole: {passing:?}; deepest run: {} portals on {}",
+        deepest.0, deepest.1
+    );
+    assert!(!passing.is_empty());
+}
