@@ -3,7 +3,8 @@
 //! map must (docs/MAP_FORMAT.md), and its list of what does not yet.
 //!
 //! The mapping, so far: each [`Piece`] a sector with its Doom sector's heights, flats and light
-//! (`F_SKY1` ceilings the sky); a one-sided side a wall with its middle texture; a two-sided side
+//! (`F_SKY1` ceilings the sky), a manual door (a closed sector of one piece behind a line with
+//! Doom's door specials 1, 26–28, 31–34, 117 or 118) a door mover opening as Doom's does; a one-sided side a wall with its middle texture; a two-sided side
 //! a portal with its upper and lower textures; an opening of the partition a portal without
 //! any. Doom's y runs up the map and portalcast's down the screen's top view: y is negated, so
 //! the map is not mirrored. The player stands at player 1's start. Things, movers and textures'
@@ -14,8 +15,96 @@ use super::partition::{Piece, PieceWall};
 use crate::diag::Loc;
 use crate::map_build::{self, Catalog};
 use crate::source::{
-    CeilingSource, SourceMap, SourcePlace, SourceSector, SourceVertex, SourceWall, Spanned,
+    CeilingSource, MoverKind, SourceMap, SourceMover, SourcePlace, SourceSector, SourceVertex,
+    SourceWall, Spanned,
 };
+
+/// Doom's game ticks a second; portalcast's are 60.
+const DOOM_TICKS_PER_SECOND: u32 = 35;
+
+/// Doom's manual doors (opened by using the door's own line, from the side facing away from
+/// it): specials 1, 26, 27 and 28 open, wait and close (the last three need a key portalcast
+/// does not have: they open as plain doors); 31 to 34 open and stay; 117 and 118 are the fast
+/// ("blazing") ones of each.
+const MANUAL_DOORS: [(u16, DoorTiming); 10] = [
+    (1, DoorTiming::CLOSES),
+    (26, DoorTiming::CLOSES),
+    (27, DoorTiming::CLOSES),
+    (28, DoorTiming::CLOSES),
+    (31, DoorTiming::STAYS),
+    (32, DoorTiming::STAYS),
+    (33, DoorTiming::STAYS),
+    (34, DoorTiming::STAYS),
+    (117, DoorTiming::FAST_CLOSES),
+    (118, DoorTiming::FAST_STAYS),
+];
+
+/// How a Doom door moves, in portalcast's units.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct DoorTiming {
+    /// World units a portalcast tick.
+    speed: u16,
+    /// portalcast ticks it stays open.
+    wait: u16,
+}
+
+impl DoorTiming {
+    /// Doom's door: 2 units a Doom tick (70 a second: 1 a portalcast tick, 60 a second), open
+    /// 150 Doom ticks (257 of portalcast's).
+    const CLOSES: DoorTiming = DoorTiming {
+        speed: 1,
+        wait: (150 * 60 / DOOM_TICKS_PER_SECOND) as u16,
+    };
+    /// Open for good: as long as a portalcast door waits.
+    const STAYS: DoorTiming = DoorTiming {
+        speed: 1,
+        wait: u16::MAX,
+    };
+    /// Doom's blazing door: 8 units a Doom tick (280 a second: 5 a portalcast tick).
+    const FAST_CLOSES: DoorTiming = DoorTiming {
+        speed: 5,
+        wait: (150 * 60 / DOOM_TICKS_PER_SECOND) as u16,
+    };
+    /// A blazing door that stays open.
+    const FAST_STAYS: DoorTiming = DoorTiming {
+        speed: 5,
+        wait: u16::MAX,
+    };
+}
+
+/// The door Doom's sector `sector` is, if it is a manual one: closed, behind a two-sided line
+/// with a manual door special, opening (as Doom's `EV_VerticalDoor`) to 4 below the lowest
+/// ceiling round it. Its open ceiling and its timing.
+fn manual_door(level: &DoomLevel, sector: u16) -> Option<(i16, DoorTiming)> {
+    let own = &level.sectors[usize::from(sector)];
+    if own.floor < own.ceiling {
+        return None;
+    }
+    let sector_of = |side: u16| level.sidedefs[usize::from(side)].sector;
+    let timing = level.linedefs.iter().find_map(|line| {
+        let faces_door = line.two_sided() && sector_of(line.sides[1]) == sector;
+        MANUAL_DOORS
+            .iter()
+            .find(|(special, _)| faces_door && *special == line.special)
+            .map(|&(_, timing)| timing)
+    })?;
+    let lowest = level
+        .linedefs
+        .iter()
+        .filter(|line| line.two_sided())
+        .filter_map(|line| {
+            let (right, left) = (sector_of(line.sides[0]), sector_of(line.sides[1]));
+            match (right == sector, left == sector) {
+                (true, false) => Some(left),
+                (false, true) => Some(right),
+                _ => None,
+            }
+        })
+        .map(|other| level.sectors[usize::from(other)].ceiling)
+        .min()?;
+    let open = lowest.checked_sub(4)?;
+    (open > own.floor).then_some((open, timing))
+}
 
 /// Doom's thing type of player 1's start.
 const PLAYER_1_START: u16 = 1;
@@ -53,6 +142,10 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
     let texture =
         |name: &str| texture(name).or_else(|| on.then(|| at(STAND_IN_TEXTURE.to_string())));
     let mut names: Vec<String> = Vec::new();
+    let mut pieces_of = vec![0usize; level.sectors.len()];
+    for piece in pieces {
+        pieces_of[usize::from(piece.sector)] += 1;
+    }
     let vertices = level
         .vertices
         .iter()
@@ -68,6 +161,10 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
         .enumerate()
         .map(|(index, piece)| {
             let doom = &level.sectors[usize::from(piece.sector)];
+            // A door cut into several pieces would need them moving as one: not yet (they
+            // stay shut, and the compiler says so).
+            let door = manual_door(level, piece.sector)
+                .filter(|_| pieces_of[usize::from(piece.sector)] == 1);
             names.push(doom.floor_flat.clone());
             let ceiling = if doom.ceiling_flat == SKY_FLAT {
                 CeilingSource::Sky
@@ -141,15 +238,25 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
                 label: format!("piece {index} (sector {})", piece.sector),
                 loc: Loc::START,
                 floor: at(i64::from(doom.floor)),
-                ceil: at(if on {
-                    i64::from(doom.ceiling.max(doom.floor.saturating_add(1)))
-                } else {
-                    i64::from(doom.ceiling)
+                // A door is drawn open (docs/MAP_FORMAT.md, "Movers") and starts shut.
+                ceil: at(match door {
+                    Some((open, _)) => i64::from(open),
+                    None if on => i64::from(doom.ceiling.max(doom.floor.saturating_add(1))),
+                    None => i64::from(doom.ceiling),
                 }),
                 floor_texture: at(doom.floor_flat.clone()),
                 ceiling,
                 light: doom.light.clamp(0, 255) as u8,
-                mover: None,
+                mover: door.map(|(_, timing)| SourceMover {
+                    kind: MoverKind::Door,
+                    loc: Loc::START,
+                    height: None,
+                    touch: false,
+                    locked: None,
+                    speed: timing.speed,
+                    wait: timing.wait,
+                    tag: None,
+                }),
                 light_effect: None,
                 walls,
             }

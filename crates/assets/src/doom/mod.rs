@@ -12,14 +12,15 @@
 //!   partition the importer builds on.
 //!
 //! [`compiler_findings`] runs the map compiler itself over the pieces (mapped as the module
-//! `convert` says): on E1M1 and MAP01 it refuses only the closed sectors (shut doors and
-//! lowered lifts) and, on MAP01, five walls Doom leaves without a texture; with those stood in
-//! for, every outline, portal and overlap check passes, and what is left is the renderer's
-//! portal depth (a view passes 112 portals in a row on E1M1, the renderer follows 64).
+//! `convert` says, manual doors as door movers): on E1M1 and MAP01 it refuses only the other
+//! closed sectors (remote doors, lowered floors) and, on MAP01, five walls Doom leaves without
+//! a texture; with those stood in for, every outline, portal, mover and overlap check passes,
+//! and what is left is the renderer's portal depth (a view passes 112 portals in a row on
+//! E1M1, the renderer follows 64).
 //!
-//! Still to come: closed sectors as movers, the missing textures, the portal depth, the
-//! pictures into portalcast's palette, light rows and textures, the things, and the ROM's
-//! interface (issue 19's build list).
+//! Still to come: the portal depth, remote doors and lifts (switches and walk-over lines), the
+//! missing textures, the pictures into portalcast's palette, light rows and textures, the
+//! things, and the ROM's interface (issue 19's build list).
 
 mod cells;
 mod convert;
