@@ -7,7 +7,9 @@
 //! Doom's door specials 1, 26–28, 31–34, 117 or 118) a door mover opening as Doom's does; a one-sided side a wall with its middle texture; a two-sided side
 //! a portal with its upper and lower textures; an opening of the partition a portal without
 //! any. Doom's y runs up the map and portalcast's down the screen's top view: y is negated, so
-//! the map is not mirrored. The player stands at player 1's start. Things, movers and textures'
+//! the map is not mirrored; a map reaching past portalcast's world limits but fitting within
+//! them is recentred. The player stands at player 1's start (moved by a 1/256 step where it
+//! lies on a line). Things, movers and textures'
 //! images are still to come.
 
 use super::level::DoomLevel;
@@ -18,6 +20,7 @@ use crate::source::{
     CeilingSource, MoverKind, SourceMap, SourceMover, SourcePlace, SourceSector, SourceVertex,
     SourceWall, Spanned,
 };
+use portalcast_format::limits::WORLD_COORD_MAX;
 
 /// Doom's game ticks a second; portalcast's are 60.
 const DOOM_TICKS_PER_SECOND: u32 = 35;
@@ -146,14 +149,15 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
     for piece in pieces {
         pieces_of[usize::from(piece.sector)] += 1;
     }
+    let (shift_x, shift_y) = recentring(level);
     let vertices = level
         .vertices
         .iter()
         .enumerate()
         .map(|(index, v)| SourceVertex {
             label: format!("vertex {index}"),
-            x: at(i64::from(v.x)),
-            y: at(-i64::from(v.y)),
+            x: at(i64::from(v.x) + shift_x),
+            y: at(-(i64::from(v.y) + shift_y)),
         })
         .collect();
     let sectors = pieces
@@ -268,10 +272,19 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
         .find(|thing| thing.kind == PLAYER_1_START)
         .copied()
         .unwrap_or_default();
+    let (x_fx8, y_fx8) = off_the_lines(
+        level,
+        pieces,
+        (
+            (i64::from(start.x) + shift_x) << 8,
+            (i64::from(start.y) + shift_y) << 8,
+        ),
+        (shift_x, shift_y),
+    );
     let player = SourcePlace {
         loc: Loc::START,
-        x_fx8: at(i64::from(start.x) << 8),
-        y_fx8: at(-i64::from(start.y) << 8),
+        x_fx8: at(x_fx8),
+        y_fx8: at(-y_fx8),
         // Doom's angles run anticlockwise from east with y up; with y down they run clockwise.
         angle: ((-i32::from(start.angle)).rem_euclid(360) * 65536 / 360) as u16,
     };
@@ -285,6 +298,81 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
         },
         catalog,
     )
+}
+
+/// The whole-unit shift that centres `level` on the origin where it reaches past portalcast's
+/// world limits (`±WORLD_COORD_MAX`) but fits within them: Doom's maps may lie anywhere in
+/// ±32,767. No shift for a map already inside.
+fn recentring(level: &DoomLevel) -> (i64, i64) {
+    let limit = i64::from(WORLD_COORD_MAX);
+    let axis = |coordinate: fn(&super::level::DoomVertex) -> i16| {
+        let values = level.vertices.iter().map(|v| i64::from(coordinate(v)));
+        let (low, high) = (values.clone().min().unwrap_or(0), values.max().unwrap_or(0));
+        if low >= -limit && high <= limit {
+            0
+        } else {
+            -(low + high).div_euclid(2)
+        }
+    };
+    (axis(|v| v.x), axis(|v| v.y))
+}
+
+/// `place` (Doom's axes, 24.8 units, shifted by `shift`), moved by the least 1/256 steps that
+/// take it off every piece's walls and into one piece, if it lies on one: the compiler must
+/// find a player's sector, and the partition's diagonals may pass through a thing's place.
+fn off_the_lines(
+    level: &DoomLevel,
+    pieces: &[Piece],
+    place: (i64, i64),
+    shift: (i64, i64),
+) -> (i64, i64) {
+    let corner = |v: u16| {
+        let v = level.vertices[usize::from(v)];
+        (
+            (i64::from(v.x) + shift.0) << 8,
+            (i64::from(v.y) + shift.1) << 8,
+        )
+    };
+    // Pieces run clockwise with y up: inside is right of every wall.
+    let sides = |p: (i64, i64)| {
+        pieces.iter().map(move |piece| {
+            let n = piece.outline.len();
+            (0..n).map(move |k| {
+                let (a, b) = (corner(piece.outline[k]), corner(piece.outline[(k + 1) % n]));
+                i128::from(b.0 - a.0) * i128::from(p.1 - a.1)
+                    - i128::from(b.1 - a.1) * i128::from(p.0 - a.0)
+            })
+        })
+    };
+    // Strictly inside one piece, and on no wall line of a piece it touches (the compiler's
+    // rule for finding a place's sector).
+    let strictly_in_one = |p: (i64, i64)| {
+        let mut inside = 0;
+        for piece in sides(p) {
+            let sides: Vec<i128> = piece.collect();
+            if sides.iter().all(|&side| side < 0) {
+                inside += 1;
+            } else if sides.iter().all(|&side| side <= 0) {
+                return false;
+            }
+        }
+        inside == 1
+    };
+    [
+        (0, 0),
+        (1, 0),
+        (0, 1),
+        (-1, 0),
+        (0, -1),
+        (1, 1),
+        (-1, -1),
+        (1, -1),
+        (-1, 1),
+    ]
+    .into_iter()
+    .map(|(dx, dy)| (place.0 + dx, place.1 + dy))
+    .find(|&p| strictly_in_one(p))
+    .unwrap_or(place)
 }
 
 /// What the map compiler says of `level`'s pieces as a portalcast map: nothing if it takes
