@@ -171,7 +171,7 @@ pub fn partition(level: &DoomLevel) -> Result<Vec<Piece>, PartitionError> {
                 PieceWall::Portal {
                     linedef,
                     side,
-                    piece: u32::MAX,
+                    piece: PORTAL_UNRESOLVED,
                 }
             } else {
                 PieceWall::Solid { linedef, side }
@@ -352,9 +352,17 @@ fn outside(points: &[Point], p: Point) -> bool {
     winding == 0
 }
 
-/// A corner of the loop being cut: its map vertex, and the wall leaving it (a side, or a
-/// diagonal of the cut: `Open` with the index of the diagonal's other use).
+/// A corner of the loop being cut: its map vertex, and the wall leaving it (a side, or one of a
+/// bridge's two walks: [`BRIDGE`]).
 type Corner = (u16, PieceWall);
+
+/// The wall of a bridge's walk (between a hole and the loop it is cut into) while the loop is
+/// cut: an opening whose piece is known only once the pieces are made.
+const BRIDGE: PieceWall = PieceWall::Open { piece: u32::MAX };
+
+/// A portal's wall while the sectors are cut: its piece behind is known only once both sides'
+/// pieces are made.
+const PORTAL_UNRESOLVED: u32 = u32::MAX;
 
 /// Cuts `polygon` into convex pieces: holes bridged into the outer loop, the loop cut into
 /// triangles, the triangles merged back across every diagonal both of whose ends stay convex.
@@ -381,7 +389,6 @@ fn cut_convex(
     for &(vertex, _) in &loop_ {
         *passes.entry(point(vertex)).or_default() += 1;
     }
-    let bridge_wall = PieceWall::Open { piece: u32::MAX };
     let straight: Vec<bool> = (0..loop_.len())
         .map(|k| {
             let n = loop_.len();
@@ -391,8 +398,8 @@ fn cut_convex(
                 point(loop_[(k + 1) % n].0),
             );
             passes[&b] == 1
-                && loop_[k].1 != bridge_wall
-                && loop_[(k + n - 1) % n].1 != bridge_wall
+                && loop_[k].1 != BRIDGE
+                && loop_[(k + n - 1) % n].1 != BRIDGE
                 && cross(a, b, c) == 0
                 && (b.0 - a.0) * (c.0 - b.0) + (b.1 - a.1) * (c.1 - b.1) > 0
         })
@@ -486,11 +493,11 @@ fn bridge(
     let mut spliced = Vec::with_capacity(loop_.len() + hole.len() + 2);
     spliced.extend_from_slice(&loop_[..=k]);
     // Over the bridge (its walls are diagonals: they are cut away by the merge or kept open).
-    spliced.last_mut()?.1 = PieceWall::Open { piece: u32::MAX };
+    spliced.last_mut()?.1 = BRIDGE;
     for offset in 0..hole.len() {
         spliced.push(hole[(h + offset) % hole.len()]);
     }
-    spliced.push((m, PieceWall::Open { piece: u32::MAX }));
+    spliced.push((m, BRIDGE));
     spliced.push((loop_[k].0, loop_[k].1));
     spliced.extend_from_slice(&loop_[k + 1..]);
     Some(spliced)
@@ -712,7 +719,7 @@ fn merge(
     for (outline, walls) in &mut result {
         let len = outline.len();
         for k in 0..len {
-            if walls[k] == (PieceWall::Open { piece: u32::MAX }) {
+            if walls[k] == BRIDGE {
                 let (a, b) = (outline[k], outline[(k + 1) % len]);
                 walls[k] = PieceWall::Open {
                     piece: *by_corners.get(&(b, a))? as u32,
