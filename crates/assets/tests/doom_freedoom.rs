@@ -445,3 +445,30 @@ fn on_every_freedoom_map_what_is_left_is_the_portal_depth() {
     );
     assert!(!passing.is_empty());
 }
+
+#[test]
+fn the_import_report_names_what_e1m1_s_mapping_leaves_out() {
+    let wad = Wad::open(&wad_path("freedoom1.wad")).unwrap();
+    let level = DoomLevel::read(&wad, "E1M1").unwrap();
+    let pieces = doom::partition(&level).unwrap();
+    let report = doom::import_report(&level, &pieces);
+    for line in &report {
+        println!("{line}");
+    }
+    // The closed sectors the compiler refuses are the ones the report says stay shut.
+    let shut = report
+        .iter()
+        .filter(|line| line.contains("stays shut"))
+        .count();
+    let refused = doom::compiler_findings(&level, &pieces, doom::StandIns::Off).len();
+    assert_eq!(shut, refused);
+    assert!(report
+        .iter()
+        .any(|line| line.contains("opened by specials 23")));
+    assert!(report
+        .iter()
+        .any(|line| line.starts_with("linedef special ")));
+    assert!(report
+        .last()
+        .is_some_and(|line| line.contains("things are not imported yet")));
+}

@@ -387,3 +387,66 @@ pub fn compiler_findings(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIn
         Err(errors) => errors.into_iter().map(|(_, message)| message).collect(),
     }
 }
+
+/// What the mapping leaves out of `level` so far, one line each, for the importer's report
+/// (issue 19: it names what it could not map and does not fail on it): closed sectors that are
+/// not manual doors of one piece (they stay shut), linedef specials it does not map (by
+/// special, with how many lines have it) and the things (not imported yet).
+pub fn import_report(level: &DoomLevel, pieces: &[Piece]) -> Vec<String> {
+    let mut report = Vec::new();
+    let mut pieces_of = vec![0usize; level.sectors.len()];
+    for piece in pieces {
+        pieces_of[usize::from(piece.sector)] += 1;
+    }
+    for (index, sector) in level.sectors.iter().enumerate() {
+        if sector.floor < sector.ceiling {
+            continue;
+        }
+        let door = manual_door(level, index as u16).is_some();
+        let why = if door {
+            format!("a manual door cut into {} pieces", pieces_of[index])
+        } else {
+            let moved_by: Vec<String> = level
+                .linedefs
+                .iter()
+                .filter(|line| sector.tag != 0 && line.tag == sector.tag && line.special != 0)
+                .map(|line| line.special.to_string())
+                .collect();
+            if moved_by.is_empty() {
+                "no special opens it".to_string()
+            } else {
+                format!(
+                    "opened by specials {} (not mapped yet)",
+                    moved_by.join(", ")
+                )
+            }
+        };
+        if !door || pieces_of[index] != 1 {
+            report.push(format!(
+                "sector {index} is closed (floor {}, ceiling {}): {why}; it stays shut",
+                sector.floor, sector.ceiling
+            ));
+        }
+    }
+    let mut specials: std::collections::BTreeMap<u16, usize> = std::collections::BTreeMap::new();
+    for line in &level.linedefs {
+        let mapped = MANUAL_DOORS
+            .iter()
+            .any(|(special, _)| *special == line.special);
+        if line.special != 0 && !mapped {
+            *specials.entry(line.special).or_default() += 1;
+        }
+    }
+    for (special, lines) in specials {
+        report.push(format!(
+            "linedef special {special} on {lines} line(s) is not mapped yet"
+        ));
+    }
+    if !level.things.is_empty() {
+        report.push(format!(
+            "{} things are not imported yet (only player 1's start is used)",
+            level.things.len()
+        ));
+    }
+    report
+}

@@ -34,7 +34,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 pub use cells::{cells, reflex_depth, Cell, CellError};
-pub use convert::{compiler_findings, StandIns, STAND_IN_TEXTURE};
+pub use convert::{compiler_findings, import_report, StandIns, STAND_IN_TEXTURE};
 pub use gl::{build_gwa, FixedVertex, GlNodes, GlSeg, NODE_BUILDER};
 pub use graphics::{
     colormaps, flat, palette, patch, IndexedImage, Patch, TextureDef, TexturePatch, Textures,
