@@ -235,6 +235,24 @@ fn freedoom_e1m1_s_textures_compose_and_its_flats_and_light_tables_read() {
     );
 }
 
+/// Every map of Freedoom's two WADs, read.
+fn every_freedoom_map() -> Vec<(String, DoomLevel)> {
+    let mut maps = Vec::new();
+    for wad_name in ["freedoom1.wad", "freedoom2.wad"] {
+        let wad = Wad::open(&wad_path(wad_name)).unwrap_or_else(|e| panic!("{e}"));
+        let names: Vec<String> = wad
+            .names()
+            .filter(|name| doom::is_map_name(name))
+            .map(str::to_string)
+            .collect();
+        for name in names {
+            let level = DoomLevel::read(&wad, &name).unwrap_or_else(|e| panic!("{e}"));
+            maps.push((name, level));
+        }
+    }
+    maps
+}
+
 /// Twice the signed area of a loop of map vertices (anticlockwise positive, y up).
 fn area2(level: &DoomLevel, outline: &[u16]) -> i128 {
     let point = |v: u16| {
@@ -322,23 +340,14 @@ fn assert_partition(map: &str, level: &DoomLevel) -> usize {
 #[test]
 fn every_freedoom_map_partitions_into_exactly_convex_pieces_on_its_own_vertices() {
     let mut total = (0, 0, 0);
-    for wad_name in ["freedoom1.wad", "freedoom2.wad"] {
-        let wad = Wad::open(&wad_path(wad_name)).unwrap();
-        let maps: Vec<String> = wad
-            .names()
-            .filter(|name| doom::is_map_name(name))
-            .map(str::to_string)
-            .collect();
-        for map in maps {
-            let level = DoomLevel::read(&wad, &map).unwrap_or_else(|e| panic!("{e}"));
-            let pieces = assert_partition(&map, &level);
-            total = (total.0 + 1, total.1 + level.sectors.len(), total.2 + pieces);
-            if map == "E1M1" || map == "MAP01" {
-                println!(
-                    "{map}: {} sectors, {pieces} convex pieces",
-                    level.sectors.len()
-                );
-            }
+    for (map, level) in every_freedoom_map() {
+        let pieces = assert_partition(&map, &level);
+        total = (total.0 + 1, total.1 + level.sectors.len(), total.2 + pieces);
+        if map == "E1M1" || map == "MAP01" {
+            println!(
+                "{map}: {} sectors, {pieces} convex pieces",
+                level.sectors.len()
+            );
         }
     }
     println!(
@@ -409,34 +418,25 @@ fn the_map_compiler_takes_e1m1_and_map01_s_pieces_but_for_closed_sectors_texture
 #[test]
 fn on_every_freedoom_map_what_is_left_is_the_portal_depth() {
     let (mut passing, mut deepest) = (Vec::new(), (0, String::new()));
-    for wad_name in ["freedoom1.wad", "freedoom2.wad"] {
-        let wad = Wad::open(&wad_path(wad_name)).unwrap();
-        let maps: Vec<String> = wad
-            .names()
-            .filter(|name| doom::is_map_name(name))
-            .map(str::to_string)
-            .collect();
-        for map in maps {
-            let level = DoomLevel::read(&wad, &map).unwrap();
-            let pieces = doom::partition(&level).unwrap();
-            let findings = doom::compiler_findings(&level, &pieces, doom::StandIns::On);
-            let depth: Option<usize> = findings
-                .iter()
-                .find_map(|f| f.split("can pass ").nth(1)?.split(' ').next()?.parse().ok());
-            println!(
-                "{map}: {} pieces, portal depth {depth:?}, {} findings",
-                pieces.len(),
-                findings.len()
-            );
-            for finding in &findings {
-                assert!(finding.contains("portals in a row"), "{map}: {finding}");
-            }
-            if findings.is_empty() {
-                passing.push(map.clone());
-            }
-            if let Some(depth) = depth.filter(|&d| d > deepest.0) {
-                deepest = (depth, map.clone());
-            }
+    for (map, level) in every_freedoom_map() {
+        let pieces = doom::partition(&level).unwrap();
+        let findings = doom::compiler_findings(&level, &pieces, doom::StandIns::On);
+        let depth: Option<usize> = findings
+            .iter()
+            .find_map(|f| f.split("can pass ").nth(1)?.split(' ').next()?.parse().ok());
+        println!(
+            "{map}: {} pieces, portal depth {depth:?}, {} findings",
+            pieces.len(),
+            findings.len()
+        );
+        for finding in &findings {
+            assert!(finding.contains("portals in a row"), "{map}: {finding}");
+        }
+        if findings.is_empty() {
+            passing.push(map.clone());
+        }
+        if let Some(depth) = depth.filter(|&d| d > deepest.0) {
+            deepest = (depth, map.clone());
         }
     }
     println!(

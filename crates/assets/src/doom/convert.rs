@@ -109,6 +109,15 @@ fn manual_door(level: &DoomLevel, sector: u16) -> Option<(i16, DoorTiming)> {
     (open > own.floor).then_some((open, timing))
 }
 
+/// How many pieces each of `level`'s sectors is cut into.
+fn pieces_per_sector(level: &DoomLevel, pieces: &[Piece]) -> Vec<usize> {
+    let mut counts = vec![0usize; level.sectors.len()];
+    for piece in pieces {
+        counts[usize::from(piece.sector)] += 1;
+    }
+    counts
+}
+
 /// Doom's thing type of player 1's start.
 const PLAYER_1_START: u16 = 1;
 
@@ -145,10 +154,7 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
     let texture =
         |name: &str| texture(name).or_else(|| on.then(|| at(STAND_IN_TEXTURE.to_string())));
     let mut names: Vec<String> = Vec::new();
-    let mut pieces_of = vec![0usize; level.sectors.len()];
-    for piece in pieces {
-        pieces_of[usize::from(piece.sector)] += 1;
-    }
+    let pieces_of = pieces_per_sector(level, pieces);
     let (shift_x, shift_y) = recentring(level);
     let vertices = level
         .vertices
@@ -394,10 +400,7 @@ pub fn compiler_findings(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIn
 /// special, with how many lines have it) and the things (not imported yet).
 pub fn import_report(level: &DoomLevel, pieces: &[Piece]) -> Vec<String> {
     let mut report = Vec::new();
-    let mut pieces_of = vec![0usize; level.sectors.len()];
-    for piece in pieces {
-        pieces_of[usize::from(piece.sector)] += 1;
-    }
+    let pieces_of = pieces_per_sector(level, pieces);
     for (index, sector) in level.sectors.iter().enumerate() {
         if sector.floor < sector.ceiling {
             continue;
