@@ -472,3 +472,33 @@ fn the_import_report_names_what_e1m1_s_mapping_leaves_out() {
         .last()
         .is_some_and(|line| line.contains("things are not imported yet")));
 }
+
+#[test]
+fn freedoom_s_palette_becomes_portalcast_s_with_black_kept_off_the_transparent_index() {
+    let wad = Wad::open(&wad_path("freedoom1.wad")).unwrap();
+    let rgb = doom::palette(&wad).unwrap();
+    let colours = doom::DoomPalette::new(&rgb);
+    // Doom's black shows as another index of the same BGR555 colour (its palette holds more
+    // than one black), so no texel changes colour.
+    let zero = usize::from(colours.zero_becomes);
+    assert_ne!(zero, 0);
+    assert_eq!(
+        colours.palette[zero],
+        portalcast_format::bgr555(0, 0, 0),
+        "index {zero}"
+    );
+    assert_eq!(colours.palette[0], 0);
+    for (&shown, &[r, g, b]) in colours.palette.iter().zip(&rgb).skip(1) {
+        assert_eq!(shown, portalcast_format::bgr555(r, g, b));
+    }
+    // A texture's texels: no transparent index where Doom drew, transparent in its gaps.
+    let textures = doom::Textures::read(&wad).unwrap();
+    let bars = textures.compose(&wad, "MIDBARS3").unwrap();
+    let texels = colours.texels(&bars);
+    let transparent = texels
+        .iter()
+        .filter(|&&t| t == portalcast_format::TRANSPARENT)
+        .count();
+    assert_eq!(transparent, bars.gaps());
+    println!("Doom's index 0 shows as index {zero}; MIDBARS3 has {transparent} transparent texels");
+}

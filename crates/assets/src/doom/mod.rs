@@ -18,11 +18,15 @@
 //! and what is left is the renderer's portal depth (a view passes 112 portals in a row on
 //! E1M1, the renderer follows 64).
 //!
+//! [`DoomPalette`] is Doom's palette as portalcast's (its black, index 0, moved off the
+//! transparent index to another black).
+//!
 //! Still to come: the portal depth, remote doors and lifts (switches and walk-over lines), the
-//! missing textures, the pictures into portalcast's palette, light rows and textures, the
-//! things, and the ROM's interface (issue 19's build list).
+//! missing textures, light rows and the textures' sizes, the things, and the ROM's interface
+//! (issue 19's build list).
 
 mod cells;
+mod colours;
 mod convert;
 mod gl;
 mod graphics;
@@ -34,6 +38,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 pub use cells::{cells, reflex_depth, Cell, CellError};
+pub use colours::DoomPalette;
 pub use convert::{compiler_findings, import_report, StandIns, STAND_IN_TEXTURE};
 pub use gl::{build_gwa, FixedVertex, GlNodes, GlSeg, NODE_BUILDER};
 pub use graphics::{
