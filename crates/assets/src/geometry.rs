@@ -29,7 +29,7 @@ pub(crate) fn double_area(points: &[Point]) -> i128 {
 }
 
 /// Whether `p`, known to be collinear with segment `a b`, lies on the closed segment.
-fn within_box(a: Point, b: Point, p: Point) -> bool {
+pub(crate) fn within_box(a: Point, b: Point, p: Point) -> bool {
     p.0 >= a.0.min(b.0) && p.0 <= a.0.max(b.0) && p.1 >= a.1.min(b.1) && p.1 <= a.1.max(b.1)
 }
 

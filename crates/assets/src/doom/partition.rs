@@ -14,8 +14,7 @@
 use std::collections::BTreeMap;
 
 use super::level::{DoomLevel, NONE};
-
-type Point = (i64, i64);
+use crate::geometry::{cross, double_area, segments_touch, within_box, Point};
 
 /// What a piece's (or a GL cell's) wall shows and where it leads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -81,21 +80,6 @@ struct Side {
     wall: PieceWall,
 }
 
-fn cross(o: Point, a: Point, b: Point) -> i128 {
-    i128::from(a.0 - o.0) * i128::from(b.1 - o.1) - i128::from(a.1 - o.1) * i128::from(b.0 - o.0)
-}
-
-/// Twice the signed area (anticlockwise positive, y up).
-fn area2(points: &[Point]) -> i128 {
-    let n = points.len();
-    (0..n)
-        .map(|k| {
-            let (a, b) = (points[k], points[(k + 1) % n]);
-            i128::from(a.0) * i128::from(b.1) - i128::from(b.0) * i128::from(a.1)
-        })
-        .sum()
-}
-
 /// Which half-turn `v` lies in going anticlockwise from `reference`, and a key within it:
 /// angles in `(0, π]` are half 0, `(π, 2π]` half 1 (so `reference` itself comes last).
 fn after(reference: Point, v: Point) -> (u8, Point) {
@@ -117,26 +101,6 @@ fn sooner(reference: Point, a: Point, b: Point) -> bool {
 /// Whether `p` is inside triangle `a b c` (anticlockwise) or on its edges.
 fn in_triangle(p: Point, a: Point, b: Point, c: Point) -> bool {
     cross(a, b, p) >= 0 && cross(b, c, p) >= 0 && cross(c, a, p) >= 0
-}
-
-/// Whether the segments `a b` and `c d` share a point.
-fn segments_meet(a: Point, b: Point, c: Point, d: Point) -> bool {
-    let on = |p: Point, q: Point, r: Point| {
-        p.0.min(q.0) <= r.0 && r.0 <= p.0.max(q.0) && p.1.min(q.1) <= r.1 && r.1 <= p.1.max(q.1)
-    };
-    let (d1, d2, d3, d4) = (
-        cross(c, d, a),
-        cross(c, d, b),
-        cross(a, b, c),
-        cross(a, b, d),
-    );
-    if ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)) {
-        return true;
-    }
-    (d1 == 0 && on(c, d, a))
-        || (d2 == 0 && on(c, d, b))
-        || (d3 == 0 && on(a, b, c))
-        || (d4 == 0 && on(a, b, d))
 }
 
 /// The map's pieces, sector by sector.
@@ -301,9 +265,9 @@ fn polygons(
     // its sides' other sectors meet through it (see `partition`).
     let (mut outers, mut holes): (Vec<_>, Vec<_>) = loops
         .into_iter()
-        .filter(|chain| area2(&points_of(chain)) != 0)
-        .partition(|chain| area2(&points_of(chain)) < 0);
-    outers.sort_by_key(|chain| -area2(&points_of(chain)).abs());
+        .filter(|chain| double_area(&points_of(chain)) != 0)
+        .partition(|chain| double_area(&points_of(chain)) < 0);
+    outers.sort_by_key(|chain| -double_area(&points_of(chain)).abs());
     let mut polygons: Vec<Polygon> = outers
         .into_iter()
         .map(|outer| Polygon {
@@ -333,12 +297,7 @@ fn outside(points: &[Point], p: Point) -> bool {
     for k in 0..n {
         let (a, b) = (points[k], points[(k + 1) % n]);
         let c = cross(a, b, p);
-        if c == 0
-            && p.0 >= a.0.min(b.0)
-            && p.0 <= a.0.max(b.0)
-            && p.1 >= a.1.min(b.1)
-            && p.1 <= a.1.max(b.1)
-        {
+        if c == 0 && within_box(a, b, p) {
             return false;
         }
         if a.1 <= p.1 {
@@ -454,45 +413,28 @@ fn bridge(
     let mut all_sides = sides_of(loop_);
     all_sides.extend_from_slice(hole_sides);
     let n = loop_.len();
-    // The bridge leaves the hole's corner m into the sector: right of one of its sides there
-    // (the hole's corners mostly turn left, seen from the sector), never along one.
+    // The bridge leaves the hole's corner m into the sector and enters the loop's corner k from
+    // it (never along a side), touches no other side, and ends at no place the hole touches.
     let (hole_prev, hole_next) = (
         point(hole[(h + hole.len() - 1) % hole.len()].0),
         point(hole[(h + 1) % hole.len()].0),
     );
-    let leaves_hole = |p: Point| {
-        if cross(hole_prev, pm, hole_next) <= 0 {
-            cross(hole_prev, pm, p) < 0 && cross(pm, hole_next, p) < 0
-        } else {
-            cross(hole_prev, pm, p) < 0 || cross(pm, hole_next, p) < 0
-        }
-    };
     let visible = |k: usize| {
         let p = point(loop_[k].0);
-        // Not to a place the hole touches: the bridge would run through it.
-        if p == pm || !leaves_hole(p) || hole.iter().any(|&(v, _)| point(v) == p) {
-            return false;
-        }
-        // The bridge leaves corner k into the polygon: between its sides, on their right.
         let (prev, next) = (point(loop_[(k + n - 1) % n].0), point(loop_[(k + 1) % n].0));
-        let into = if cross(prev, p, next) <= 0 {
-            // A convex (or straight) corner of a clockwise loop: inside is right of both sides.
-            cross(prev, p, pm) < 0 && cross(p, next, pm) < 0
-        } else {
-            cross(prev, p, pm) < 0 || cross(p, next, pm) < 0
-        };
-        into && all_sides
-            .iter()
-            .all(|&(a, b)| a == p || b == p || a == pm || b == pm || !segments_meet(p, pm, a, b))
+        p != pm
+            && into_corner(hole_prev, pm, hole_next, p)
+            && into_corner(prev, p, next, pm)
+            && !hole.iter().any(|&(v, _)| point(v) == p)
             && all_sides.iter().all(|&(a, b)| {
-                // A side through the bridge's ends (other than its own corners) would be crossed.
-                (a != p && b != p && a != pm && b != pm) || !segments_cross_properly(p, pm, a, b)
+                a == p || b == p || a == pm || b == pm || !segments_touch(p, pm, a, b)
             })
     };
     let k = candidates.into_iter().find(|&k| visible(k))?;
     let mut spliced = Vec::with_capacity(loop_.len() + hole.len() + 2);
     spliced.extend_from_slice(&loop_[..=k]);
-    // Over the bridge (its walls are diagonals: they are cut away by the merge or kept open).
+    // Over the bridge and back: two walls the merge keeps, openings between the pieces on
+    // either side of it.
     spliced.last_mut()?.1 = BRIDGE;
     for offset in 0..hole.len() {
         spliced.push(hole[(h + offset) % hole.len()]);
@@ -544,17 +486,6 @@ fn splice_touching(
         }
     }
     None
-}
-
-/// Whether segments `a b` and `c d` cross at a point inside both.
-fn segments_cross_properly(a: Point, b: Point, c: Point, d: Point) -> bool {
-    let (d1, d2, d3, d4) = (
-        cross(c, d, a),
-        cross(c, d, b),
-        cross(a, b, c),
-        cross(a, b, d),
-    );
-    ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))
 }
 
 /// Ear clipping of the clockwise loop `kept` (positions in `loop_`): triangles as positions,
@@ -853,7 +784,7 @@ mod tests {
                         (i64::from(v.x), i64::from(v.y))
                     })
                     .collect();
-                area2(&points)
+                double_area(&points)
             })
             .sum();
         assert_eq!(area, -2 * (40 * 30 - 10 * 10 - 5 * 5));
@@ -908,8 +839,8 @@ mod tests {
                         })
                         .collect()
                 };
-                let covered: i128 = pieces.iter().map(|piece| area2(&points(&piece.outline))).sum();
-                let whole = area2(&points(&(0..n).collect::<Vec<_>>()));
+                let covered: i128 = pieces.iter().map(|piece| double_area(&points(&piece.outline))).sum();
+                let whole = double_area(&points(&(0..n).collect::<Vec<_>>()));
                 // The loop's own area if it runs clockwise (the sector on its right); a loop
                 // running the other way bounds the sector from outside: nothing to cut.
                 prop_assert_eq!(covered, if whole < 0 { whole } else { 0 });
