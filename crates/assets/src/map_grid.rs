@@ -403,23 +403,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 })
             };
             let (start, end) = (vertex(from), vertex(to));
-            let mut wall = SourceWall {
-                loc,
-                start,
-                end,
-                texture: None,
-                portal: None,
-                upper: None,
-                lower: None,
-                x_offset: Spanned::new(0, loc),
-                y_offset: Spanned::new(0, loc),
-                middle: None,
-                blocks: None,
-                translucent: None,
-                switch: None,
-                tag: None,
-                trigger: None,
-            };
+            let mut wall = SourceWall::new(loc, start, end);
             match across {
                 Across::Solid(solid) => wall.texture = Some(solids[solid].1.clone()),
                 Across::Area(other) => {

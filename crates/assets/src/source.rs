@@ -163,6 +163,30 @@ pub(crate) struct SourceWall {
     pub trigger: Option<Spanned<u16>>,
 }
 
+impl SourceWall {
+    /// A wall at `loc` from vertex `start` to `end` with none of the optional words: no
+    /// texture, no portal, offsets 0. The grid compiler and the Doom importer fill in the rest.
+    pub fn new(loc: Loc, start: usize, end: usize) -> SourceWall {
+        SourceWall {
+            loc,
+            start,
+            end,
+            texture: None,
+            portal: None,
+            upper: None,
+            lower: None,
+            x_offset: Spanned::new(0, loc),
+            y_offset: Spanned::new(0, loc),
+            middle: None,
+            blocks: None,
+            translucent: None,
+            switch: None,
+            tag: None,
+            trigger: None,
+        }
+    }
+}
+
 #[derive(Clone, Debug)]
 pub(crate) struct SourcePlace {
     pub loc: Loc,

@@ -15,6 +15,7 @@
 use super::level::DoomLevel;
 use super::partition::{Piece, PieceWall};
 use crate::diag::Loc;
+use crate::geometry::{cross, Point};
 use crate::map_build::{self, Catalog};
 use crate::source::{
     CeilingSource, MoverKind, SourceMap, SourceMover, SourcePlace, SourceSector, SourceVertex,
@@ -25,23 +26,6 @@ use portalcast_format::limits::WORLD_COORD_MAX;
 /// Doom's game ticks a second; portalcast's are 60.
 const DOOM_TICKS_PER_SECOND: u32 = 35;
 
-/// Doom's manual doors (opened by using the door's own line, from the side facing away from
-/// it): specials 1, 26, 27 and 28 open, wait and close (the last three need a key portalcast
-/// does not have: they open as plain doors); 31 to 34 open and stay; 117 and 118 are the fast
-/// ("blazing") ones of each.
-const MANUAL_DOORS: [(u16, DoorTiming); 10] = [
-    (1, DoorTiming::CLOSES),
-    (26, DoorTiming::CLOSES),
-    (27, DoorTiming::CLOSES),
-    (28, DoorTiming::CLOSES),
-    (31, DoorTiming::STAYS),
-    (32, DoorTiming::STAYS),
-    (33, DoorTiming::STAYS),
-    (34, DoorTiming::STAYS),
-    (117, DoorTiming::FAST_CLOSES),
-    (118, DoorTiming::FAST_STAYS),
-];
-
 /// How a Doom door moves, in portalcast's units.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct DoorTiming {
@@ -51,29 +35,40 @@ struct DoorTiming {
     wait: u16,
 }
 
-impl DoorTiming {
-    /// Doom's door: 2 units a Doom tick (70 a second: 1 a portalcast tick, 60 a second), open
-    /// 150 Doom ticks (257 of portalcast's).
-    const CLOSES: DoorTiming = DoorTiming {
-        speed: 1,
-        wait: (150 * 60 / DOOM_TICKS_PER_SECOND) as u16,
-    };
-    /// Open for good: as long as a portalcast door waits.
-    const STAYS: DoorTiming = DoorTiming {
-        speed: 1,
-        wait: u16::MAX,
-    };
-    /// Doom's blazing door: 8 units a Doom tick (280 a second: 5 a portalcast tick).
-    const FAST_CLOSES: DoorTiming = DoorTiming {
-        speed: 5,
-        wait: (150 * 60 / DOOM_TICKS_PER_SECOND) as u16,
-    };
-    /// A blazing door that stays open.
-    const FAST_STAYS: DoorTiming = DoorTiming {
-        speed: 5,
-        wait: u16::MAX,
-    };
-}
+/// Doom's door speed, 2 units a Doom tick (70 a second): 1 a portalcast tick (60 a second).
+const DOOR_SPEED: u16 = 1;
+/// Doom's blazing doors, 8 units a Doom tick (280 a second): 5 a portalcast tick.
+const BLAZING_DOOR_SPEED: u16 = 5;
+/// Doom's doors stay open 150 Doom ticks: 257 of portalcast's.
+const DOOR_WAIT: u16 = (150 * 60 / DOOM_TICKS_PER_SECOND) as u16;
+/// A door that opens for good waits as long as a portalcast door can.
+const STAYS_OPEN: u16 = u16::MAX;
+
+/// Doom's manual doors (opened by using the door's own line, from the side facing away from
+/// it): specials 1, 26, 27 and 28 open, wait and close (the last three need a key portalcast
+/// does not have: they open as plain doors); 31 to 34 open and stay; 117 and 118 are the fast
+/// ("blazing") ones of each.
+const MANUAL_DOORS: [(u16, DoorTiming); 10] = {
+    const fn timing(speed: u16, wait: u16) -> DoorTiming {
+        DoorTiming { speed, wait }
+    }
+    let (closes, stays) = (
+        timing(DOOR_SPEED, DOOR_WAIT),
+        timing(DOOR_SPEED, STAYS_OPEN),
+    );
+    [
+        (1, closes),
+        (26, closes),
+        (27, closes),
+        (28, closes),
+        (31, stays),
+        (32, stays),
+        (33, stays),
+        (34, stays),
+        (117, timing(BLAZING_DOOR_SPEED, DOOR_WAIT)),
+        (118, timing(BLAZING_DOOR_SPEED, STAYS_OPEN)),
+    ]
+};
 
 /// The door Doom's sector `sector` is, if it is a manual one: closed, behind a two-sided line
 /// with a manual door special, opening (as Doom's `EV_VerticalDoor`) to 4 below the lowest
@@ -226,21 +221,13 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
                         names.push(name.value.clone());
                     }
                     SourceWall {
-                        loc: Loc::START,
-                        start,
-                        end,
                         texture: texture_name,
                         portal,
                         upper,
                         lower,
                         x_offset: at(i64::from(offsets.0)),
                         y_offset: at(i64::from(offsets.1)),
-                        middle: None,
-                        blocks: None,
-                        translucent: None,
-                        switch: None,
-                        tag: None,
-                        trigger: None,
+                        ..SourceWall::new(Loc::START, start, end)
                     }
                 })
                 .collect();
@@ -340,19 +327,21 @@ fn off_the_lines(
         )
     };
     // Pieces run clockwise with y up: inside is right of every wall.
-    let sides = |p: (i64, i64)| {
+    let sides = |p: Point| {
         pieces.iter().map(move |piece| {
             let n = piece.outline.len();
             (0..n).map(move |k| {
-                let (a, b) = (corner(piece.outline[k]), corner(piece.outline[(k + 1) % n]));
-                i128::from(b.0 - a.0) * i128::from(p.1 - a.1)
-                    - i128::from(b.1 - a.1) * i128::from(p.0 - a.0)
+                cross(
+                    corner(piece.outline[k]),
+                    corner(piece.outline[(k + 1) % n]),
+                    p,
+                )
             })
         })
     };
     // Strictly inside one piece, and on no wall line of a piece it touches (the compiler's
     // rule for finding a place's sector).
-    let strictly_in_one = |p: (i64, i64)| {
+    let strictly_in_one = |p: Point| {
         let mut inside = 0;
         for piece in sides(p) {
             let sides: Vec<i128> = piece.collect();
