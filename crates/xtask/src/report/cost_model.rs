@@ -25,9 +25,20 @@ const PLANE_TERMS: [(&str, &str); 2] = [("visits", "per sector visit"), ("spans"
 /// A stage's set-up fitted to counts: the cycles per unit of each term, then the fixed cycles
 /// a frame, and how much of the frames' spread the fit explains.
 struct Fit {
-    per_unit: Vec<f64>,
+    /// Each term's count name and its cycles a unit.
+    per_unit: Vec<(&'static str, f64)>,
     fixed: f64,
     r_squared: f64,
+}
+
+impl Fit {
+    /// The cycles a unit of the count `name` (0 if the fit has no such term).
+    fn cost(&self, name: &str) -> f64 {
+        self.per_unit
+            .iter()
+            .find(|(term, _)| *term == name)
+            .map_or(0.0, |(_, cost)| *cost)
+    }
 }
 
 /// The frame's count `name` (0 if the line has none).
@@ -105,7 +116,7 @@ fn drawn_frame<'r>(drawn: &'r Run, setup: &Frame) -> Option<&'r Frame> {
 
 /// The stage `stage_name`'s cycles of the frames of the set-up run `run` fitted to `terms`
 /// and a constant (`drawn`: the same run with kernels, for the counts its lines carry).
-fn fit(run: &Run, drawn: &Run, stage_name: &str, terms: &[(&str, &str)]) -> Option<Fit> {
+fn fit(run: &Run, drawn: &Run, stage_name: &str, terms: &[(&'static str, &str)]) -> Option<Fit> {
     let features = |frame: &Frame| -> Vec<f64> {
         let bench = drawn_frame(drawn, frame);
         terms
@@ -126,7 +137,11 @@ fn fit(run: &Run, drawn: &Run, stage_name: &str, terms: &[(&str, &str)]) -> Opti
     }
     let (per_unit, fixed) = solution.split_at(terms.len());
     Some(Fit {
-        per_unit: per_unit.to_vec(),
+        per_unit: terms
+            .iter()
+            .zip(per_unit)
+            .map(|((name, _), cost)| (*name, *cost))
+            .collect(),
         fixed: fixed[0],
         r_squared: if spread > 0.0 {
             1.0 - residual / spread
@@ -194,14 +209,14 @@ pub fn section(runs: &[Run], setup_runs: &[Run]) -> String {
         };
         let resolution = setup.setting("res").unwrap_or("?");
         let _ = write!(doc, "| {} |", resolution_name(resolution));
-        for (cost, fit) in [(&wall.per_unit, &wall), (&plane.per_unit, &plane)] {
-            for unit in cost {
-                let _ = write!(doc, " {} |", signed(*unit));
+        for fit in [&wall, &plane] {
+            for (_, cost) in &fit.per_unit {
+                let _ = write!(doc, " {} |", signed(*cost));
             }
             let _ = write!(doc, " {} | {:.3} |", signed(fit.fixed), fit.r_squared);
         }
         doc.push('\n');
-        fits.push((setup, wall, plane));
+        fits.push((setup, drawn, wall, plane));
     }
     doc.push_str(
         "\nThe frames over the target, split by the fits: each count's mean over those frames \
@@ -213,12 +228,9 @@ pub fn section(runs: &[Run], setup_runs: &[Run]) -> String {
          set-up | constants and residue | kernels | things stage | outside the stages |\n\
          |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
-    for (setup, wall, plane) in &fits {
+    for (setup, drawn, wall, plane) in &fits {
         let resolution = setup.setting("res").unwrap_or("?");
         let Some((_, budget)) = target(resolution) else {
-            continue;
-        };
-        let Some(drawn) = runs.iter().find(|run| run.key() == setup.key()) else {
             continue;
         };
         let over: Vec<(&Frame, &Frame)> = drawn
@@ -244,11 +256,11 @@ pub fn section(runs: &[Run], setup_runs: &[Run]) -> String {
             mean_count("things"),
             mean_count("spans"),
         );
-        let visits_cost = visits * (wall.per_unit[0] + plane.per_unit[0]);
-        let columns_cost = columns * wall.per_unit[1];
-        let strips_cost = strips * wall.per_unit[2];
-        let things_cost = things * wall.per_unit[3];
-        let spans_cost = spans * plane.per_unit[1];
+        let visits_cost = visits * (wall.cost("visits") + plane.cost("visits"));
+        let columns_cost = columns * wall.cost("cols");
+        let strips_cost = strips * wall.cost("strips");
+        let things_cost = things * wall.cost("things");
+        let spans_cost = spans * plane.cost("spans");
         let setup_total = mean(&|_, s| stage(s, "wall") + stage(s, "plane"));
         let residue =
             setup_total - visits_cost - columns_cost - strips_cost - things_cost - spans_cost;
