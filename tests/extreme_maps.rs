@@ -647,7 +647,6 @@ fn poses_on_a_vertex_or_a_portal_line_meet_the_bound() {
 #[test]
 fn each_map_reaches_its_extreme() {
     use portalcast_format::limits::{HEIGHT_MAX, HEIGHT_MIN, WORLD_COORD_MAX};
-    assert_eq!(CHAIN_SECTORS as u32, MAX_PORTAL_DEPTH + 1);
     assert_eq!(extreme_maps::LIMIT, WORLD_COORD_MAX);
     let compiled = extreme_assets();
     let names: Vec<&str> = compiled.maps().iter().map(|m| m.name.as_str()).collect();
@@ -790,6 +789,57 @@ fn render_one_pose() {
     for (pair, (count, x0, x1, y0, y1)) in pairs {
         println!("{pair}: {count} pixels, columns {x0}..={x1}, rows {y0}..={y1}");
     }
+}
+
+/// The deepest chain the renderer follows: from the start of a corridor of
+/// `MAX_PORTAL_DEPTH + 1` sectors, every one is a visit and the far end is drawn, with no cut;
+/// with one sector more the map compiler refuses the map (so no map it takes is cut).
+#[test]
+fn the_deepest_chain_the_walk_follows_is_drawn_whole_and_one_more_is_refused() {
+    let compiled = extreme_assets();
+    let catalog = portalcast_assets::Catalog::new(
+        compiled.textures().iter().map(|t| t.name.clone()),
+        compiled.sprite_sets().iter().map(|s| s.name.clone()),
+        compiled.sky().is_some(),
+    );
+    let sectors = MAX_PORTAL_DEPTH as usize + 1;
+    let text = extreme_maps::deep_chain_text(sectors);
+    let map = portalcast_assets::compile_map_str("deep.map", &text, &catalog)
+        .unwrap_or_else(|errors| panic!("{errors}"));
+    let map = map.tables();
+    let host = common::HostAssets::of(compiled);
+    let assets = host.render();
+    let start = map.player_start;
+    let camera = camera(start.x_fx8, start.y_fx8, start.angle, start.sector, &map);
+    let settings = Settings {
+        resolution: Resolution::R240x160,
+        ..Settings::DEFAULT
+    };
+    let run = compare_with_engine(&mut Renderer::new(), &map, &assets, &camera, &settings, 0);
+    let seen: BTreeSet<u16> = run
+        .oracle
+        .surfaces
+        .iter()
+        .filter_map(|&s| run.oracle.sector_of(s))
+        .collect();
+    assert!(seen.contains(&(sectors as u16 - 1)), "deep chain: {seen:?}");
+    assert_eq!(run.stats.sector_visits as usize, sectors);
+    assert_eq!(run.stats.depth_cutoffs, 0);
+    assert!(
+        run.comparison.surface_mismatch_percent() <= SURFACE_MISMATCH_MAX_PERCENT,
+        "{:?}",
+        run.comparison
+    );
+
+    let deeper = extreme_maps::deep_chain_text(sectors + 1);
+    let refused = portalcast_assets::compile_map_str("deep.map", &deeper, &catalog)
+        .expect_err("one sector more than the walk follows");
+    assert!(
+        refused.to_string().contains(&format!(
+            "can pass {sectors} portals in a row"
+        )),
+        "{refused}"
+    );
 }
 
 /// The `vault` map's textures hold more texels than the EWRAM the engine leaves textures

@@ -33,7 +33,7 @@ pub const MAX_COLUMNS: usize = 240;
 /// Tallest screen, in rows.
 pub const MAX_ROWS: usize = 160;
 /// Deepest chain of portals followed; deeper sectors are left undrawn and counted.
-pub const MAX_PORTAL_DEPTH: u32 = 64;
+pub const MAX_PORTAL_DEPTH: u32 = 256;
 
 /// Portals the walk keeps on record at once ([`Renderer::portals`]): those owning columns of
 /// the visits on its current path. A path that finds more has its visits' portals tested again.

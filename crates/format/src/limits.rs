@@ -79,7 +79,7 @@ pub const TEXTURE_COORD_MAX: i32 = 32_767;
 /// Deepest portal chain the renderer follows from the eye's sector (the walk's
 /// `MAX_PORTAL_DEPTH`, which `src/lib.rs` asserts equal): sectors further along a chain are left
 /// undrawn, so the map compiler refuses a map where a view could cross more portals in a row.
-pub const PORTAL_DEPTH_MAX: u32 = 64;
+pub const PORTAL_DEPTH_MAX: u32 = 256;
 
 /// Most things one map may place. [`crate::MapTables::sector_things`] indexes the things table
 /// with `u16` entries, which this keeps far inside; the bound also caps the table at 20 KiB of ROM

@@ -16,16 +16,17 @@ use std::path::{Path, PathBuf};
 use crate::map_builder::{rectangle, Ceiling, MapBuilder, Point, SectorSpec};
 use crate::{TaskError, TaskResult};
 
-/// Sectors of the `chain` map: the renderer follows portal chains to depth
-/// `portalcast::render::walk::MAX_PORTAL_DEPTH` (64) from depth 0, so 65 sectors in a row is
-/// the deepest chain it draws whole (`tests/extreme_maps.rs` checks the two agree).
+/// Sectors of the `chain` map: a long chain of steps, each of its 65 sectors a visit of its own.
+/// The deepest chain the renderer follows (`portalcast::render::walk::MAX_PORTAL_DEPTH`, 256
+/// since issue 19) is [`deep_chain_text`]'s, rendered on the host only (a view down it costs a
+/// frame of 257 visits).
 pub const CHAIN_SECTORS: usize = 65;
 /// Alcoves of the `portals` map, each behind its own portal in one wall: more than 64 portals
 /// in one view.
 pub const PORTAL_ALCOVES: usize = 96;
 /// Triangular sectors of the `star` map, all sharing the vertex at the origin. From an eye next
 /// to that vertex, looking away from its own sector, the triangle straight behind is reached
-/// through `STAR_SECTORS / 2 = 64` portals either way round: the deepest chain again.
+/// through `STAR_SECTORS / 2 = 64` portals either way round.
 pub const STAR_SECTORS: usize = 128;
 
 /// The largest coordinate of the declared limits (`portalcast_format::limits::WORLD_COORD_MAX`;
@@ -113,7 +114,7 @@ pub(crate) fn copy_pngs(from: &Path, to: &Path) -> TaskResult<()> {
 /// and whose ceilings alternate, from the start looking straight down it.
 fn chain() -> ExtremeMap {
     let mut builder = MapBuilder::new(
-        "The deepest portal chain the renderer draws whole: 65 sectors in a row, seen end to end.",
+        "A long portal chain of steps: 65 sectors in a row, seen end to end.",
         (0, 64 * 256, 0),
     );
     for i in 0..CHAIN_SECTORS as i32 {
@@ -129,9 +130,30 @@ fn chain() -> ExtremeMap {
     }
     ExtremeMap {
         name: "chain",
-        extreme: "the deepest portal chain (65 sectors in view, depth 64)",
+        extreme: "a long portal chain of steps (65 sectors in view, depth 64)",
         text: builder.text(),
     }
+}
+
+/// A map whose view from the start passes `sectors - 1` portals in a row: a flat corridor of
+/// `sectors` sectors 16 units long and 256 wide, their ceilings alternating (so no two
+/// neighbours share their planes and each is a visit of its own), from the start looking down
+/// it. With `MAX_PORTAL_DEPTH + 1` sectors it is the deepest chain the renderer draws whole;
+/// with one more, the map compiler refuses it.
+pub fn deep_chain_text(sectors: usize) -> String {
+    let mut builder = MapBuilder::new(
+        "The deepest portal chain: a flat corridor, seen end to end.",
+        (0, 128 * 256, 0),
+    );
+    for i in 0..sectors as i32 {
+        let ceiling = Ceiling::Texture(256 - 8 * (i % 2), "ceiling");
+        let x0 = if i == 0 { -16 } else { 16 * i };
+        builder.sector(
+            SectorSpec::new(rectangle(x0, 0, 16 * i + 16, 256, &[]), 0, ceiling)
+                .textures(if i % 2 == 0 { "tiles" } else { "wood" }, "stone"),
+        );
+    }
+    builder.text()
 }
 
 /// `corners`: vertices at the coordinate limits: the ±8192 square, cut along its diagonal by a
