@@ -1,13 +1,19 @@
 //! Turns assets and numeric tables into Rust statics in OUT_DIR, and hands the ROM link its
 //! linker script.
 //!
-//! Assets come from `assets/`, or from the directory in `PORTALCAST_ASSETS` (a user's maps and
-//! textures). A bad map or PNG stops the build with `file:line:col: what is wrong, what to do`
-//! and nothing is written.
+//! Assets come from `assets/`, or from `PORTALCAST_ASSETS`: a user's directory of maps and
+//! textures, or a Doom WAD (docs/MAP_FORMAT.md, "Doom maps"; `PORTALCAST_IWAD` names a PWAD's
+//! IWAD). `PORTALCAST_MAPS` picks maps by name. A bad map or PNG stops the build with
+//! `file:line:col: what is wrong, what to do`, a bad WAD with `file: lump …: what to do`, and
+//! nothing is written.
 use std::path::PathBuf;
 
-/// The environment variable naming a user's asset directory.
+/// The environment variable naming a user's asset directory, or a Doom WAD (`*.wad`).
 const ASSETS_ENV: &str = "PORTALCAST_ASSETS";
+/// The environment variable picking maps by name, comma-separated (`E1M1,E1M2`).
+const MAPS_ENV: &str = "PORTALCAST_MAPS";
+/// The environment variable naming the IWAD whose graphics a PWAD's maps use.
+const IWAD_ENV: &str = "PORTALCAST_IWAD";
 
 fn main() {
     let out_dir = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
@@ -19,24 +25,69 @@ fn main() {
     println!("cargo:rerun-if-changed=crates/assets/src/numeric_tables.rs");
 
     println!("cargo:rerun-if-env-changed={ASSETS_ENV}");
-    let assets_dir = match std::env::var_os(ASSETS_ENV) {
-        Some(dir) => PathBuf::from(dir),
+    println!("cargo:rerun-if-env-changed={MAPS_ENV}");
+    println!("cargo:rerun-if-env-changed={IWAD_ENV}");
+    let assets_path = match std::env::var_os(ASSETS_ENV) {
+        Some(path) => PathBuf::from(path),
         None => manifest_dir.join("assets"),
     };
-    println!("cargo:rerun-if-changed={}", assets_dir.display());
-    let compiled = match portalcast_assets::compile_dir(&assets_dir) {
-        Ok(compiled) => compiled,
-        Err(errors) => {
+    println!("cargo:rerun-if-changed={}", assets_path.display());
+    let maps: Option<Vec<String>> = std::env::var(MAPS_ENV)
+        .ok()
+        .filter(|list| !list.trim().is_empty())
+        .map(|list| {
+            list.split(',')
+                .map(|name| name.trim().to_string())
+                .collect()
+        });
+    let is_wad = assets_path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("wad"));
+    let compiled = if is_wad {
+        let request = portalcast_assets::doom::WadRequest {
+            wad: assets_path.clone(),
+            iwad: std::env::var_os(IWAD_ENV).map(PathBuf::from),
+            maps,
+        };
+        portalcast_assets::doom::compile_wad(&request).unwrap_or_else(|errors| {
+            // One line per problem, each naming the WAD, the map and the lump, last so that
+            // they end the output; nothing was written.
+            eprintln!(
+                "portalcast: the maps of {} did not compile:",
+                assets_path.display()
+            );
+            for error in errors {
+                eprintln!("{error}");
+            }
+            std::process::exit(1);
+        })
+    } else {
+        let result = match &maps {
+            Some(maps) => portalcast_assets::compile_dir_maps(&assets_path, maps),
+            None => portalcast_assets::compile_dir(&assets_path),
+        };
+        result.unwrap_or_else(|errors| {
             // One line per problem, each naming the file and line, last so that they end the
             // output; nothing was written.
             eprintln!(
                 "portalcast: the assets in {} did not compile:",
-                assets_dir.display()
+                assets_path.display()
             );
             eprintln!("{errors}");
             std::process::exit(1);
-        }
+        })
     };
+    let report = compiled.import_report();
+    let report_path = out_dir.join("import_report.txt");
+    std::fs::write(&report_path, report.join("\n") + "\n").expect("writing the import report");
+    if !report.is_empty() {
+        println!(
+            "cargo:warning=the import left {} things out or fitted them: see {}",
+            report.len(),
+            report_path.display()
+        );
+    }
     let files = compiled.write_to(&out_dir).unwrap_or_else(|error| {
         eprintln!(
             "portalcast: writing the compiled assets into {}: {error}",

@@ -73,6 +73,19 @@ impl MoverState {
         phase: Phase::Resting,
         timer: 0,
     };
+
+    /// The first of `movers` from index `from` on that is not resting. Out of line and over a
+    /// slice: a loop over `World::movers` itself would be unrolled as many times as the ROM's
+    /// maps have movers at most (12 on a Doom map), and the tick's code in VRAM has no room for
+    /// that (nor for this: it runs from the cartridge, a call a tick and one a moving mover).
+    #[inline(never)]
+    fn next_moving(movers: &[MoverState], from: usize) -> Option<usize> {
+        movers
+            .iter()
+            .skip(from)
+            .position(|state| state.phase != Phase::Resting)
+            .map(|offset| from + offset)
+    }
 }
 
 /// The sector a [`World`] holds where it keeps no copy.
@@ -99,16 +112,17 @@ const NO_TRIGGER: Trigger = Trigger {
 /// states and a trigger table of `TRIGGERS` triggers (the ROM's: `assets::LIVE_SECTORS`,
 /// `assets::LIVE_MOVERS` and `assets::LIVE_TRIGGERS`, the most of its maps with movers; all 0
 /// where no map has any).
+// `repr(C)`, the counters first and the sector-sized tables last: the ARM loads a field by an
+// immediate offset under 4,096 bytes (a halfword under 256), so fields placed after a large
+// map's sector table (a Doom map's 434 pieces: 8.7 KiB) would each cost extra instructions, and
+// the tick's code in VRAM has no room for them.
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub struct World<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize> {
-    sectors: [Sector; SECTORS],
     /// Sectors of the map in [`World::sectors`]; 0 when the map has no movers.
     live: usize,
-    movers: [MoverState; MOVERS],
     /// Movers of the map in [`World::movers`].
     mover_count: usize,
-    /// The map's triggers, its switches' [`Trigger::thrown`] live.
-    triggers: [Trigger; TRIGGERS],
     /// Triggers of the map in [`World::triggers`].
     trigger_count: usize,
     /// Switches thrown now: while there is any, each tick sees whether its movers are back.
@@ -121,12 +135,26 @@ pub struct World<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usiz
     /// The box, world units, outside which the body's centre cannot be within
     /// [`TOUCH_REACH`] of [`World::touch_door`]'s sector: most ticks end the touch test at it.
     touch_box: TouchBox,
+    movers: [MoverState; MOVERS],
+    /// Each mover's sector's box, as [`World::touch_box`].
+    touch_boxes: [TouchBox; MOVERS],
+    /// The map's triggers, its switches' [`Trigger::thrown`] live.
+    triggers: [Trigger; TRIGGERS],
     /// Each live sector's first door that opens on touch through one of its portals
     /// ([`NONE`]: none): found once a map, for the ticks that cross into the sector.
     touch_doors: [u16; SECTORS],
-    /// Each mover's sector's box, as [`World::touch_box`].
-    touch_boxes: [TouchBox; MOVERS],
+    sectors: [Sector; SECTORS],
 }
+
+// The asset compiler leaves EWRAM for this much live state a sector, mover and trigger
+// (`portalcast_format::memory::live_state_bytes`).
+const _: () = {
+    use core::mem::size_of;
+    use portalcast_format::memory::{LIVE_MOVER_BYTES, LIVE_SECTOR_BYTES, LIVE_TRIGGER_BYTES};
+    assert!(size_of::<Sector>() + size_of::<u16>() <= LIVE_SECTOR_BYTES);
+    assert!(size_of::<MoverState>() + size_of::<TouchBox>() <= LIVE_MOVER_BYTES);
+    assert!(size_of::<Trigger>() <= LIVE_TRIGGER_BYTES);
+};
 
 /// The index in `map.movers` of `sector`'s mover, if it moves (the movers are in the order of
 /// their sectors).
@@ -373,10 +401,10 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
     /// One tick: every mover moves a step (or waits), unless the step would close on `player`,
     /// in which case it turns back. `map` is the cartridge's tables.
     pub fn tick(&mut self, map: &MapTables, player: &Player) {
-        for index in 0..self.mover_count {
-            if self.movers[index].phase != Phase::Resting {
-                self.advance(map, index, player);
-            }
+        let mut from = 0;
+        while let Some(index) = MoverState::next_moving(&self.movers[..self.mover_count], from) {
+            self.advance(map, index, player);
+            from = index + 1;
         }
         if self.thrown > 0 {
             self.release_switches(map);

@@ -835,9 +835,9 @@ fn the_deepest_chain_the_walk_follows_is_drawn_whole_and_one_more_is_refused() {
     let refused = portalcast_assets::compile_map_str("deep.map", &deeper, &catalog)
         .expect_err("one sector more than the walk follows");
     assert!(
-        refused.to_string().contains(&format!(
-            "can pass {sectors} portals in a row"
-        )),
+        refused
+            .to_string()
+            .contains(&format!("can pass {sectors} portals in a row")),
         "{refused}"
     );
 }
@@ -856,7 +856,8 @@ fn textures_beyond_ewram_stay_in_the_cartridge_coldest_first() {
         .iter()
         .map(portalcast_assets::CompiledTexture::blob_bytes)
         .collect();
-    let budget = portalcast_format::memory::ewram_texel_budget(textures.len());
+    let budget =
+        portalcast_format::memory::ewram_texel_budget(textures.len(), compiled.live_state_bytes());
     let total: usize = bytes.iter().sum();
     let copied: usize = bytes
         .iter()

@@ -279,13 +279,24 @@ static mut TEXEL_COPY: Align4<[u8; assets::TEXEL_EWRAM_LEN]> = Align4([0; assets
 // own statics leave: a renderer grown past its share stops the build here, naming the
 // constant, rather than in the linker.
 const _: () = {
-    use portalcast_format::memory::{ewram_texel_budget, EWRAM_ENGINE_BYTES, TEXTURE_ENTRY_BYTES};
+    use portalcast_format::memory::{
+        ewram_texel_budget, live_state_bytes, EWRAM_ENGINE_BYTES, TEXTURE_ENTRY_BYTES,
+    };
+    let live_state = live_state_bytes(
+        assets::LIVE_SECTORS,
+        assets::LIVE_MOVERS,
+        assets::LIVE_TRIGGERS,
+    );
     assert!(
-        core::mem::size_of::<GbaRenderer>() + core::mem::size_of::<Game>() <= EWRAM_ENGINE_BYTES,
-        "the renderer's and the game's EWRAM outgrew EWRAM_ENGINE_BYTES (crates/format/src/memory.rs)"
+        core::mem::size_of::<GbaRenderer>()
+            + core::mem::size_of::<Game>()
+            + core::mem::size_of::<crate::game::GameWorld>()
+            + core::mem::size_of::<crate::live_flight::LiveFlight>()
+            <= EWRAM_ENGINE_BYTES + live_state,
+        "the renderer's, the game's and the bench's EWRAM outgrew EWRAM_ENGINE_BYTES (crates/format/src/memory.rs)"
     );
     assert!(core::mem::size_of::<Texture<'static>>() <= TEXTURE_ENTRY_BYTES);
-    assert!(assets::TEXEL_EWRAM_LEN <= ewram_texel_budget(assets::TEXTURE_COUNT));
+    assert!(assets::TEXEL_EWRAM_LEN <= ewram_texel_budget(assets::TEXTURE_COUNT, live_state));
 };
 #[link_section = ".ewram_bss"]
 static mut EWRAM_TEXTURES: MaybeUninit<[Texture<'static>; assets::TEXTURE_COUNT]> =
@@ -301,7 +312,8 @@ static mut TEXTURES_TAKEN: bool = false;
 pub fn textures_in_ewram() -> &'static [Texture<'static>] {
     // SAFETY: single-threaded, and the flag makes the copy and the table's initialisation
     // happen once, before the only shared references to either are made; the interrupt
-    // handler touches neither.
+    // handler touches neither. Each entry written lies inside the table (`TEXTURES` has
+    // `TEXTURE_COUNT` entries), and all are written before the table is read.
     unsafe {
         let table: *mut [Texture<'static>; assets::TEXTURE_COUNT] =
             (&raw mut EWRAM_TEXTURES).cast();
@@ -318,15 +330,17 @@ pub fn textures_in_ewram() -> &'static [Texture<'static>] {
                 let offset = texels.as_ptr() as usize - blob;
                 copy.get(offset..offset + texels.len()).unwrap_or(texels)
             };
-            let moved: [Texture<'static>; assets::TEXTURE_COUNT] = core::array::from_fn(|index| {
-                let texture = assets::TEXTURES[index];
-                Texture {
+            // Entry by entry in place: the whole table built on the stack first would take
+            // 28 bytes a texture of the 4 KiB the stack has (a Doom map's 109 textures: 3 KiB,
+            // which once ran the stack into the interrupt handler's pointer).
+            let slots: *mut Texture<'static> = table.cast();
+            for (index, texture) in assets::TEXTURES.iter().enumerate() {
+                slots.add(index).write(Texture {
                     columns: rebase(texture.columns),
                     rows: rebase(texture.rows),
-                    ..texture
-                }
-            });
-            table.write(moved);
+                    ..*texture
+                });
+            }
         }
         &*table
     }

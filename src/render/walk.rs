@@ -1589,8 +1589,8 @@ struct PortalJob {
     ceiling_above_eye: Fx24_8,
     floor_above_eye: Fx24_8,
     /// The neighbour's ceiling is lower, and not both show the sky: an upper strip, and the
-    /// opening's top is its row. Between two sky sectors the lower ceiling's strip is sky too:
-    /// left open so the neighbour's sky fills it (Doom's sky hack; the oracle draws the same).
+    /// opening's top is its row. Between two sky sectors the lower ceiling's strip is this
+    /// sector's sky: the wall's ceiling is the neighbour's (see [`WallJob::new`]).
     upper_drawn: bool,
     /// The neighbour's floor is higher: a lower strip, and the opening's bottom is its row.
     lower_drawn: bool,
@@ -1760,11 +1760,21 @@ impl<'s> WallJob<'s> {
                 }),
             )
         };
+        // Between two sky sectors the strip under the higher ceiling is this sector's sky
+        // (Doom's sky hack, `worldtop = worldhigh`; the oracle's rule): its ceiling reaches
+        // down to the neighbour's on this wall, so the opening stops there and a neighbour's
+        // ceiling below the eye does not show what lies beyond it through the strip.
+        let ceiling = match scene.map.sectors.get(usize::from(wall.portal)) {
+            Some(neighbour) if is_sky(sector) && is_sky(neighbour) => {
+                sector.ceil_z.min(neighbour.ceil_z)
+            }
+            _ => sector.ceil_z,
+        };
         WallJob {
             sector,
             length: wall_length(wall),
             x_offset: Fx24_8::from_int(i32::from(wall.x_offset)),
-            ceiling_above_eye: above_eye(sector.ceil_z),
+            ceiling_above_eye: above_eye(ceiling),
             floor_above_eye: above_eye(sector.floor_z),
             strips,
             portal,

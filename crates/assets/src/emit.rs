@@ -280,25 +280,7 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
     for (index, map) in compiled.maps.iter().enumerate() {
         map_source(&mut s, index, map);
     }
-    let live_sectors = compiled
-        .maps
-        .iter()
-        .filter(|map| !map.movers.is_empty() || !map.lights.is_empty())
-        .map(|map| map.sectors.len())
-        .max()
-        .unwrap_or(0);
-    let live_movers = compiled
-        .maps
-        .iter()
-        .map(|map| map.movers.len())
-        .max()
-        .unwrap_or(0);
-    let live_triggers = compiled
-        .maps
-        .iter()
-        .map(|map| map.triggers.len())
-        .max()
-        .unwrap_or(0);
+    let (live_sectors, live_movers, live_triggers) = compiled.live_counts();
     let _ = writeln!(
         s,
         "/// Sectors of the largest map with movers or light effects: the live copy of its sector\n\
@@ -624,7 +606,7 @@ pub(crate) fn size_report(compiled: &Compiled) -> String {
     if let Some(table) = &compiled.blend {
         ram("blend table".into(), core::mem::size_of_val(&**table));
     }
-    let budget = ewram_texel_budget(compiled.textures.len());
+    let budget = ewram_texel_budget(compiled.textures.len(), compiled.live_state_bytes());
     let left: Vec<(&str, usize)> = compiled
         .textures
         .iter()

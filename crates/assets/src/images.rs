@@ -7,13 +7,13 @@ use image::RgbaImage;
 use crate::diag::{Loc, Located};
 
 /// Smallest and largest texture side, in texels.
-const TEXTURE_SIDE_MIN: u32 = 8;
-const TEXTURE_SIDE_MAX: u32 = portalcast_format::limits::TEXTURE_SIZE_MAX as u32;
+pub(crate) const TEXTURE_SIDE_MIN: u32 = 8;
+pub(crate) const TEXTURE_SIDE_MAX: u32 = portalcast_format::limits::TEXTURE_SIZE_MAX as u32;
 /// The sky's width covers one full turn and must be a power of two in this range.
 const SKY_WIDTH_MIN: u32 = 64;
-const SKY_WIDTH_MAX: u32 = 1024;
-const SKY_HEIGHT_MIN: u32 = 16;
-const SKY_HEIGHT_MAX: u32 = 256;
+pub(crate) const SKY_WIDTH_MAX: u32 = 1024;
+pub(crate) const SKY_HEIGHT_MIN: u32 = 16;
+pub(crate) const SKY_HEIGHT_MAX: u32 = 256;
 /// Largest sprite side, in texels.
 const SPRITE_SIDE_MAX: u32 = 256;
 /// Sprite pixels with alpha below this are transparent (palette index 0).

@@ -181,6 +181,7 @@ pub struct Compiled {
     sprite_sets: Vec<CompiledSpriteSet>,
     maps: Vec<CompiledMap>,
     left_out: Vec<String>,
+    import_report: Vec<String>,
     blend: Option<Box<BlendTable>>,
 }
 
@@ -209,6 +210,32 @@ impl Compiled {
     /// Textures used by some map, sorted by name; walls and sectors index this list.
     pub fn textures(&self) -> &[CompiledTexture] {
         &self.textures
+    }
+
+    /// The game's live map state the ROM makes room for: the sectors of the largest map with
+    /// movers or light effects (0: none has either), the most movers and the most triggers a
+    /// map has.
+    pub fn live_counts(&self) -> (usize, usize, usize) {
+        let most =
+            |count: fn(&CompiledMap) -> usize| self.maps.iter().map(count).max().unwrap_or(0);
+        (
+            most(|map| {
+                if map.movers.is_empty() && map.lights.is_empty() {
+                    0
+                } else {
+                    map.sectors.len()
+                }
+            }),
+            most(|map| map.movers.len()),
+            most(|map| map.triggers.len()),
+        )
+    }
+
+    /// EWRAM bytes of the live map state ([`Compiled::live_counts`]), which textures' EWRAM
+    /// copy leaves room for (`portalcast_format::memory::live_state_bytes`).
+    pub fn live_state_bytes(&self) -> usize {
+        let (sectors, movers, triggers) = self.live_counts();
+        portalcast_format::memory::live_state_bytes(sectors, movers, triggers)
     }
 
     /// Per texture (in [`Compiled::textures`]' order): whether the ROM copies its texels to
@@ -264,6 +291,12 @@ impl Compiled {
     /// Assets present in the directory but used by no map, hence left out.
     pub fn left_out(&self) -> &[String] {
         &self.left_out
+    }
+
+    /// What an import from a Doom WAD could not map (unsupported specials, closed sectors,
+    /// missing textures, things), one line each; empty for an asset directory.
+    pub fn import_report(&self) -> &[String] {
+        &self.import_report
     }
 
     /// Writes `assets.rs` and its blobs into `out_dir` (each to a temporary name first, renamed
@@ -437,6 +470,35 @@ impl Usage {
     }
 }
 
+/// Renumbers the maps' textures and sprite sets from the catalog's indices to the compiled
+/// lists': `texture_index` and `set_index` give each catalog entry's new index.
+fn renumber(maps: &mut [CompiledMap], texture_index: &[u16], set_index: &[u16]) {
+    let remap = |texture: u16| match texture {
+        NO_TEXTURE | SKY => texture,
+        other => texture_index[usize::from(other)],
+    };
+    for map in maps {
+        for wall in &mut map.walls {
+            wall.texture = remap(wall.texture);
+            wall.upper_texture = remap(wall.upper_texture);
+            wall.lower_texture = remap(wall.lower_texture);
+            if wall.middle != NO_TEXTURE {
+                wall.middle = set_index[usize::from(wall.middle)];
+            }
+        }
+        for trigger in &mut map.triggers {
+            trigger.used_texture = remap(trigger.used_texture);
+        }
+        for sector in &mut map.sectors {
+            sector.floor_texture = remap(sector.floor_texture);
+            sector.ceil_texture = remap(sector.ceil_texture);
+        }
+        for thing in &mut map.things {
+            thing.sprite = set_index[usize::from(thing.sprite)];
+        }
+    }
+}
+
 /// Refuses a texture used as a floor or ceiling unless it is square: the span kernels (and
 /// their host twins) index a flat as a `side × side` tile, so a 32×64 flat would be read past
 /// its texels (`FLAT_LOG2_SIDES` in `src/raster/flat.rs`). Each use is reported where the map
@@ -475,6 +537,17 @@ fn check_flat_shapes(
 /// `sky/sky.png` and `maps/*.map`, `maps/*.grid` (see `docs/MAP_FORMAT.md`). Only what some map
 /// uses is kept. Returns every error found, sorted by file and position.
 pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
+    compile_selected(dir, None)
+}
+
+/// [`compile_dir`] with only the maps named in `maps` (file names without extension, in any
+/// case; `PORTALCAST_MAPS`), and only what they use. A name no map file has is an error that
+/// lists the maps there are.
+pub fn compile_dir_maps(dir: &Path, maps: &[String]) -> Result<Compiled, CompileErrors> {
+    compile_selected(dir, Some(maps))
+}
+
+fn compile_selected(dir: &Path, selected: Option<&[String]>) -> Result<Compiled, CompileErrors> {
     if !dir.is_dir() {
         let what = if dir.exists() {
             "is not a directory"
@@ -529,6 +602,37 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
         })
         .unwrap_or_default();
     map_files.sort();
+    if let Some(selected) = selected {
+        let stem = |path: &PathBuf| {
+            path.file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or_default()
+                .to_ascii_lowercase()
+        };
+        for name in selected {
+            if !map_files
+                .iter()
+                .any(|path| stem(path) == name.to_ascii_lowercase())
+            {
+                let present: Vec<String> = map_files.iter().map(stem).collect();
+                errors.push(Diagnostic::new(
+                    &maps_dir,
+                    (
+                        Loc::START,
+                        format!(
+                            "no map called '{name}' (PORTALCAST_MAPS); the maps here are {}",
+                            present.join(", ")
+                        ),
+                    ),
+                ));
+            }
+        }
+        map_files.retain(|path| {
+            selected
+                .iter()
+                .any(|name| stem(path) == name.to_ascii_lowercase())
+        });
+    }
     if !maps_dir.is_dir() {
         errors.push(Diagnostic::new(
             &maps_dir,
@@ -739,30 +843,7 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
         height: image.height() as u16,
         texels: texels::sky_columns(&image, &mut quantiser),
     });
-    let remap = |texture: u16| match texture {
-        NO_TEXTURE | SKY => texture,
-        other => texture_index[usize::from(other)],
-    };
-    for map in &mut maps {
-        for wall in &mut map.walls {
-            wall.texture = remap(wall.texture);
-            wall.upper_texture = remap(wall.upper_texture);
-            wall.lower_texture = remap(wall.lower_texture);
-            if wall.middle != NO_TEXTURE {
-                wall.middle = set_index[usize::from(wall.middle)];
-            }
-        }
-        for trigger in &mut map.triggers {
-            trigger.used_texture = remap(trigger.used_texture);
-        }
-        for sector in &mut map.sectors {
-            sector.floor_texture = remap(sector.floor_texture);
-            sector.ceil_texture = remap(sector.ceil_texture);
-        }
-        for thing in &mut map.things {
-            thing.sprite = set_index[usize::from(thing.sprite)];
-        }
-    }
+    renumber(&mut maps, &texture_index, &set_index);
     files_read.extend([textures_dir, sprites_dir, dir.join(SKY_DIR), maps_dir]);
     // Cargo reruns a build script on every build if a watched path does not exist; the asset
     // directory itself is watched recursively, so a folder created later is still noticed.
@@ -781,5 +862,6 @@ pub fn compile_dir(dir: &Path) -> Result<Compiled, CompileErrors> {
         sprite_sets,
         maps,
         left_out,
+        import_report: Vec::new(),
     })
 }

@@ -64,6 +64,25 @@ impl Quantiser {
         }
     }
 
+    /// A quantiser onto a palette given whole (a Doom WAD's): entry 0 stays transparent, every
+    /// other entry is a colour texels may take.
+    pub fn fixed(palette: Palette) -> Quantiser {
+        let mut shown = [[0u8; 3]; 256];
+        for (index, &c) in palette.iter().enumerate().skip(1) {
+            shown[index] = [expand(c), expand(c >> 5), expand(c >> 10)];
+        }
+        Quantiser {
+            palette,
+            shown,
+            cache: HashMap::new(),
+        }
+    }
+
+    /// What the GBA shows for entry `index`, 8 bits a channel.
+    pub fn shown(&self, index: u8) -> Rgb {
+        self.shown[usize::from(index)]
+    }
+
     /// The palette in the GBA's format.
     pub fn palette(&self) -> Palette {
         self.palette

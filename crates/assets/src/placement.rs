@@ -17,7 +17,7 @@ pub(crate) fn textures_in_ewram(compiled: &Compiled) -> Vec<bool> {
     in_ewram(
         &bytes,
         &heat,
-        portalcast_format::memory::ewram_texel_budget(textures.len()),
+        portalcast_format::memory::ewram_texel_budget(textures.len(), compiled.live_state_bytes()),
     )
 }
 

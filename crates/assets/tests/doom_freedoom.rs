@@ -374,7 +374,7 @@ fn the_own_partition_cuts_e1m1_and_map01_into_fewer_pieces_than_the_node_builder
 }
 
 #[test]
-fn the_map_compiler_takes_e1m1_and_map01_s_pieces_but_for_closed_sectors_textures_and_depth() {
+fn the_map_compiler_takes_e1m1_and_map01_s_pieces_but_for_closed_sectors_and_textures() {
     for (wad_name, map) in [("freedoom1.wad", "E1M1"), ("freedoom2.wad", "MAP01")] {
         let wad = Wad::open(&wad_path(wad_name)).unwrap();
         let level = DoomLevel::read(&wad, map).unwrap();
@@ -401,12 +401,10 @@ fn the_map_compiler_takes_e1m1_and_map01_s_pieces_but_for_closed_sectors_texture
         if map == "E1M1" {
             assert_eq!((closed, refused_closed, untextured), (22, 10, 0));
         }
-        // With those stood in for, every outline, portal, mover and overlap check passes; what
-        // is left is the renderer's portal depth.
+        // With those stood in for, every outline, portal, mover, overlap and depth check
+        // passes (the deepest run, 112 portals on E1M1, is within the walk's 256).
         let findings = doom::compiler_findings(&level, &pieces, doom::StandIns::On);
-        println!("{map} with stand-ins: {findings:?}");
-        assert_eq!(findings.len(), 1, "{findings:#?}");
-        assert!(findings[0].contains("portals in a row"), "{}", findings[0]);
+        assert!(findings.is_empty(), "{map} with stand-ins: {findings:#?}");
     }
 }
 
@@ -414,7 +412,8 @@ fn the_map_compiler_takes_e1m1_and_map01_s_pieces_but_for_closed_sectors_texture
 /// closed sectors that are not manual doors and for missing textures: no outline, portal,
 /// mover, overlap or player finding on any map (the partition's pieces meet every geometric
 /// rule, the player start is nudged off the partition's lines, a map past the world's limits is
-/// recentred); what is left is the renderer's portal depth, on every map but five. Prints each.
+/// recentred); 56 of the 68 pass whole, and what stops the other 12 is the renderer's portal
+/// depth (a run of more than 256 portals in a row). Prints each.
 #[test]
 fn on_every_freedoom_map_what_is_left_is_the_portal_depth() {
     let (mut passing, mut deepest) = (Vec::new(), (0, String::new()));
@@ -443,7 +442,7 @@ fn on_every_freedoom_map_what_is_left_is_the_portal_depth() {
         "passing whole: {passing:?}; deepest run: {} portals on {}",
         deepest.0, deepest.1
     );
-    assert!(!passing.is_empty());
+    assert_eq!(passing.len(), 56, "{passing:?}");
 }
 
 #[test]

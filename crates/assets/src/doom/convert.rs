@@ -143,8 +143,30 @@ pub enum StandIns {
 /// The texture name a missing texture stands in as.
 pub const STAND_IN_TEXTURE: &str = "MISSING";
 
-/// `level`'s pieces as a map source, and the catalog of the names it uses.
-fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMap, Catalog) {
+/// The catalog name of Doom's flat `name`: flats and wall textures are two namespaces in Doom
+/// (a flat and a texture may share a name) and one in portalcast's catalog.
+pub(crate) fn flat_name(name: &str) -> String {
+    format!("{FLAT_PREFIX}{name}")
+}
+
+/// What [`flat_name`] puts before a flat's name.
+pub(crate) const FLAT_PREFIX: &str = "flat:";
+
+/// Doom's sector light (0..=255, 255 full) as portalcast's light level: half of it, rounded
+/// up, so Doom's full light is portalcast's neutral (`LIGHT_NEUTRAL`, 128, textures as they
+/// are) and each portalcast colormap row below it is two of Doom's `COLORMAP` rows
+/// (`super::import`'s colormap).
+pub(crate) fn light_level(doom_light: i16) -> u8 {
+    ((doom_light.clamp(0, 255) + 1) / 2) as u8
+}
+
+/// `level`'s pieces as a map source, and the names of the textures it uses (flats by
+/// [`flat_name`]).
+pub(crate) fn source(
+    level: &DoomLevel,
+    pieces: &[Piece],
+    stand_ins: StandIns,
+) -> (SourceMap, Vec<String>) {
     let on = stand_ins == StandIns::On;
     let texture =
         |name: &str| texture(name).or_else(|| on.then(|| at(STAND_IN_TEXTURE.to_string())));
@@ -170,12 +192,14 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
             // stay shut, and the compiler says so).
             let door = manual_door(level, piece.sector)
                 .filter(|_| pieces_of[usize::from(piece.sector)] == 1);
-            names.push(doom.floor_flat.clone());
+            let floor_flat = flat_name(&doom.floor_flat);
+            names.push(floor_flat.clone());
             let ceiling = if doom.ceiling_flat == SKY_FLAT {
                 CeilingSource::Sky
             } else {
-                names.push(doom.ceiling_flat.clone());
-                CeilingSource::Texture(at(doom.ceiling_flat.clone()))
+                let ceiling_flat = flat_name(&doom.ceiling_flat);
+                names.push(ceiling_flat.clone());
+                CeilingSource::Texture(at(ceiling_flat))
             };
             let n = piece.outline.len();
             let walls = (0..n)
@@ -241,9 +265,9 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
                     None if on => i64::from(doom.ceiling.max(doom.floor.saturating_add(1))),
                     None => i64::from(doom.ceiling),
                 }),
-                floor_texture: at(doom.floor_flat.clone()),
+                floor_texture: at(floor_flat),
                 ceiling,
-                light: doom.light.clamp(0, 255) as u8,
+                light: light_level(doom.light),
                 mover: door.map(|(_, timing)| SourceMover {
                     kind: MoverKind::Door,
                     loc: Loc::START,
@@ -281,7 +305,6 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
         // Doom's angles run anticlockwise from east with y up; with y down they run clockwise.
         angle: ((-i32::from(start.angle)).rem_euclid(360) * 65536 / 360) as u16,
     };
-    let catalog = Catalog::new(names, Vec::<String>::new(), true);
     (
         SourceMap {
             vertices,
@@ -289,7 +312,7 @@ fn source(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> (SourceMa
             player,
             things: Vec::new(),
         },
-        catalog,
+        names,
     )
 }
 
@@ -376,7 +399,8 @@ fn off_the_lines(
 /// portal depth) and stops after the first that finds something: [`StandIns::On`] lets the
 /// later ones run.
 pub fn compiler_findings(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> Vec<String> {
-    let (source, catalog) = source(level, pieces, stand_ins);
+    let (source, names) = source(level, pieces, stand_ins);
+    let catalog = Catalog::new(names, Vec::<String>::new(), true);
     match map_build::build(&level.name, &source, &catalog) {
         Ok(_) => Vec::new(),
         Err(errors) => errors.into_iter().map(|(_, message)| message).collect(),

@@ -30,6 +30,7 @@ mod colours;
 mod convert;
 mod gl;
 mod graphics;
+mod import;
 mod level;
 mod partition;
 mod wad;
@@ -44,6 +45,7 @@ pub use gl::{build_gwa, FixedVertex, GlNodes, GlSeg, NODE_BUILDER};
 pub use graphics::{
     colormaps, flat, palette, patch, IndexedImage, Patch, TextureDef, TexturePatch, Textures,
 };
+pub use import::{compile_wad, default_iwad, WadRequest, FREEDOOM_DIR};
 pub use level::{
     is_map_name, DoomLevel, DoomSector, DoomThing, DoomVertex, Linedef, Sidedef, NONE,
 };

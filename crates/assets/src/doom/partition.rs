@@ -72,6 +72,21 @@ pub enum PartitionError {
     },
 }
 
+impl std::fmt::Display for PartitionError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PartitionError::Unclosed { sector, vertex } => write!(
+                f,
+                "sector {sector}'s sides do not close at vertex {vertex}: close the gap in the editor"
+            ),
+            PartitionError::Tangled { sector } => write!(
+                f,
+                "sector {sector}'s outline crosses itself or has a hole outside it: fix its lines in the editor"
+            ),
+        }
+    }
+}
+
 /// A directed side: from vertex `from` to `to`, its sector on the right.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Side {

@@ -93,6 +93,30 @@ impl Wad {
         })
     }
 
+    /// `pwad`'s lumps loaded over `iwad`'s, as Doom loads a PWAD named with `-file`: a lump of
+    /// either is found by name, the PWAD's first (its maps, and any texture, flat or patch it
+    /// replaces). Named by the PWAD's path in errors.
+    pub fn over(pwad: &Wad, iwad: &Wad) -> Wad {
+        let mut bytes = iwad.bytes.clone();
+        let base = bytes.len();
+        bytes.extend_from_slice(&pwad.bytes);
+        let mut entries = iwad.entries.clone();
+        entries.extend(pwad.entries.iter().map(|entry| Entry {
+            offset: entry.offset + base,
+            ..entry.clone()
+        }));
+        Wad {
+            path: pwad.path.clone(),
+            bytes,
+            entries,
+        }
+    }
+
+    /// Whether it is an IWAD (a game's whole data) rather than a PWAD (a patch over one).
+    pub fn is_iwad(&self) -> bool {
+        self.bytes.starts_with(b"IWAD")
+    }
+
     /// The file's path.
     pub fn path(&self) -> &Path {
         &self.path
