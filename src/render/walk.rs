@@ -1659,9 +1659,10 @@ impl<'s> StripLevel<'s> {
     };
 
     /// The level [`mip_level_of_ratio`] picks for `ratio`, and the ratios that pick it too.
-    /// Once a wall and strip, and again at each change of level: out of line, in IWRAM.
+    /// Once a wall and strip, and again at each change of level: out of line, and in the
+    /// cartridge, not IWRAM: IWRAM's code left the stack a few dozen bytes over its reserve,
+    /// and a ROM of Doom maps (whose constants change how the wall pass compiles) went over.
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram_render.strip_level_of")]
     fn of(texture: &Texture<'s>, ratio: i32) -> StripLevel<'s> {
         let level = mip_level_of_ratio(
             ratio,

@@ -47,7 +47,13 @@ pub fn host_frame_matching(
 /// The ROM booted with its per-frame lines on, run until the game draws its first frame (keys
 /// before it are not seen).
 pub fn boot_until_playing() -> portalcast_harness::Emulator {
-    let mut emulator = boot();
+    boot_rom_until_playing(&portalcast_xtask::rom_for_tests())
+}
+
+/// [`boot_until_playing`] with the ROM at `rom`.
+pub fn boot_rom_until_playing(rom: &std::path::Path) -> portalcast_harness::Emulator {
+    let mut emulator =
+        portalcast_harness::Emulator::load(rom).unwrap_or_else(|error| panic!("{error}"));
     for _ in FRAME_LINES_HOLD {
         emulator.set_keys(FRAME_LINES_KEY);
         emulator

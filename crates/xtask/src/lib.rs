@@ -10,6 +10,7 @@ pub mod bench_logging;
 pub mod bench_math;
 pub mod bench_tick;
 pub mod extreme_maps;
+pub mod freedoom;
 pub mod generated_maps;
 mod map_builder;
 pub mod overlay;
@@ -282,6 +283,9 @@ pub fn build_rom_for(isa: EngineIsa, gba: &Path) -> TaskResult<()> {
 /// The environment variable that names the asset directory a ROM is built from (build.rs;
 /// `assets/` when unset).
 pub const ASSETS_ENV: &str = "PORTALCAST_ASSETS";
+/// The environment variable picking maps by name (`E1M1,E1M3`) from a WAD or an asset
+/// directory.
+pub const MAPS_ENV: &str = "PORTALCAST_MAPS";
 
 /// Builds a ROM from the asset directory `assets_dir` (same layout as `assets/`, anywhere on
 /// disk) into `gba`, with the engine compiled as `PORTALCAST_ENGINE_ISA` says. It builds in
@@ -292,12 +296,27 @@ pub const ASSETS_ENV: &str = "PORTALCAST_ASSETS";
 /// `file:line:col: what is wrong, what to do` lines in the error (cargo's output is also shown
 /// as it runs), and `gba` is left as it was: nothing is converted or written.
 pub fn build_rom_with_assets(assets_dir: &Path, target_dir: &Path, gba: &Path) -> TaskResult<()> {
+    build_rom_with_maps(assets_dir, None, target_dir, gba)
+}
+
+/// [`build_rom_with_assets`] from an asset directory or a Doom WAD (`assets`), with only the
+/// maps `maps` names (comma-separated, as `PORTALCAST_MAPS` takes them) if it names any.
+pub fn build_rom_with_maps(
+    assets: &Path,
+    maps: Option<&str>,
+    target_dir: &Path,
+    gba: &Path,
+) -> TaskResult<()> {
     ensure_rust_src()?;
     let isa = engine_isa()?;
-    let assets_dir = std::path::absolute(assets_dir)
-        .map_err(|error| TaskError(format!("{}: {error}", assets_dir.display())))?;
+    let assets_dir = std::path::absolute(assets)
+        .map_err(|error| TaskError(format!("{}: {error}", assets.display())))?;
     let mut command = rom_build_command(isa, target_dir);
     command.env(ASSETS_ENV, &assets_dir);
+    match maps {
+        Some(maps) => command.env(MAPS_ENV, maps),
+        None => command.env_remove(MAPS_ENV),
+    };
     run_keeping_build_script_errors(
         &mut command,
         &format!("building the ROM from {}", assets_dir.display()),
