@@ -20,6 +20,10 @@
 //! - the stack: the ROM's `stack used=… room=…` lines, and the paint left in IWRAM read by the
 //!   host at the end, below the room the linker left.
 //!
+//! The maps are the ROM's: `PORTALCAST_ASSETS` (and `PORTALCAST_MAPS`) soak a user's maps or a
+//! Doom WAD's, with `PORTALCAST_GBA` naming the ROM built from the same assets (`cargo xtest`
+//! soaks Freedoom's maps this way: `portalcast_xtask::freedoom`).
+//!
 //! `PORTALCAST_SOAK_FRAMES` sets the emulator frames per map (default [`SHORT_SOAK_FRAMES`]);
 //! the long form, 100,000 frames per map, is
 //! `PORTALCAST_SOAK_FRAMES=100000 cargo test --test emulator_soak -- --nocapture`
@@ -352,7 +356,11 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
                 .any(|mover| mover.phase != portalcast::world::Phase::Resting)
         })
         .count();
-    if (has_movers && moving_ticks == 0) || (live && world_lines < drawn) {
+    // The shipped maps put a door or a lift within the random walk's reach; a Doom map's lie
+    // far from its start (issue 19: E1M1's nearest door is rooms away), so there the soak
+    // checks only that the ROM drew every frame with its world.
+    let doors_within_reach = !portalcast_assets::doom::is_map_name(map);
+    if (has_movers && moving_ticks == 0 && doors_within_reach) || (live && world_lines < drawn) {
         return Err(format!(
             "the movers never moved ({moving_ticks} ticks with one away from rest) or the ROM drew frames without its world ({world_lines} world lines, {drawn} frames)"
         ));

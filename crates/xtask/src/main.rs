@@ -212,15 +212,36 @@ fn test() -> TaskResult<()> {
         cargo()
             .args(["test", "--workspace"])
             .env("PORTALCAST_GBA", &gba),
+        "cargo test --workspace",
+    )?;
+    // The soak on imported maps (issue 19): the test built with Freedoom's maps as its assets,
+    // as a user soaks their own (`PORTALCAST_ASSETS`), against the ROM of the same maps, in a
+    // target directory of its own so that neither build undoes the other.
+    let freedoom_gba = portalcast_xtask::freedoom::build_freedoom_rom()?;
+    let wad = portalcast_xtask::freedoom::freedoom1_wad()?;
+    run_tests_and_count(
+        cargo()
+            .args(["test", "--test", "emulator_soak"])
+            .env(portalcast_xtask::ASSETS_ENV, &wad)
+            .env(
+                portalcast_xtask::MAPS_ENV,
+                portalcast_xtask::freedoom::MAPS.join(","),
+            )
+            .env("PORTALCAST_GBA", &freedoom_gba)
+            .env(
+                "CARGO_TARGET_DIR",
+                workspace_root().join("target").join("freedoom-host"),
+            ),
+        "the soak on Freedoom's maps",
     )
 }
 
 /// Runs `cargo test`, passing its output through, and closes with one line that adds up every
 /// test binary's `test result:` line, so the run ends on the total rather than on the last
 /// (often empty) doc-test binary.
-fn run_tests_and_count(command: &mut Command) -> TaskResult<()> {
+fn run_tests_and_count(command: &mut Command, what: &str) -> TaskResult<()> {
     use std::io::{BufRead, BufReader};
-    eprintln!("== cargo test --workspace");
+    eprintln!("== {what}");
     let mut child = command
         .stdout(std::process::Stdio::piped())
         .spawn()
@@ -242,9 +263,7 @@ fn run_tests_and_count(command: &mut Command) -> TaskResult<()> {
     if status.success() {
         Ok(())
     } else {
-        Err(TaskError(format!(
-            "cargo test --workspace failed ({status})"
-        )))
+        Err(TaskError(format!("{what} failed ({status})")))
     }
 }
 
