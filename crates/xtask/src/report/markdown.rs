@@ -82,7 +82,7 @@ pub fn resolution_name(resolution: &str) -> String {
     }
 }
 
-fn fps(cycles: u64) -> f64 {
+pub(super) fn fps(cycles: u64) -> f64 {
     if cycles == 0 {
         0.0
     } else {
@@ -243,6 +243,9 @@ pub fn write(measurements: &Measurements) -> String {
     knobs(&mut doc, measurements);
     maps(&mut doc, measurements);
     generated_maps(&mut doc, measurements);
+    // The section brings its own heading (`report::freedoom`).
+    doc.push_str(&measurements.freedoom_section);
+    doc.push('\n');
     chart(&mut doc);
     instruction_set(&mut doc, measurements);
     kernels(&mut doc, measurements);

@@ -12,6 +12,7 @@
 
 mod chart;
 mod cost_model;
+mod freedoom;
 mod markdown;
 mod profile;
 mod sizes;
@@ -82,6 +83,8 @@ pub struct Measurements {
     /// The bench scene's runs on the ROM of the generated maps
     /// (`portalcast_xtask::generated_maps`).
     pub generated_runs: Vec<Run>,
+    /// Freedoom's maps' section (`report::freedoom`), heading included.
+    pub freedoom_section: String,
 }
 
 impl Measurements {
@@ -159,6 +162,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
 
     let accuracy = bench_log::accuracy_lines(&run_accuracy()?).map_err(TaskError)?;
     let generated_runs = generated_runs()?;
+    let freedoom_section = freedoom::section()?;
 
     let measured_baseline = Baseline::from_runs(EngineIsa::Arm.label(), &runs[..guard_runs]);
     let baseline = if options.update_baseline {
@@ -184,6 +188,7 @@ pub fn bench_report(args: &[String]) -> TaskResult<()> {
         logging_section: portalcast_xtask::bench_logging::logging_section(&gba)?,
         profile_section,
         generated_runs,
+        freedoom_section,
     };
     let doc = markdown::write(&measurements);
     let chart = chart::draw(&chart_panels(&measurements))?;
