@@ -74,11 +74,11 @@ impl MoverState {
         timer: 0,
     };
 
-    /// The first of `movers` from index `from` on that is not resting. Out of line and over a
-    /// slice: a loop over `World::movers` itself would be unrolled as many times as the ROM's
-    /// maps have movers at most (12 on a Doom map), and the tick's code in VRAM has no room for
-    /// that (nor for this: it runs from the cartridge, a call a tick and one a moving mover).
-    #[inline(never)]
+    /// The first of `movers` from index `from` on that is not resting. Over a slice, whose
+    /// length LLVM does not know: a loop over `World::movers` itself was unrolled as many
+    /// times as the ROM's maps have movers at most (12 on a Doom map), and the tick's code in
+    /// VRAM has no room for that.
+    #[inline(always)]
     fn next_moving(movers: &[MoverState], from: usize) -> Option<usize> {
         movers
             .iter()
