@@ -62,14 +62,20 @@ fn rom() -> TaskResult<()> {
     let gba = build_rom()?;
     let size = std::fs::metadata(&gba).map(|meta| meta.len()).unwrap_or(0);
     println!("ROM: {} ({size} bytes)", gba.display());
-    if let Some(report) = newest_size_report() {
+    if let Some(report) = newest_build_file("size_report.txt") {
+        print!("{report}");
+    }
+    // What a Doom WAD's import could not map (empty for an asset directory).
+    if let Some(report) = newest_build_file("import_report.txt").filter(|r| !r.trim().is_empty()) {
+        println!("What the import left out or fitted (docs/MAP_FORMAT.md, \"Doom maps\"):");
         print!("{report}");
     }
     Ok(())
 }
 
-/// The asset compiler's size report from the newest ROM build (build.rs writes it to OUT_DIR).
-fn newest_size_report() -> Option<String> {
+/// A file build.rs writes to OUT_DIR (the size report, the import report), from the newest ROM
+/// build.
+fn newest_build_file(name: &str) -> Option<String> {
     let build_dir = portalcast_xtask::rom_target_dir()
         .join(portalcast_xtask::ROM_TARGET)
         .join(
@@ -81,7 +87,7 @@ fn newest_size_report() -> Option<String> {
     let newest = std::fs::read_dir(build_dir)
         .ok()?
         .filter_map(Result::ok)
-        .map(|entry| entry.path().join("out").join("size_report.txt"))
+        .map(|entry| entry.path().join("out").join(name))
         .filter(|path| path.is_file())
         .max_by_key(|path| path.metadata().and_then(|meta| meta.modified()).ok())?;
     std::fs::read_to_string(newest).ok()

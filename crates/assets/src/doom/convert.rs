@@ -2,15 +2,16 @@
 //! importer's proof that its partition and its mapping of the map meet every rule a hand-made
 //! map must (docs/MAP_FORMAT.md), and its list of what does not yet.
 //!
-//! The mapping, so far: each [`Piece`] a sector with its Doom sector's heights, flats and light
-//! (`F_SKY1` ceilings the sky), a manual door (a closed sector of one piece behind a line with
-//! Doom's door specials 1, 26–28, 31–34, 117 or 118) a door mover opening as Doom's does; a one-sided side a wall with its middle texture; a two-sided side
-//! a portal with its upper and lower textures; an opening of the partition a portal without
-//! any. Doom's y runs up the map and portalcast's down the screen's top view: y is negated, so
-//! the map is not mirrored; a map reaching past portalcast's world limits but fitting within
-//! them is recentred. The player stands at player 1's start (moved by a 1/256 step where it
-//! lies on a line). Things, movers and textures'
-//! images are still to come.
+//! The mapping: each [`Piece`] a sector with its Doom sector's heights, flats (by
+//! [`flat_name`]) and light ([`light_level`]), `F_SKY1` ceilings the sky; a manual door (a
+//! closed sector of one piece behind a line with Doom's door specials 1, 26–28, 31–34, 117 or
+//! 118) a door mover opening as Doom's does; a one-sided side a wall with its middle texture; a
+//! two-sided side a portal with its upper and lower textures; an opening of the partition a
+//! portal without any. Doom's y runs up the map and portalcast's down the screen's top view: y
+//! is negated, so the map is not mirrored; a map reaching past portalcast's world limits but
+//! fitting within them is recentred. The player stands at player 1's start (moved by a 1/256
+//! step where it lies on a line). Things, remote doors and lifts are still to come
+//! ([`import_report`] lists them).
 
 use super::level::DoomLevel;
 use super::partition::{Piece, PieceWall};
@@ -439,7 +440,7 @@ pub fn import_report(level: &DoomLevel, pieces: &[Piece]) -> Vec<String> {
         };
         if !door || pieces_of[index] != 1 {
             report.push(format!(
-                "sector {index} is closed (floor {}, ceiling {}): {why}; it stays shut",
+                "sector {index} is closed (floor {}, ceiling {}): {why}; it stays shut, drawn open 1 unit above its floor",
                 sector.floor, sector.ceiling
             ));
         }

@@ -11,19 +11,17 @@
 //!   the node builder's subsectors where both were counted (E1M1: 434 against 509). This is the
 //!   partition the importer builds on.
 //!
-//! [`compiler_findings`] runs the map compiler itself over the pieces (mapped as the module
-//! `convert` says, manual doors as door movers): on E1M1 and MAP01 it refuses only the other
-//! closed sectors (remote doors, lowered floors) and, on MAP01, five walls Doom leaves without
-//! a texture; with those stood in for, every outline, portal, mover and overlap check passes,
-//! and what is left is the renderer's portal depth (a view passes 112 portals in a row on
-//! E1M1, the renderer follows 64).
+//! [`compile_wad`] builds a ROM's asset set from a WAD (`PORTALCAST_ASSETS=….wad`, issue 19):
+//! the pieces mapped as the module `convert` says and checked by the map compiler itself, then
+//! the textures, flats and sky they use drawn from the WAD ([`Textures`], [`flat`]) in Doom's
+//! palette ([`DoomPalette`]: its black, index 0, moved off the transparent index), with Doom's
+//! `COLORMAP` as portalcast's light rows; what it cannot map yet goes to the import report.
+//! [`compiler_findings`] runs the compiler alone (with or without stand-ins for what is not
+//! mapped yet), for the tests over all of Freedoom's maps.
 //!
-//! [`DoomPalette`] is Doom's palette as portalcast's (its black, index 0, moved off the
-//! transparent index to another black).
-//!
-//! Still to come: the portal depth, remote doors and lifts (switches and walk-over lines), the
-//! missing textures, light rows and the textures' sizes, the things, and the ROM's interface
-//! (issue 19's build list).
+//! Still to come (issue 19): the player's dimensions per map, remote doors and lifts (switches
+//! and walk-over lines), doors cut into several pieces, masked middle textures, the things, and
+//! views deeper than the walk's 256 portals.
 
 mod cells;
 mod colours;
