@@ -14,6 +14,18 @@ const SAMPLE_FACTOR: i32 = 10;
 /// Below this many pixels NeuQuant looks at every pixel, so small asset sets still train well.
 const FULL_SAMPLE_BELOW: usize = 64 * 1024;
 
+/// A colormap whose row `row` maps opaque index `index` to `entry(row, index)`; index 0
+/// (transparent) maps to 0 in every row.
+pub(crate) fn colormap_of(mut entry: impl FnMut(usize, usize) -> u8) -> Box<Colormap> {
+    let mut map = Box::new([[0u8; 256]; LIGHT_LEVELS]);
+    for (row, entries) in map.iter_mut().enumerate() {
+        for (index, slot) in entries.iter_mut().enumerate().skip(1) {
+            *slot = entry(row, index);
+        }
+    }
+    map
+}
+
 /// An RGB colour, 8 bits per channel.
 pub(crate) type Rgb = [u8; 3];
 
@@ -114,20 +126,16 @@ impl Quantiser {
     /// maps it back to the palette. Row `LIGHT_NEUTRAL >> 3` is exactly the identity.
     pub fn colormap(&mut self) -> Box<Colormap> {
         let neutral = usize::from(LIGHT_NEUTRAL >> 3);
-        let mut map = Box::new([[0u8; 256]; LIGHT_LEVELS]);
-        for (row, entries) in map.iter_mut().enumerate() {
-            for (index, entry) in entries.iter_mut().enumerate().skip(1) {
-                *entry = if row == neutral {
-                    index as u8
-                } else {
-                    let scale =
-                        |c: u8| ((u32::from(c) * row as u32 + 8) / neutral as u32).min(255) as u8;
-                    let [r, g, b] = self.shown[index];
-                    self.nearest([scale(r), scale(g), scale(b)])
-                };
+        colormap_of(|row, index| {
+            if row == neutral {
+                index as u8
+            } else {
+                let scale =
+                    |c: u8| ((u32::from(c) * row as u32 + 8) / neutral as u32).min(255) as u8;
+                let [r, g, b] = self.shown[index];
+                self.nearest([scale(r), scale(g), scale(b)])
             }
-        }
-        map
+        })
     }
 
     /// The 50 % blend table: `blend[behind][front]` is the opaque index nearest (as

@@ -113,26 +113,43 @@ pub(crate) fn copy_pngs(from: &Path, to: &Path) -> TaskResult<()> {
 /// [`CHAIN_SECTORS`] sectors 16 units long whose floors rise 2 units a sector (each step shows)
 /// and whose ceilings alternate, from the start looking straight down it.
 fn chain() -> ExtremeMap {
-    let mut builder = MapBuilder::new(
+    // The first sector reaches back to x = -16: the compiler keeps a start 16 from solid walls
+    // (and a sector behind would make the chain deeper than the renderer follows).
+    let builder = corridor(
         "A long portal chain of steps: 65 sectors in a row, seen end to end.",
-        (0, 64 * 256, 0),
+        CHAIN_SECTORS,
+        (128, 2),
+        |i| Some((64 + (i * 37) % 160) as u8),
     );
-    for i in 0..CHAIN_SECTORS as i32 {
-        let ceiling = Ceiling::Texture(256 - 8 * (i % 2), "ceiling");
-        // The first sector reaches back to x = -16: the compiler keeps a start 16 from solid
-        // walls (and a sector behind would make the chain deeper than the renderer follows).
-        let x0 = if i == 0 { -16 } else { 16 * i };
-        builder.sector(
-            SectorSpec::new(rectangle(x0, 0, 16 * i + 16, 128, &[]), 2 * i, ceiling)
-                .textures(if i % 2 == 0 { "tiles" } else { "wood" }, "stone")
-                .light((64 + (i * 37) % 160) as u8),
-        );
-    }
     ExtremeMap {
         name: "chain",
         extreme: "a long portal chain of steps (65 sectors in view, depth 64)",
         text: builder.text(),
     }
+}
+
+/// A corridor along +x of `sectors` sectors 16 units long (the first 32, from x = -16) and
+/// `width` wide, floors rising `rise` a sector, ceilings alternating 256 and 248, textures
+/// alternating, each sector's light `light(i)` (or the default), the start at its mid-line
+/// looking down it.
+fn corridor(
+    comment: &str,
+    sectors: usize,
+    (width, rise): (i32, i32),
+    light: impl Fn(i32) -> Option<u8>,
+) -> MapBuilder {
+    let mut builder = MapBuilder::new(comment, (0, width / 2 * 256, 0));
+    for i in 0..sectors as i32 {
+        let ceiling = Ceiling::Texture(256 - 8 * (i % 2), "ceiling");
+        let x0 = if i == 0 { -16 } else { 16 * i };
+        let spec = SectorSpec::new(rectangle(x0, 0, 16 * i + 16, width, &[]), rise * i, ceiling)
+            .textures(if i % 2 == 0 { "tiles" } else { "wood" }, "stone");
+        builder.sector(match light(i) {
+            Some(level) => spec.light(level),
+            None => spec,
+        });
+    }
+    builder
 }
 
 /// A map whose view from the start passes `sectors - 1` portals in a row: a flat corridor of
@@ -141,19 +158,13 @@ fn chain() -> ExtremeMap {
 /// it. With `MAX_PORTAL_DEPTH + 1` sectors it is the deepest chain the renderer draws whole;
 /// with one more, the map compiler refuses it.
 pub fn deep_chain_text(sectors: usize) -> String {
-    let mut builder = MapBuilder::new(
+    corridor(
         "The deepest portal chain: a flat corridor, seen end to end.",
-        (0, 128 * 256, 0),
-    );
-    for i in 0..sectors as i32 {
-        let ceiling = Ceiling::Texture(256 - 8 * (i % 2), "ceiling");
-        let x0 = if i == 0 { -16 } else { 16 * i };
-        builder.sector(
-            SectorSpec::new(rectangle(x0, 0, 16 * i + 16, 256, &[]), 0, ceiling)
-                .textures(if i % 2 == 0 { "tiles" } else { "wood" }, "stone"),
-        );
-    }
-    builder.text()
+        sectors,
+        (256, 0),
+        |_| None,
+    )
+    .text()
 }
 
 /// `corners`: vertices at the coordinate limits: the ±8192 square, cut along its diagonal by a

@@ -17,7 +17,7 @@
 use std::path::{Path, PathBuf};
 
 use image::{Rgba, RgbaImage};
-use portalcast_format::{Colormap, LIGHT_LEVELS, LIGHT_NEUTRAL, NO_TEXTURE};
+use portalcast_format::{Colormap, LIGHT_NEUTRAL, NO_TEXTURE};
 
 use super::colours::DoomPalette;
 use super::convert::{self, StandIns, FLAT_PREFIX, STAND_IN_TEXTURE};
@@ -30,7 +30,7 @@ use crate::images::{
     SKY_HEIGHT_MAX, SKY_HEIGHT_MIN, SKY_WIDTH_MAX, TEXTURE_SIDE_MAX, TEXTURE_SIDE_MIN,
 };
 use crate::map_build::{self, Catalog, CompiledMap};
-use crate::palette::Quantiser;
+use crate::palette::{colormap_of, Quantiser};
 use crate::{texels, Compiled, CompiledSky, CompiledTexture, Usage};
 
 /// Where Debian's `freedoom` package puts its WADs.
@@ -122,18 +122,14 @@ fn map_names(wad: &Wad, wanted: Option<&[String]>) -> Result<Vec<String>, DoomEr
 /// index 0 here).
 fn colormap(doom_rows: &[[u8; 256]], palette: &DoomPalette) -> Box<Colormap> {
     let neutral = usize::from(LIGHT_NEUTRAL >> 3);
-    let mut map = Box::new([[0u8; 256]; LIGHT_LEVELS]);
-    for (row, entries) in map.iter_mut().enumerate() {
-        for (index, entry) in entries.iter_mut().enumerate().skip(1) {
-            *entry = if row >= neutral {
-                index as u8
-            } else {
-                let doom_row = (2 * (neutral - row)).min(31);
-                palette.index(doom_rows[doom_row][index])
-            };
+    colormap_of(|row, index| {
+        if row >= neutral {
+            index as u8
+        } else {
+            let doom_row = (2 * (neutral - row)).min(31);
+            palette.index(doom_rows[doom_row][index])
         }
-    }
-    map
+    })
 }
 
 /// `image` as an opaque RGBA picture `width × height`, repeated to fill it (or cut), each texel
