@@ -6,7 +6,7 @@
 //! IWAD). `PORTALCAST_MAPS` picks maps by name. A bad map or PNG stops the build with
 //! `file:line:col: what is wrong, what to do`, a bad WAD with `file: lump …: what to do`, and
 //! nothing is written.
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The environment variable naming a user's asset directory, or a Doom WAD (`*.wad`).
 const ASSETS_ENV: &str = "PORTALCAST_ASSETS";
@@ -14,6 +14,38 @@ const ASSETS_ENV: &str = "PORTALCAST_ASSETS";
 const MAPS_ENV: &str = "PORTALCAST_MAPS";
 /// The environment variable naming the IWAD whose graphics a PWAD's maps use.
 const IWAD_ENV: &str = "PORTALCAST_IWAD";
+
+/// Compiles the asset directory or the Doom WAD (`*.wad`) at `path`, with only the maps `maps`
+/// names if it names any; the errors one a line.
+fn compile_assets(
+    path: &Path,
+    maps: Option<Vec<String>>,
+) -> Result<portalcast_assets::Compiled, String> {
+    let is_wad = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("wad"));
+    if is_wad {
+        let request = portalcast_assets::doom::WadRequest {
+            wad: path.to_path_buf(),
+            iwad: std::env::var_os(IWAD_ENV).map(PathBuf::from),
+            maps,
+        };
+        portalcast_assets::doom::compile_wad(&request).map_err(|errors| {
+            errors
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("\n")
+        })
+    } else {
+        match &maps {
+            Some(maps) => portalcast_assets::compile_dir_maps(path, maps),
+            None => portalcast_assets::compile_dir(path),
+        }
+        .map_err(|errors| errors.to_string())
+    }
+}
 
 fn main() {
     let out_dir = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
@@ -40,43 +72,18 @@ fn main() {
                 .map(|name| name.trim().to_string())
                 .collect()
         });
-    let is_wad = assets_path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("wad"));
-    let compiled = if is_wad {
-        let request = portalcast_assets::doom::WadRequest {
-            wad: assets_path.clone(),
-            iwad: std::env::var_os(IWAD_ENV).map(PathBuf::from),
-            maps,
-        };
-        portalcast_assets::doom::compile_wad(&request).unwrap_or_else(|errors| {
-            // One line per problem, each naming the WAD, the map and the lump, last so that
-            // they end the output; nothing was written.
-            eprintln!(
-                "portalcast: the maps of {} did not compile:",
-                assets_path.display()
-            );
-            for error in errors {
-                eprintln!("{error}");
-            }
-            std::process::exit(1);
-        })
-    } else {
-        let result = match &maps {
-            Some(maps) => portalcast_assets::compile_dir_maps(&assets_path, maps),
-            None => portalcast_assets::compile_dir(&assets_path),
-        };
-        result.unwrap_or_else(|errors| {
-            // One line per problem, each naming the file and line, last so that they end the
-            // output; nothing was written.
+    let compiled = match compile_assets(&assets_path, maps) {
+        Ok(compiled) => compiled,
+        Err(errors) => {
+            // One line per problem, each naming the file and line (or the WAD, the map and the
+            // lump), last so that they end the output; nothing was written.
             eprintln!(
                 "portalcast: the assets in {} did not compile:",
                 assets_path.display()
             );
             eprintln!("{errors}");
             std::process::exit(1);
-        })
+        }
     };
     let report = compiled.import_report();
     let report_path = out_dir.join("import_report.txt");

@@ -652,9 +652,9 @@ impl<W: WindowStore> Renderer<W> {
     /// [`MAX_PORTAL_DEPTH`] portals overran it.
     ///
     /// Out of line, so that [`Renderer::render`]'s own set-up stays small enough to be inlined
-    /// into its callers, outside IWRAM.
+    /// into its callers. In the cartridge, not IWRAM: its loop runs once a portal and a visit,
+    /// and IWRAM's code left the stack no room over its reserve.
     #[inline(never)]
-    #[cfg_attr(target_os = "none", link_section = ".iwram_render.walk")]
     fn walk(
         &mut self,
         scene: &Scene,
@@ -1764,8 +1764,10 @@ impl<'s> WallJob<'s> {
                 // sky (Doom's sky hack, `worldtop = worldhigh`; the oracle's rule): its ceiling
                 // reaches down to the neighbour's on this wall, so the opening stops there and
                 // a neighbour's ceiling below the eye shows nothing beyond it through the strip.
+                // Never below this sector's floor: a neighbour whose ceiling is lower shows only
+                // sky over this floor's edge.
                 if sky_over_sky {
-                    sector.ceil_z.min(neighbour.ceil_z)
+                    sector.ceil_z.min(neighbour.ceil_z).max(sector.floor_z)
                 } else {
                     sector.ceil_z
                 },
