@@ -501,3 +501,48 @@ fn freedoom_s_palette_becomes_portalcast_s_with_black_kept_off_the_transparent_i
     assert_eq!(transparent, bars.gaps());
     println!("Doom's index 0 shows as index {zero}; MIDBARS3 has {transparent} transparent texels");
 }
+
+/// Doom's light specials become portalcast light effects (issue 19): E1M1's blinking, strobing
+/// and glowing sectors, each piece of one with the effect its special names (1 and 17 a
+/// flicker, 2, 3, 4, 12 and 13 a strobe, 8 a glow), down to a level below its own.
+#[test]
+fn e1m1_s_light_specials_become_light_effects() {
+    use portalcast_format::{LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE};
+    let request = doom::WadRequest {
+        wad: wad_path("freedoom1.wad"),
+        iwad: None,
+        maps: Some(vec!["E1M1".to_string()]),
+    };
+    let compiled = doom::compile_wad(&request).unwrap_or_else(|errors| panic!("{errors:?}"));
+    let map = &compiled.maps()[0];
+    let wad = Wad::open(&wad_path("freedoom1.wad")).unwrap();
+    let level = DoomLevel::read(&wad, "E1M1").unwrap();
+    let pieces = doom::partition(&level).unwrap();
+    let special_of =
+        |sector: u16| level.sectors[usize::from(pieces[usize::from(sector)].sector)].special;
+    let lit = pieces
+        .iter()
+        .filter(|piece| {
+            matches!(
+                level.sectors[usize::from(piece.sector)].special,
+                1 | 2 | 3 | 4 | 8 | 12 | 13 | 17
+            )
+        })
+        .count();
+    println!(
+        "E1M1: {} light effects, {lit} pieces of sectors with a light special",
+        map.lights.len()
+    );
+    assert!(!map.lights.is_empty());
+    assert!(map.lights.len() <= lit);
+    for light in &map.lights {
+        let expected = match special_of(light.sector) {
+            1 | 17 => LIGHT_FLICKER,
+            2 | 3 | 4 | 12 | 13 => LIGHT_STROBE,
+            8 => LIGHT_GLOW,
+            other => panic!("piece {} has light special {other}", light.sector),
+        };
+        assert_eq!(light.kind, expected, "piece {}", light.sector);
+        assert!(light.low < map.sectors[usize::from(light.sector)].light);
+    }
+}

@@ -19,10 +19,11 @@ use crate::diag::Loc;
 use crate::geometry::{cross, Point};
 use crate::map_build::{self, Catalog};
 use crate::source::{
-    CeilingSource, MoverKind, SourceMap, SourceMover, SourcePlace, SourceSector, SourceVertex,
-    SourceWall, Spanned,
+    CeilingSource, MoverKind, SourceLight, SourceMap, SourceMover, SourcePlace, SourceSector,
+    SourceVertex, SourceWall, Spanned,
 };
-use portalcast_format::limits::WORLD_COORD_MAX;
+use portalcast_format::limits::{LIGHTS_MAX, WORLD_COORD_MAX};
+use portalcast_format::{LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE};
 
 /// Doom's game ticks a second; portalcast's are 60.
 const DOOM_TICKS_PER_SECOND: u32 = 35;
@@ -105,6 +106,87 @@ fn manual_door(level: &DoomLevel, sector: u16) -> Option<(i16, DoorTiming)> {
     (open > own.floor).then_some((open, timing))
 }
 
+/// Doom's ticks as portalcast's (60 a second), rounded.
+const fn from_doom_ticks(ticks: u32) -> u16 {
+    ((ticks * 60 + DOOM_TICKS_PER_SECOND / 2) / DOOM_TICKS_PER_SECOND) as u16
+}
+
+/// Doom's strobes (`p_lights.c`): lit `STROBEBRIGHT` (5) Doom ticks of each cycle, dark
+/// `FASTDARK` (15) or `SLOWDARK` (35); portalcast's strobe is lit `STROBE_FLASH_TICKS` (5 of its
+/// ticks) of each period.
+const FAST_STROBE_PERIOD: u16 = from_doom_ticks(5 + 15);
+const SLOW_STROBE_PERIOD: u16 = from_doom_ticks(5 + 35);
+/// Doom's random flash (special 1) changes level every few ticks and its fire flicker (17)
+/// every 4 Doom ticks: portalcast's flicker draws a level each period.
+const FLASH_PERIOD: u16 = from_doom_ticks(4);
+/// Doom's glow (special 8) moves 8 light levels a Doom tick (`GLOWSPEED`).
+const GLOW_SPEED: u32 = 8;
+
+/// The least light of the sectors round Doom's sector `sector`, if below `most`
+/// (`P_FindMinSurroundingLight`: `most` itself if none is darker).
+fn min_surrounding_light(level: &DoomLevel, sector: u16, most: i16) -> i16 {
+    let sector_of = |side: u16| level.sidedefs[usize::from(side)].sector;
+    level
+        .linedefs
+        .iter()
+        .filter(|line| line.two_sided())
+        .filter_map(|line| {
+            let (right, left) = (sector_of(line.sides[0]), sector_of(line.sides[1]));
+            match (right == sector, left == sector) {
+                (true, false) => Some(left),
+                (false, true) => Some(right),
+                _ => None,
+            }
+        })
+        .map(|other| level.sectors[usize::from(other)].light)
+        .fold(most, i16::min)
+}
+
+/// Doom's light special of sector `sector` (`P_SpawnSpecials`) as a portalcast light effect:
+/// 1 (random flash) and 17 (fire flicker) a flicker, 2, 4 and 13 (fast strobes) and 3 and 12
+/// (slow ones) a strobe, 8 a glow, down to the darkest light round it as Doom's; none where
+/// the sector has none of these, or where the low level would not be below its own.
+fn light_effect(level: &DoomLevel, sector: u16) -> Option<SourceLight> {
+    let own = &level.sectors[usize::from(sector)];
+    let darkest = min_surrounding_light(level, sector, own.light);
+    let (kind, word, low, period) = match own.special {
+        1 => (LIGHT_FLICKER, "flicker=", darkest, FLASH_PERIOD),
+        17 => (
+            LIGHT_FLICKER,
+            "flicker=",
+            darkest.saturating_add(16),
+            FLASH_PERIOD,
+        ),
+        // A strobe with nothing darker round it goes black (`P_SpawnStrobeFlash`).
+        2 | 4 | 13 => (
+            LIGHT_STROBE,
+            "strobe=",
+            if darkest == own.light { 0 } else { darkest },
+            FAST_STROBE_PERIOD,
+        ),
+        3 | 12 => (
+            LIGHT_STROBE,
+            "strobe=",
+            if darkest == own.light { 0 } else { darkest },
+            SLOW_STROBE_PERIOD,
+        ),
+        8 => {
+            let swing = u32::try_from(own.light - darkest).unwrap_or(0);
+            let period = from_doom_ticks(2 * swing.div_ceil(GLOW_SPEED)).max(2);
+            (LIGHT_GLOW, "glow=", darkest, period)
+        }
+        _ => return None,
+    };
+    let (high, low) = (light_level(own.light), light_level(low));
+    (low < high).then(|| SourceLight {
+        kind,
+        word,
+        low: at(low),
+        period,
+        tag: None,
+    })
+}
+
 /// How many pieces each of `level`'s sectors is cut into.
 fn pieces_per_sector(level: &DoomLevel, pieces: &[Piece]) -> Vec<usize> {
     let mut counts = vec![0usize; level.sectors.len()];
@@ -174,6 +256,8 @@ pub(crate) fn source(
     let mut names: Vec<String> = Vec::new();
     let pieces_of = pieces_per_sector(level, pieces);
     let (shift_x, shift_y) = recentring(level);
+    // Light effects a map may hold (`LIGHTS_MAX`): the pieces after are lit steadily.
+    let mut lights_left = LIGHTS_MAX as usize;
     let vertices = level
         .vertices
         .iter()
@@ -279,7 +363,11 @@ pub(crate) fn source(
                     wait: timing.wait,
                     tag: None,
                 }),
-                light_effect: None,
+                light_effect: light_effect(level, piece.sector).filter(|_| {
+                    let room = lights_left > 0;
+                    lights_left = lights_left.saturating_sub(1);
+                    room
+                }),
                 walls,
             }
         })
@@ -457,6 +545,35 @@ pub fn import_report(level: &DoomLevel, pieces: &[Piece]) -> Vec<String> {
     for (special, lines) in specials {
         report.push(format!(
             "linedef special {special} on {lines} line(s) is not mapped yet"
+        ));
+    }
+    // Sector specials: the lights are mapped (`light_effect`), but not damage, secrets, timed
+    // doors or the exit's damage; a map may hold `LIGHTS_MAX` light effects.
+    let mut sector_specials: std::collections::BTreeMap<u16, usize> =
+        std::collections::BTreeMap::new();
+    for sector in &level.sectors {
+        if sector.special != 0 && !matches!(sector.special, 1 | 2 | 3 | 8 | 12 | 13 | 17) {
+            *sector_specials.entry(sector.special).or_default() += 1;
+        }
+    }
+    for (special, sectors) in sector_specials {
+        let what = if special == 4 {
+            " (its strobe is mapped, its damage is not)"
+        } else {
+            ""
+        };
+        report.push(format!(
+            "sector special {special} on {sectors} sector(s) is not mapped yet{what}"
+        ));
+    }
+    let lit = pieces
+        .iter()
+        .filter(|piece| light_effect(level, piece.sector).is_some())
+        .count();
+    if lit > LIGHTS_MAX as usize {
+        report.push(format!(
+            "{lit} pieces have a light effect, more than the {LIGHTS_MAX} a map holds: the last {} are lit steadily",
+            lit - LIGHTS_MAX as usize
         ));
     }
     if !level.things.is_empty() {
