@@ -47,62 +47,79 @@ fn a_row_the_renderer_follows_whole_compiles() {
 fn a_row_one_deeper_is_refused_at_a_portal_of_the_run() {
     let sectors = PORTAL_DEPTH_MAX as usize + 2;
     let errors = compile_map_str("row.map", &row_map(sectors), &catalog())
-        .expect_err("a row of 66 sectors is deeper than the walk follows");
+        .expect_err("a row one sector longer than the walk follows");
     assert_eq!(errors.0.len(), 1, "{errors}");
     let error = &errors.0[0];
-    // Both ends start a run of 65; the one looking back from the last sector is found first:
-    // its `portal=` on `  wall b65 t65 portal=s64`, the sector's fourth wall line.
+    // Both ends start a run of PORTAL_DEPTH_MAX + 1; the one looking back from the last sector
+    // is found first: its `portal=` on `  wall bN tN portal=sM`, the sector's fourth wall line.
+    let (last, before) = (sectors - 1, sectors - 2);
     let last_sector_line = 2 * (sectors + 1) as u32 + 5 * (sectors as u32 - 1) + 1;
+    let portal_column = format!("  wall b{last} t{last} portal=").len() as u32 + 1;
     assert_eq!(
         (error.loc.line, error.loc.col),
-        (last_sector_line + 4, 23),
+        (last_sector_line + 4, portal_column),
         "{error}"
     );
     assert!(
-        error.message.contains(
-            "a view from sector 's65' can pass 65 portals in a row (through sector 's64' to sector 's0'), more than the 64 the renderer follows"
-        ),
+        error.message.contains(&format!(
+            "a view from sector 's{last}' can pass {} portals in a row (through sector 's{before}' to sector 's0'), more than the {PORTAL_DEPTH_MAX} the renderer follows",
+            last
+        )),
         "{error}"
     );
 }
 
-/// A corridor of `legs` rows of `per_leg` sectors, joined at alternate ends so that it winds
-/// back and forth (a serpentine): long in sectors, but every straight view turns back.
+/// A corridor that winds back and forth (a serpentine) down the left half of a grid map in
+/// `legs` rows of `per_leg` cells, crosses at the bottom, and winds back up the right half:
+/// long in sectors, but every straight view turns back. Cells of 32, so it fits the world's
+/// limits with more sectors than the walk follows in a row.
 fn serpentine_map(legs: usize, per_leg: usize) -> String {
-    // Cells of 32 x 32 on a grid map: rows of open cells separated by solid rows, with a gap at
-    // alternate ends.
-    let width = per_leg + 2;
+    let width = 2 * per_leg + 3;
+    let rows = 2 * legs + 1;
+    let mut grid = vec![vec![b'#'; width]; rows];
+    let (left, right) = (1, per_leg + 2);
+    for leg in 0..legs {
+        let row = 2 * leg + 1;
+        for column in 0..per_leg {
+            grid[row][left + column] = b'.';
+            grid[row][right + column] = b'.';
+        }
+        if leg + 1 < legs {
+            // Down the left half: the gaps alternate ends, starting at the right.
+            let down = if leg % 2 == 0 {
+                left + per_leg - 1
+            } else {
+                left
+            };
+            grid[row + 1][down] = b'.';
+            // Up the right half from its bottom leg, entered at its left end.
+            let from_bottom = legs - 2 - leg;
+            let up = if from_bottom % 2 == 0 {
+                right + per_leg - 1
+            } else {
+                right
+            };
+            grid[row + 1][up] = b'.';
+        }
+    }
+    // The crossing between the halves' bottom legs.
+    grid[2 * legs - 1][per_leg + 1] = b'.';
+    grid[1][left] = b'@';
     let mut text = String::from(
         "cell 32\nsolid # tex=stone\nopen . floor=0 ceil=64 floor_tex=stone ceil_tex=stone\nplayer @ on=.\ngrid\n",
     );
-    text += &"#".repeat(width);
-    text.push('\n');
-    for leg in 0..legs {
-        let mut row = String::from("#");
-        for column in 0..per_leg {
-            row.push(if leg == 0 && column == 0 { '@' } else { '.' });
-        }
-        row.push('#');
-        text += &row;
+    for row in grid {
+        text += &String::from_utf8(row).expect("ASCII");
         text.push('\n');
-        if leg + 1 < legs {
-            let gap = if leg % 2 == 0 { per_leg } else { 1 };
-            let wall: String = (0..width)
-                .map(|c| if c == gap { '.' } else { '#' })
-                .collect();
-            text += &wall;
-            text.push('\n');
-        }
     }
-    text += &"#".repeat(width);
-    text + "\n"
+    text
 }
 
 #[test]
 fn a_winding_corridor_of_many_sectors_compiles() {
     // Grid maps merge a straight run into one sector, so this corridor's sectors are its legs
-    // and turns: 2 legs of 40 cells and the turn between are 3 sectors; a serpentine of 80
-    // legs is 159, more than PORTAL_DEPTH_MAX + 1, and no view passes more than a few portals.
+    // and turns: two serpentines of 80 legs are over 300 sectors, more than
+    // PORTAL_DEPTH_MAX + 1, and no view passes more than a few portals.
     let text = serpentine_map(80, 6);
     let map = compile_map_str("snake.grid", &text, &catalog()).unwrap_or_else(|e| panic!("{e}"));
     assert!(
