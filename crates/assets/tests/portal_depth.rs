@@ -94,7 +94,7 @@ fn serpentine_map(legs: usize, per_leg: usize) -> String {
             grid[row + 1][down] = b'.';
             // Up the right half from its bottom leg, entered at its left end.
             let from_bottom = legs - 2 - leg;
-            let up = if from_bottom % 2 == 0 {
+            let up = if from_bottom.is_multiple_of(2) {
                 right + per_leg - 1
             } else {
                 right
