@@ -7,16 +7,12 @@
 mod common;
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
-use std::sync::OnceLock;
 
 use portalcast::flight::eye_z;
 use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::view::{Camera, Settings};
 use portalcast::render::walk::Renderer;
-use portalcast_assets::doom::{compile_wad, WadRequest, FREEDOOM_DIR};
-use portalcast_assets::Compiled;
 use portalcast_oracle::compare_with_engine;
 
 use portalcast_xtask::freedoom::MAPS;
@@ -24,31 +20,9 @@ use portalcast_xtask::freedoom::MAPS;
 const POSES_PER_MAP: usize = 12;
 const SURFACE_MISMATCH_MAX_PERCENT: f64 = 0.5;
 
-/// Freedoom Phase 1's maps in [`MAPS`], compiled once per test process.
-fn freedoom() -> &'static Compiled {
-    static COMPILED: OnceLock<Compiled> = OnceLock::new();
-    COMPILED.get_or_init(|| {
-        let request = WadRequest {
-            wad: PathBuf::from(FREEDOOM_DIR).join("freedoom1.wad"),
-            iwad: None,
-            maps: Some(MAPS.iter().map(|name| name.to_string()).collect()),
-        };
-        compile_wad(&request).unwrap_or_else(|errors| {
-            panic!(
-                "{}",
-                errors
-                    .iter()
-                    .map(ToString::to_string)
-                    .collect::<Vec<_>>()
-                    .join("\n")
-            )
-        })
-    })
-}
-
 #[test]
 fn freedoom_maps_match_the_oracle_from_their_starts_and_sampled_poses() {
-    let compiled = freedoom();
+    let compiled = common::freedoom_assets();
     let host = common::HostAssets::of(compiled);
     let assets = host.render();
     let mut renderer = Renderer::new();

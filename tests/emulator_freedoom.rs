@@ -22,8 +22,6 @@ use common::{field, number, read_page};
 use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
 use portalcast::render::view::Settings;
 use portalcast::render::walk::Renderer;
-use portalcast_assets::doom::{compile_wad, WadRequest};
-use portalcast_assets::Compiled;
 use portalcast_harness::Keys;
 use portalcast_oracle::compare_with_engine;
 use portalcast_xtask::bench_log::{self, Run};
@@ -39,19 +37,6 @@ type HostWorld = portalcast::world::World<4096, 64, 256>;
 fn freedoom_rom() -> &'static Path {
     static ROM: OnceLock<PathBuf> = OnceLock::new();
     ROM.get_or_init(|| freedoom::build_freedoom_rom().unwrap_or_else(|error| panic!("{error}")))
-}
-
-/// The ROM's maps compiled on the host by the same compiler from the same WAD.
-fn freedoom_assets() -> &'static Compiled {
-    static COMPILED: OnceLock<Compiled> = OnceLock::new();
-    COMPILED.get_or_init(|| {
-        let request = WadRequest {
-            wad: freedoom::freedoom1_wad().unwrap_or_else(|error| panic!("{error}")),
-            iwad: None,
-            maps: Some(freedoom::MAPS.iter().map(|map| map.to_string()).collect()),
-        };
-        compile_wad(&request).unwrap_or_else(|errors| panic!("{errors:?}"))
-    })
 }
 
 /// The settings a `render …` line names (its map is looked up by the caller).
@@ -74,7 +59,7 @@ fn settings_of(render_line: &str) -> Settings {
 /// every frame with the host's and the host's with the oracle.
 #[test]
 fn a_walk_into_e1m1_matches_the_host_and_the_oracle() {
-    let compiled = freedoom_assets();
+    let compiled = common::freedoom_assets();
     let host = common::HostAssets::of(compiled);
     let assets = host.render();
     let mut renderer = Renderer::new();

@@ -135,6 +135,24 @@ pub fn shipped_assets() -> &'static portalcast_assets::Compiled {
     })
 }
 
+/// Freedoom Phase 1's maps the tests build (`portalcast_xtask::freedoom::MAPS`), compiled once
+/// per test process by the compiler build.rs runs on a WAD: the tables the Freedoom ROM holds.
+pub fn freedoom_assets() -> &'static portalcast_assets::Compiled {
+    static COMPILED: std::sync::OnceLock<portalcast_assets::Compiled> = std::sync::OnceLock::new();
+    COMPILED.get_or_init(|| {
+        use portalcast_xtask::freedoom;
+        let request = portalcast_assets::doom::WadRequest {
+            wad: freedoom::freedoom1_wad().unwrap_or_else(|error| panic!("{error}")),
+            iwad: None,
+            maps: Some(freedoom::MAPS.iter().map(|map| map.to_string()).collect()),
+        };
+        portalcast_assets::doom::compile_wad(&request).unwrap_or_else(|errors| {
+            let lines: Vec<String> = errors.iter().map(ToString::to_string).collect();
+            panic!("{}", lines.join("\n"))
+        })
+    })
+}
+
 /// Emulated frames the bench scene may take at most (it takes far fewer).
 pub const BENCH_SCENE_MAX_FRAMES: u32 = 60_000;
 /// Frames run between looks at the log while the bench scene runs.

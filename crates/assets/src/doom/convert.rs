@@ -13,7 +13,7 @@
 //! step where it lies on a line). Things, remote doors and lifts are still to come
 //! ([`import_report`] lists them).
 
-use super::level::DoomLevel;
+use super::level::{DoomLevel, DoomSector};
 use super::partition::{Piece, PieceWall};
 use crate::diag::Loc;
 use crate::geometry::{cross, Point};
@@ -88,20 +88,7 @@ fn manual_door(level: &DoomLevel, sector: u16) -> Option<(i16, DoorTiming)> {
             .find(|(special, _)| faces_door && *special == line.special)
             .map(|&(_, timing)| timing)
     })?;
-    let lowest = level
-        .linedefs
-        .iter()
-        .filter(|line| line.two_sided())
-        .filter_map(|line| {
-            let (right, left) = (sector_of(line.sides[0]), sector_of(line.sides[1]));
-            match (right == sector, left == sector) {
-                (true, false) => Some(left),
-                (false, true) => Some(right),
-                _ => None,
-            }
-        })
-        .map(|other| level.sectors[usize::from(other)].ceiling)
-        .min()?;
+    let lowest = neighbours(level, sector).map(|other| other.ceiling).min()?;
     let open = lowest.checked_sub(4)?;
     (open > own.floor).then_some((open, timing))
 }
@@ -125,12 +112,20 @@ const GLOW_SPEED: u32 = 8;
 /// The least light of the sectors round Doom's sector `sector`, if below `most`
 /// (`P_FindMinSurroundingLight`: `most` itself if none is darker).
 fn min_surrounding_light(level: &DoomLevel, sector: u16, most: i16) -> i16 {
+    neighbours(level, sector)
+        .map(|other| other.light)
+        .fold(most, i16::min)
+}
+
+/// The sectors across the two-sided lines of Doom's sector `sector` (one a line, so a sector
+/// may come more than once).
+fn neighbours(level: &DoomLevel, sector: u16) -> impl Iterator<Item = &DoomSector> {
     let sector_of = |side: u16| level.sidedefs[usize::from(side)].sector;
     level
         .linedefs
         .iter()
         .filter(|line| line.two_sided())
-        .filter_map(|line| {
+        .filter_map(move |line| {
             let (right, left) = (sector_of(line.sides[0]), sector_of(line.sides[1]));
             match (right == sector, left == sector) {
                 (true, false) => Some(left),
@@ -138,8 +133,7 @@ fn min_surrounding_light(level: &DoomLevel, sector: u16, most: i16) -> i16 {
                 _ => None,
             }
         })
-        .map(|other| level.sectors[usize::from(other)].light)
-        .fold(most, i16::min)
+        .map(|other| &level.sectors[usize::from(other)])
 }
 
 /// Doom's light special of sector `sector` (`P_SpawnSpecials`) as a portalcast light effect:
