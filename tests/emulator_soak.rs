@@ -38,7 +38,6 @@ use common::player::check_tick;
 use common::{boot, field, number, FRAME_LINES_HOLD, FRAME_LINES_KEY};
 use portalcast::game::Game;
 use portalcast::menu::{Entry, ENTRIES};
-use portalcast::player::collide::HEADROOM;
 use portalcast::player::input::Buttons;
 use portalcast::render::walk::ColumnWindows;
 use portalcast::stack::{IWRAM_START, STACK_PAINT, STACK_TOP};
@@ -484,7 +483,8 @@ impl Plan {
                 // Never crushed: a ceiling that came down keeps the headroom over the eye.
                 let ceiling = game.map().sectors[usize::from(game.player.sector)].ceil_z;
                 assert!(
-                    game.player.eye_z().to_bits() + HEADROOM * 256 <= ceiling * 256,
+                    game.player.eye_z().to_bits() + game.player.size.headroom() * 256
+                        <= ceiling * 256,
                     "tick {} on {map_before}: the eye {} under the ceiling {ceiling}",
                     game.ticks(),
                     game.player.eye_z().to_bits()

@@ -9,7 +9,6 @@
 mod common;
 
 use common::player::*;
-use portalcast::player::collide::HEADROOM;
 use portalcast::player::input::Intent;
 use portalcast::player::Player;
 use portalcast::world::{level, Phase, World};
@@ -131,7 +130,7 @@ fn play(world: &mut TestWorld, map: &MapTables, player: &mut Player, intent: Int
         }
         let sector = &live.sectors[usize::from(player.sector)];
         assert!(
-            player.eye_z().to_bits() + HEADROOM * 256 <= sector.ceil_z * 256,
+            player.eye_z().to_bits() + player.size.headroom() * 256 <= sector.ceil_z * 256,
             "tick {tick}: the eye {} is within the headroom of the ceiling {}",
             player.eye_z().to_bits(),
             sector.ceil_z

@@ -13,7 +13,7 @@ use portalcast::player::input::Intent;
 use portalcast::player::vertical::{CROUCH_EYE, JUMP_RISE, JUMP_TICKS, STAND_EYE};
 use portalcast::player::Player;
 use portalcast::render::demo;
-use portalcast_format::MapTables;
+use portalcast_format::{MapTables, PlayerSize};
 
 fn bench() -> MapTables<'static> {
     demo::map_named("bench").expect("the bench map is shipped")
@@ -521,4 +521,82 @@ fn a_disc_pushed_out_of_a_portal_it_no_longer_fits_is_not_pushed_into_a_wall() {
         solid_overlap(&map, player.position) <= 1.0 / 32.0,
         "{player:?}"
     );
+}
+
+/// A room, a ledge 24 up under a ceiling 56 above it (Doom's body just fits), and beyond it a
+/// nook one unit lower. `{size}` is the player line's body keys.
+const LEDGE_AND_NOOK: &str = "
+vertex a 0 0
+vertex b 256 0
+vertex c 256 256
+vertex d 0 256
+vertex e 384 0
+vertex f 384 256
+vertex g 512 0
+vertex h 512 256
+sector room floor=0 ceil=128 floor_tex=tiles ceil_tex=ceiling
+  wall a b tex=brick
+  wall b c portal=ledge lower=brick upper=brick
+  wall c d tex=brick
+  wall d a tex=brick
+sector ledge floor=24 ceil=80 floor_tex=tiles ceil_tex=ceiling
+  wall b e tex=brick
+  wall e f portal=nook upper=brick
+  wall f c tex=brick
+  wall c b portal=room
+sector nook floor=24 ceil=79 floor_tex=tiles ceil_tex=ceiling
+  wall e g tex=brick
+  wall g h tex=brick
+  wall h f tex=brick
+  wall f e portal=ledge upper=brick
+player 128.5 128.5 {size}
+";
+
+fn ledge_and_nook(size: &str) -> portalcast_assets::CompiledMap {
+    compile_map("ledge.map", &LEDGE_AND_NOOK.replace("{size}", size))
+}
+
+#[test]
+fn the_maps_body_decides_the_step_and_the_headroom() {
+    // The native body (eye 32, height 48, step 16) stops at the ledge's 24 step.
+    let native = ledge_and_nook("");
+    let map = native.tables();
+    assert_eq!(map.player_start.size, PlayerSize::NATIVE);
+    let mut player = Player::spawn(&map);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(STAND_EYE));
+    run(&mut player, &map, walk(1, 0, 0), 120);
+    assert_eq!(player.sector, 0);
+    assert_eq!(player.position.x.to_bits(), (256 - RADIUS) * 256);
+
+    // Doom's body (eye 41, height 56, step 24) climbs it, stands at full height under the
+    // ceiling 56 above the ledge, and stops at the nook, whose 55 leave its eye 14 of the 15
+    // it keeps.
+    let doom = ledge_and_nook("eye=41 height=56 step=24");
+    let map = doom.tables();
+    assert_eq!(map.player_start.size, PlayerSize::DOOM);
+    let mut player = Player::spawn(&map);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(41));
+    run(&mut player, &map, walk(1, 0, 0), 120);
+    assert_eq!(player.sector, 1);
+    assert_eq!(player.eye_z(), Fx24_8::from_int(24 + 41));
+    assert!(!player.crouched());
+    assert_eq!(player.position.x.to_bits(), (384 - RADIUS) * 256);
+
+    // Crouched, it fits under the nook's ceiling and goes in.
+    let crouch = Intent {
+        crouch: true,
+        ..walk(1, 0, 0)
+    };
+    run(&mut player, &map, crouch, 120);
+    assert_eq!(player.sector, 2);
+    assert!(player.crouched());
+
+    // The body's height counts, not only its eye: eye 32 in a body of 57 may climb the step
+    // but does not fit the ledge's 56, standing (it enters only by walking, not crouched).
+    let tall = ledge_and_nook("height=57 step=24");
+    let map = tall.tables();
+    let mut player = Player::spawn(&map);
+    run(&mut player, &map, walk(1, 0, 0), 120);
+    assert_eq!(player.sector, 0);
+    assert_eq!(player.position.x.to_bits(), (256 - RADIUS) * 256);
 }

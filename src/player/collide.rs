@@ -71,7 +71,8 @@
 //! refuses the step.
 
 use portalcast_format::{
-    MapTables, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, THING_SOLID, WALL_MIDDLE_BLOCKS,
+    MapTables, PlayerSize, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, THING_SOLID,
+    WALL_MIDDLE_BLOCKS,
 };
 
 use crate::math::{segment_contact, Fx24_8, SegmentContact, WorldPoint};
@@ -80,10 +81,12 @@ use crate::render::ratio::leading_zeros;
 /// Radius of the body's disc, in world units: Doom's player radius, half the thesis' 64-unit
 /// square. Corridors of the shipped maps are at least 64 wide.
 pub const RADIUS: i32 = 16;
-/// The highest floor step the body climbs without jumping, above its feet.
-pub const STEP_UP_MAX: i32 = 16;
-/// Room the eye keeps below any ceiling (and, through the crouched eye height, above the floor).
-pub const HEADROOM: i32 = 16;
+/// The highest floor step the body climbs without jumping, above its feet, on native maps: a
+/// map's own is its [`PlayerSize::step_up`] (24 on Doom's).
+pub const STEP_UP_MAX: i32 = PlayerSize::NATIVE.step_up;
+/// Room the eye keeps below any ceiling on native maps: a map's own is its
+/// [`PlayerSize::headroom`] (15 on Doom's).
+pub const HEADROOM: i32 = PlayerSize::NATIVE.headroom();
 /// The longest step [`slide`] takes per axis, in 24.8 bits: half the radius, so a step never
 /// jumps over more than half the disc.
 pub const MAX_STEP_BITS: i32 = RADIUS * 256 / 2;
@@ -141,6 +144,8 @@ pub struct Body<'s> {
     pub feet: Fx24_8,
     /// Height of the eye above the feet.
     pub eye_height: Fx24_8,
+    /// The map's player body: its step and headroom decide the sectors it may enter.
+    pub size: PlayerSize,
     /// The map's sectors with their heights now ([`Body::admits_sector`]): the live table of a
     /// map with movers (`crate::world`), the cartridge's otherwise. Only their heights are read
     /// here; the walls come from the map's own table.
@@ -205,15 +210,15 @@ impl Body<'_> {
         self.admits(&self.sectors[usize::from(index)])
     }
 
-    /// Whether the body may move into `sector`: its floor at most [`STEP_UP_MAX`] above the
-    /// feet, and its ceiling at least [`HEADROOM`] above the eye once the feet stand at least
-    /// on its floor.
+    /// Whether the body may move into `sector`: its floor at most the size's step above the
+    /// feet ([`STEP_UP_MAX`] on native maps), and its ceiling at least the size's headroom
+    /// ([`HEADROOM`]) above the eye once the feet stand at least on its floor.
     pub fn admits(&self, sector: &Sector) -> bool {
         let floor = sector.floor_z * 256;
         let ceil = sector.ceil_z * 256;
         let feet = self.feet.to_bits();
-        floor <= feet + STEP_UP_MAX * 256
-            && ceil >= feet.max(floor) + self.eye_height.to_bits() + HEADROOM * 256
+        floor <= feet + self.size.step_up * 256
+            && ceil >= feet.max(floor) + self.eye_height.to_bits() + self.size.headroom() * 256
     }
 }
 
@@ -1358,7 +1363,7 @@ mod tests {
     }
 
     use portalcast_assets::wall_length_fx8;
-    use portalcast_format::PlayerStart;
+    use portalcast_format::{PlayerSize, PlayerStart};
 
     /// A square room from −30 to 30 units on each axis, clockwise (y down), each side split
     /// into `pieces` collinear solid walls.
@@ -1421,6 +1426,7 @@ mod tests {
                 y_fx8: 0,
                 angle: 0,
                 sector: 0,
+                size: PlayerSize::NATIVE,
             },
             things: &[],
             sector_things: &[],
@@ -1436,6 +1442,7 @@ mod tests {
         Body {
             feet: Fx24_8::ZERO,
             eye_height: Fx24_8::from_int(32),
+            size: PlayerSize::NATIVE,
             sectors,
         }
     }

@@ -31,7 +31,7 @@ pub mod collide;
 pub mod input;
 pub mod vertical;
 
-use portalcast_format::{MapTables, Sector};
+use portalcast_format::{MapTables, PlayerSize, Sector};
 
 use crate::math::{Angle, Fx24_8, WorldPoint};
 use crate::render::view::{Camera, MAX_LOOK_LINES};
@@ -75,6 +75,8 @@ pub struct Player {
     pub vertical_speed: Fx24_8,
     /// Height of the eye above the feet.
     pub eye_height: Fx24_8,
+    /// The body the map gives the player (its standing eye, height and step).
+    pub size: PlayerSize,
     /// Standing on the floor (not jumping, falling or flying).
     pub on_ground: bool,
     /// Fly mode: no gravity, A rises and B descends.
@@ -98,6 +100,7 @@ impl Player {
         feet_z: Fx24_8::ZERO,
         vertical_speed: Fx24_8::ZERO,
         eye_height: Fx24_8::from_int(STAND_EYE),
+        size: PlayerSize::NATIVE,
         on_ground: true,
         fly: false,
         look_lines: 0,
@@ -119,14 +122,18 @@ impl Player {
         )
     }
 
-    /// The player standing still at `position`, which must lie strictly inside `sector`.
+    /// The player standing still at `position`, which must lie strictly inside `sector`, with
+    /// the map's body.
     pub fn standing_at(map: &MapTables, sector: u16, position: WorldPoint, angle: Angle) -> Player {
         let floor = map.sectors[usize::from(sector)].floor_z;
+        let size = map.player_start.size;
         Player {
             position,
             sector,
             angle,
             feet_z: Fx24_8::from_int(floor),
+            eye_height: Fx24_8::from_int(size.eye_height),
+            size,
             ..Player::NOWHERE
         }
     }
@@ -138,7 +145,7 @@ impl Player {
 
     /// Whether the eye is below the standing height (crouched, or held down by a ceiling).
     pub fn crouched(&self) -> bool {
-        self.eye_height < Fx24_8::from_int(STAND_EYE)
+        self.eye_height < Fx24_8::from_int(self.size.eye_height)
     }
 
     /// The body's vertical extent, for the collision rules, among `sectors` (their heights now).
@@ -146,6 +153,7 @@ impl Player {
         Body {
             feet: self.feet_z,
             eye_height: self.eye_height,
+            size: self.size,
             sectors,
         }
     }

@@ -1,9 +1,11 @@
 //! Vertical motion: standing and crouching, the jump, falling and landing, flying.
 //!
 //! The body's vertical state is the height of its feet, a vertical speed and the eye's height
-//! above the feet. Standing, the eye is [`STAND_EYE`] above the floor; crouched,
+//! above the feet. The heights are the map's [`PlayerSize`] (Doom maps have Doom's: eye 41,
+//! height 56, steps of 24); the names below are native maps' values. Standing, the eye is
+//! [`STAND_EYE`] above the floor; crouched,
 //! [`CROUCH_EYE`]; the eye moves between the two at [`CROUCH_SPEED`] per tick, and never comes
-//! closer than [`HEADROOM`] to the ceiling: under a low ceiling a player who lets go of crouch
+//! closer than [`HEADROOM`](super::collide::HEADROOM) to the ceiling: under a low ceiling a player who lets go of crouch
 //! stays as low as the ceiling demands.
 //!
 //! # The jump: an exact discrete parabola
@@ -18,25 +20,25 @@
 //! gravity with the wrong sign, and its fall formula is a speed, not a height.)
 //!
 //! Falling uses the same gravity from a standing start (walking off a ledge), with the speed
-//! capped at [`FALL_SPEED_MAX`]. A step down of at most [`STEP_UP_MAX`] is not a fall: the feet
+//! capped at [`FALL_SPEED_MAX`]. A step down of at most [`STEP_UP_MAX`](super::collide::STEP_UP_MAX) is not a fall: the feet
 //! follow the floor, so walking down stairs does not bounce. Entering a higher floor (a step up,
 //! or a ledge reached at the top of a jump) puts the feet on it.
 //!
 //! # Flying
 //!
-//! Gravity is off; A rises and B descends at [`FLY_SPEED`]. The eye keeps [`HEADROOM`] below
+//! Gravity is off; A rises and B descends at [`FLY_SPEED`]. The eye keeps [`HEADROOM`](super::collide::HEADROOM) below
 //! the ceiling and the feet stay on or above the floor, so the eye is at least the eye height
 //! above the floor. Leaving fly mode in the air starts a fall.
 
-use portalcast_format::Sector;
+use portalcast_format::{PlayerSize, Sector};
 
-use super::collide::{HEADROOM, STEP_UP_MAX};
 use super::input::Intent;
 use super::Player;
 use crate::math::Fx24_8;
 
-/// Eye height above the feet standing, in world units.
-pub const STAND_EYE: i32 = 32;
+/// Eye height above the feet standing, in world units, on native maps: a map's own is its
+/// [`PlayerSize::eye_height`] (41 on Doom's).
+pub const STAND_EYE: i32 = PlayerSize::NATIVE.eye_height;
 /// Eye height above the feet crouched: also the least room the eye keeps above the floor.
 pub const CROUCH_EYE: i32 = 16;
 /// How much a jump lifts the feet at its apex: the standing eye goes from 32 to 48.
@@ -70,6 +72,9 @@ pub fn tick(player: &mut Player, intent: &Intent, sector: &Sector) {
     let floor = sector.floor_z * 256;
     let ceil = sector.ceil_z * 256;
     let mut feet = player.feet_z.to_bits();
+    let stand_eye = player.size.eye_height * 256;
+    let headroom = player.size.headroom() * 256;
+    let step_up = player.size.step_up * 256;
 
     // Most ticks: standing on this floor at full height, with room above, no crouch and no
     // jump. The code below then changes nothing but the jump latch (released) and the speed
@@ -79,8 +84,8 @@ pub fn tick(player: &mut Player, intent: &Intent, sector: &Sector) {
         && !intent.crouch
         && !intent.jump
         && feet == floor
-        && player.eye_height.to_bits() == STAND_EYE * 256
-        && feet + STAND_EYE * 256 + HEADROOM * 256 <= ceil
+        && player.eye_height.to_bits() == stand_eye
+        && feet + stand_eye + headroom <= ceil
     {
         player.jump_latched = false;
         player.vertical_speed = Fx24_8::ZERO;
@@ -98,14 +103,18 @@ pub fn tick(player: &mut Player, intent: &Intent, sector: &Sector) {
 
     // The eye height: toward standing or crouched, below the ceiling's limit.
     let wants_crouch = intent.crouch && !player.fly;
-    let target = if wants_crouch { CROUCH_EYE } else { STAND_EYE } * 256;
+    let target = if wants_crouch {
+        CROUCH_EYE * 256
+    } else {
+        stand_eye
+    };
     let mut eye = player.eye_height.to_bits();
     eye = if eye < target {
         (eye + CROUCH_SPEED).min(target)
     } else {
         (eye - CROUCH_SPEED).max(target)
     };
-    eye = eye.min(ceil - HEADROOM * 256 - feet).max(CROUCH_EYE * 256);
+    eye = eye.min(ceil - headroom - feet).max(CROUCH_EYE * 256);
 
     if player.fly {
         let rise = i32::from(intent.jump) - i32::from(intent.crouch);
@@ -114,7 +123,7 @@ pub fn tick(player: &mut Player, intent: &Intent, sector: &Sector) {
         player.on_ground = false;
     } else {
         if player.on_ground {
-            if feet - floor > STEP_UP_MAX * 256 {
+            if feet - floor > step_up {
                 // Walked off a ledge: fall from rest.
                 player.on_ground = false;
                 player.vertical_speed = Fx24_8::ZERO;
@@ -139,8 +148,8 @@ pub fn tick(player: &mut Player, intent: &Intent, sector: &Sector) {
     }
 
     // The eye keeps its room below the ceiling; the feet stay on or above the floor.
-    if feet + eye + HEADROOM * 256 > ceil {
-        feet = ceil - HEADROOM * 256 - eye;
+    if feet + eye + headroom > ceil {
+        feet = ceil - headroom - eye;
         player.vertical_speed = Fx24_8::from_bits(player.vertical_speed.to_bits().min(0));
     }
     if feet <= floor {

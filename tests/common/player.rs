@@ -131,8 +131,8 @@ pub fn solid_thing_depth(map: &MapTables, p: WorldPoint) -> i64 {
 /// - the centre strictly inside the tracked sector (exact);
 /// - the centre's path crossing or touching no solid wall, and crossing only portals into
 ///   sectors the body could enter (exact);
-/// - the eye at least 16 above the floor and, where the sector is tall enough, 16 below the
-///   ceiling;
+/// - the eye at least 16 above the floor and, where the sector is tall enough, the body's
+///   headroom below the ceiling;
 /// - the disc overlapping solid walls by no more than 1/16 unit, or no more than before;
 /// - the disc overlapping no solid thing (its centre at least the sum of the radii from the
 ///   thing's, exact), or, if it did before, no deeper ([`solid_thing_depth`]).
@@ -156,6 +156,7 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
         let body = Body {
             feet: before.feet_z,
             eye_height: before.eye_height,
+            size: before.size,
             sectors: map.sectors,
         };
         for wall in map.walls {
@@ -189,9 +190,12 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             after.sector
         ));
     }
-    if sector.ceil_z - sector.floor_z >= 2 * CROUCH_EYE && eye > (sector.ceil_z - 16) * 256 {
+    let headroom = after.size.headroom();
+    if sector.ceil_z - sector.floor_z >= CROUCH_EYE + headroom
+        && eye > (sector.ceil_z - headroom) * 256
+    {
         return Err(format!(
-            "eye {eye} less than 16 below the ceiling of {}",
+            "eye {eye} less than {headroom} below the ceiling of {}",
             after.sector
         ));
     }

@@ -299,11 +299,19 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
         let _ = writeln!(
             s,
             "    {FORMAT}::MapTables {{ name: {:?}, vertices: &MAP_{index}_VERTICES, walls: &MAP_{index}_WALLS, \
-             sectors: &MAP_{index}_SECTORS, player_start: {FORMAT}::PlayerStart {{ x_fx8: {}, y_fx8: {}, angle: {}, sector: {} }}, \
+             sectors: &MAP_{index}_SECTORS, player_start: {FORMAT}::PlayerStart {{ x_fx8: {}, y_fx8: {}, angle: {}, sector: {}, \
+             size: {FORMAT}::PlayerSize {{ eye_height: {}, height: {}, step_up: {} }} }}, \
              things: &MAP_{index}_THINGS, sector_things: &MAP_{index}_SECTOR_THINGS, \
              movers: &MAP_{index}_MOVERS, triggers: &MAP_{index}_TRIGGERS, lights: &MAP_{index}_LIGHTS, \
              wall_twins: &MAP_{index}_WALL_TWINS }},",
-            map.name, p.x_fx8, p.y_fx8, p.angle, p.sector
+            map.name,
+            p.x_fx8,
+            p.y_fx8,
+            p.angle,
+            p.sector,
+            p.size.eye_height,
+            p.size.height,
+            p.size.step_up
         );
     }
     let _ = writeln!(s, "];");

@@ -2034,6 +2034,7 @@ fn tables(
             y_fx8,
             angle,
             sector: player_sector,
+            size: source.player_size,
         },
     };
     (map, fits)

@@ -11,6 +11,7 @@
 use std::collections::{BTreeSet, HashMap};
 
 use portalcast_format::limits::WORLD_COORD_MAX;
+use portalcast_format::PlayerSize;
 
 use crate::diag::{Loc, Located};
 use crate::geometry::Point;
@@ -27,7 +28,7 @@ const GRID_SIDE_MAX: usize = 256;
 
 const OPEN_KEYS: &[&str] = &["floor", "ceil", "floor_tex", "ceil_tex", "light", "side"];
 const SOLID_KEYS: &[&str] = &["tex"];
-const PLAYER_KEYS: &[&str] = &["on", "angle"];
+const PLAYER_KEYS: &[&str] = &["on", "angle", "eye", "height", "step"];
 const THING_KEYS: &[&str] = &["on", "angle", "z", "radius", "anim"];
 const DOOR_KEYS: &[&str] = &["on", "tex", "speed", "wait"];
 /// The bare words a `door` legend line may carry.
@@ -119,6 +120,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
     let mut solids: Vec<(char, Spanned<String>)> = Vec::new();
     let mut opens: Vec<OpenKind> = Vec::new();
     let mut markers: Vec<Marker<'_>> = Vec::new();
+    let mut player_size = PlayerSize::NATIVE;
     let mut doors: Vec<DoorLine<'_>> = Vec::new();
     let mut grid_start: Option<usize> = None;
     let mut symbols: HashMap<char, Loc> = HashMap::new();
@@ -260,6 +262,11 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 let (options, accepted) = if directive.text == "thing" {
                     (lex::thing_options(&flags, &mut keys, &mut errors), THING_KEYS)
                 } else {
+                    if let Some(size) = crate::map_text::parse_player_size(&mut keys, &mut errors) {
+                        if !player_seen {
+                            player_size = size;
+                        }
+                    }
                     (Some(ThingOptions::default()), PLAYER_KEYS)
                 };
                 keys.report_unknown(directive.text, accepted, &mut errors);
@@ -496,6 +503,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             vertices,
             sectors,
             player,
+            player_size,
             things,
         }),
         Some(_) => Err(errors),

@@ -4,6 +4,8 @@
 use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 
+use portalcast_format::PlayerSize;
+
 use crate::diag::{Loc, Located};
 use crate::lex::{self, KeyValues, Token};
 use crate::source::{
@@ -35,7 +37,7 @@ const SECTOR_KEYS: &[&str] = &[
 const WALL_KEYS: &[&str] = &[
     "tex", "portal", "upper", "lower", "mid", "switch", "tag", "trigger", "xoff", "yoff",
 ];
-const PLACE_KEYS: &[&str] = &["angle"];
+const PLAYER_KEYS: &[&str] = &["angle", "eye", "height", "step"];
 const THING_KEYS: &[&str] = &["angle", "z", "radius", "anim"];
 
 /// A wall as written: vertex and sector names not yet resolved.
@@ -71,6 +73,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
     let mut sector_names: HashMap<String, usize> = HashMap::new();
     let mut player: Option<SourcePlace> = None;
     let mut player_seen = false;
+    let mut player_size = PlayerSize::NATIVE;
     let mut things = Vec::new();
 
     for (index, raw_line) in text.lines().enumerate() {
@@ -165,12 +168,16 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             "player" => {
                 let place = expect_words(directive, &positional, ["X", "Y"], &mut errors)
                     .and_then(|[x, y]| parse_place(directive, x, y, &mut keys, &mut errors));
-                keys.report_unknown("player", PLACE_KEYS, &mut errors);
+                let size = parse_player_size(&mut keys, &mut errors);
+                keys.report_unknown("player", PLAYER_KEYS, &mut errors);
                 if player_seen {
                     errors.push((
                         directive.loc,
                         "second player start; keep one player line".to_string(),
                     ));
+                }
+                if !player_seen {
+                    player_size = size.unwrap_or(PlayerSize::NATIVE);
                 }
                 player_seen = true;
                 player = player.or(place);
@@ -205,6 +212,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             vertices,
             sectors,
             player,
+            player_size,
             things,
         }),
         None if !player_seen => {
@@ -433,6 +441,59 @@ fn parse_place(
         x_fx8: Spanned::new(x_fx8?, x.loc),
         y_fx8: Spanned::new(y_fx8?, y.loc),
         angle: angle?,
+    })
+}
+
+/// The `player` line's body: `eye=` (standing eye height), `height=` (the body's; default the
+/// eye plus the native headroom) and `step=`, each defaulting to [`PlayerSize::NATIVE`].
+pub(crate) fn parse_player_size(
+    keys: &mut KeyValues<'_>,
+    errors: &mut Vec<Located>,
+) -> Option<PlayerSize> {
+    let native = PlayerSize::NATIVE;
+    let eye_token = keys.take("eye");
+    let eye = match eye_token {
+        Some(t) => record(
+            lex::integer_in(
+                t,
+                "eye height",
+                i64::from(PlayerSize::EYE_HEIGHT_MIN),
+                i64::from(PlayerSize::EYE_HEIGHT_MAX),
+            ),
+            errors,
+        ),
+        None => Some(i64::from(native.eye_height)),
+    };
+    let step = match keys.take("step") {
+        Some(t) => record(
+            lex::integer_in(t, "step", 0, i64::from(PlayerSize::STEP_UP_MAX)),
+            errors,
+        ),
+        None => Some(i64::from(native.step_up)),
+    };
+    let eye = i32::try_from(eye?).ok()?;
+    let height = match keys.take("height") {
+        Some(t) => record(
+            lex::integer_in(
+                t,
+                "body height",
+                i64::from(eye) + 1,
+                i64::from(eye) + i64::from(PlayerSize::EYE_HEIGHT_MAX),
+            )
+            .map_err(|(loc, message)| {
+                (
+                    loc,
+                    format!("{message} (the eye, at {eye}, keeps at least 1 below the ceiling)"),
+                )
+            }),
+            errors,
+        ),
+        None => Some(i64::from(eye + native.headroom())),
+    };
+    Some(PlayerSize {
+        eye_height: eye,
+        height: i32::try_from(height?).ok()?,
+        step_up: i32::try_from(step?).ok()?,
     })
 }
 

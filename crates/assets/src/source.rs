@@ -1,6 +1,8 @@
 //! The parsed form of a map, shared by the `.map` and `.grid` front ends: names are resolved to
 //! indices, values are not yet checked against the limits or the geometry rules.
 
+use portalcast_format::PlayerSize;
+
 use crate::diag::Loc;
 
 /// A value and where it was written.
@@ -21,6 +23,8 @@ pub(crate) struct SourceMap {
     pub vertices: Vec<SourceVertex>,
     pub sectors: Vec<SourceSector>,
     pub player: SourcePlace,
+    /// The player's body (`player … eye= height= step=`, [`PlayerSize::NATIVE`] by default).
+    pub player_size: PlayerSize,
     pub things: Vec<SourceThing>,
 }
 

@@ -122,6 +122,49 @@ pub struct PlayerStart {
     pub angle: u16,
     /// The sector that strictly contains the start position (never on a wall line).
     pub sector: u16,
+    /// The player's body on this map.
+    pub size: PlayerSize,
+}
+
+/// The player's body as a map's format has it: heights in world units. The radius is the
+/// engine's one 16 (Doom's too), which the collision code's bounds are proved for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub struct PlayerSize {
+    /// Eye height above the feet, standing.
+    pub eye_height: i32,
+    /// Body height: the eye keeps `height − eye_height` below any ceiling.
+    pub height: i32,
+    /// The highest floor step the player climbs without jumping (and steps down without
+    /// falling).
+    pub step_up: i32,
+}
+
+impl PlayerSize {
+    /// portalcast's own maps: eye 32, height 48, steps of 16 (the thesis' proportions).
+    pub const NATIVE: PlayerSize = PlayerSize {
+        eye_height: 32,
+        height: 48,
+        step_up: 16,
+    };
+    /// Doom's player: eye 41, height 56, steps of 24.
+    pub const DOOM: PlayerSize = PlayerSize {
+        eye_height: 41,
+        height: 56,
+        step_up: 24,
+    };
+    /// Lowest standing eye a map may give: the crouched eye's 16 (a player stands at least as
+    /// tall as it crouches).
+    pub const EYE_HEIGHT_MIN: i32 = 16;
+    /// Highest standing eye a map may give.
+    pub const EYE_HEIGHT_MAX: i32 = 128;
+    /// Highest step a map may give: four times the radius. Beyond it a step would be a wall.
+    pub const STEP_UP_MAX: i32 = 64;
+
+    /// Room the eye keeps below a ceiling.
+    pub const fn headroom(&self) -> i32 {
+        self.height - self.eye_height
+    }
 }
 
 /// A named object placed on the map, drawn as a sprite that faces the camera.

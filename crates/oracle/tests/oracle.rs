@@ -12,9 +12,9 @@ use std::collections::BTreeSet;
 use portalcast::render::light::light_row;
 use portalcast::render::surface::THING_DEPTH_MIN;
 use portalcast_format::{
-    BlendTable, Colormap, MapTables, PlayerStart, Sector, Sky, Sprite, SpriteSet, Texture, Thing,
-    Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING, THING_TRANSLUCENT, TRANSPARENT,
-    WALL_MIDDLE_TRANSLUCENT,
+    BlendTable, Colormap, MapTables, PlayerSize, PlayerStart, Sector, Sky, Sprite, SpriteSet,
+    Texture, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, SKY, THING_HANGING, THING_TRANSLUCENT,
+    TRANSPARENT, WALL_MIDDLE_TRANSLUCENT,
 };
 use portalcast_oracle::{
     angle_from_bits, angle_to_bits, compare, compare_with_row_tolerance, find_sector, render,
@@ -289,6 +289,7 @@ impl OwnedMap {
                 y_fx8: 0,
                 angle: 0,
                 sector: 0,
+                size: PlayerSize::NATIVE,
             },
             things: &self.things,
             sector_things: &self.sector_things,

@@ -44,3 +44,18 @@ pub fn build_freedoom_rom() -> TaskResult<PathBuf> {
     crate::build_rom_with_maps(&wad, Some(&MAPS.join(",")), &target, &gba)?;
     Ok(gba)
 }
+
+/// The small map drawn in Eureka (`assets/eureka/`, issue 19): a PWAD whose textures come from
+/// Freedoom's Phase 2 IWAD, found by its map name as `PORTALCAST_IWAD`'s default does.
+pub const EUREKA_WAD: &str = "assets/eureka/eureka-demo.wad";
+
+/// Builds the ROM of the Eureka map (`target/rom-eureka/eureka-demo.gba`) and returns it.
+pub fn build_eureka_rom() -> TaskResult<PathBuf> {
+    let wad = crate::workspace_root().join(EUREKA_WAD);
+    let target = crate::workspace_root().join("target").join("rom-eureka");
+    let gba = target.join("eureka-demo.gba");
+    std::fs::create_dir_all(&target)
+        .map_err(|error| TaskError(format!("{}: {error}", target.display())))?;
+    crate::build_rom_with_maps(&wad, None, &target, &gba)?;
+    Ok(gba)
+}

@@ -23,7 +23,7 @@ use crate::source::{
     SourceVertex, SourceWall, Spanned,
 };
 use portalcast_format::limits::{LIGHTS_MAX, WORLD_COORD_MAX};
-use portalcast_format::{LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE};
+use portalcast_format::{PlayerSize, LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE};
 
 /// Doom's game ticks a second; portalcast's are 60.
 const DOOM_TICKS_PER_SECOND: u32 = 35;
@@ -393,6 +393,7 @@ pub(crate) fn source(
             vertices,
             sectors,
             player,
+            player_size: PlayerSize::DOOM,
             things: Vec::new(),
         },
         names,
@@ -570,10 +571,14 @@ pub fn import_report(level: &DoomLevel, pieces: &[Piece]) -> Vec<String> {
             lit - LIGHTS_MAX as usize
         ));
     }
-    if !level.things.is_empty() {
+    let others = level
+        .things
+        .iter()
+        .filter(|thing| thing.kind != PLAYER_1_START)
+        .count();
+    if others > 0 {
         report.push(format!(
-            "{} things are not imported yet (only player 1's start is used)",
-            level.things.len()
+            "{others} things are not imported yet (only player 1's start is used)"
         ));
     }
     report
