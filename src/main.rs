@@ -179,12 +179,33 @@ mod rom {
                 log_player_line(frame, sampler.next_index(), lost, game, game_cycles, &ticks);
                 if game.world.is_live() {
                     let map = game.map();
-                    log::info(format_args!(
-                        "world frame={frame} heights={} thrown={} lights={}",
-                        Joined(game.world.movers().iter().map(|mover| mover.height)),
-                        Joined(game.world.triggers().iter().map(|trigger| trigger.thrown)),
-                        Joined(game.world.lights(&map))
-                    ));
+                    let (movers, triggers) = (game.world.movers(), game.world.triggers());
+                    // In parts of a few items of each list: a map with many movers would
+                    // overflow mGBA's 256-byte log line.
+                    let longest = movers.len().max(triggers.len()).max(map.lights.len());
+                    let parts = longest.div_ceil(WORLD_LINE_ITEMS).max(1);
+                    for part in 0..parts {
+                        let skip = part * WORLD_LINE_ITEMS;
+                        log::info(format_args!(
+                            "world frame={frame} part={}/{parts} heights={} thrown={} lights={}",
+                            part + 1,
+                            Joined(
+                                movers
+                                    .iter()
+                                    .skip(skip)
+                                    .take(WORLD_LINE_ITEMS)
+                                    .map(|mover| mover.height)
+                            ),
+                            Joined(
+                                triggers
+                                    .iter()
+                                    .skip(skip)
+                                    .take(WORLD_LINE_ITEMS)
+                                    .map(|trigger| trigger.thrown)
+                            ),
+                            Joined(game.world.lights(&map).skip(skip).take(WORLD_LINE_ITEMS))
+                        ));
+                    }
                 }
                 rate.frame_lines_cycles += meter::cycles_since(started);
             }
@@ -291,6 +312,10 @@ mod rom {
             Ok(())
         }
     }
+
+    /// Items of each list a `world` log line holds: 12 heights (up to 6 characters each), 12
+    /// switches and 12 light levels keep a line within mGBA's 256 bytes.
+    const WORLD_LINE_ITEMS: usize = 12;
 
     /// VBlanks a [`RateWindow`] spans at least: one second of the GBA's 59.73 Hz display.
     const RATE_VBLANKS: u32 = 60;

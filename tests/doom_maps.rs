@@ -90,3 +90,80 @@ fn freedoom_maps_match_the_oracle_from_their_starts_and_sampled_poses() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Room in the host's live world for any imported map (the ROM's is sized by its own maps).
+type HostWorld = portalcast::world::World<4096, 64, 256>;
+
+/// Doom's remote doors and lifts (issue 19): each walk-over line crossed starts every mover of
+/// its tag (a door opens, a lift goes down), each switch's tag names movers and a switch
+/// whose texture has an `SW1`/`SW2` twin shows the twin once used; movers that no line here
+/// starts are left to the use button.
+#[test]
+fn freedoom_s_remote_doors_and_lifts_start_from_their_lines_and_switches() {
+    use portalcast_format::{MOVER_DOOR, MOVER_LIFT, MOVER_ON_USE, TRIGGER_LINE, TRIGGER_SWITCH};
+    let compiled = common::freedoom_assets();
+    let (mut lines_crossed, mut switches_swapping) = (0, 0);
+    for name in MAPS {
+        let map = compiled.map(name).expect("the map was built");
+        let count = |kind: u8, by_use: bool| {
+            map.movers
+                .iter()
+                .filter(|m| m.kind == kind && (m.flags & MOVER_ON_USE != 0) == by_use)
+                .count()
+        };
+        let triggers = |kind: u8| map.triggers.iter().filter(|t| t.kind == kind).count();
+        println!(
+            "{name}: doors {} by use, {} by lines; lifts {} by use, {} by lines; {} switches, {} walk-over lines",
+            count(MOVER_DOOR, true),
+            count(MOVER_DOOR, false),
+            count(MOVER_LIFT, true),
+            count(MOVER_LIFT, false),
+            triggers(TRIGGER_SWITCH),
+            triggers(TRIGGER_LINE)
+        );
+        for trigger in map.triggers {
+            let tagged: Vec<usize> = (0..map.movers.len())
+                .filter(|&index| map.movers[index].tag == trigger.tag)
+                .collect();
+            assert!(!tagged.is_empty(), "{name}: {trigger:?} starts nothing");
+            for &index in &tagged {
+                assert_eq!(
+                    map.movers[index].flags & MOVER_ON_USE,
+                    0,
+                    "{name}: a mover some line starts is locked"
+                );
+            }
+            let wall = &map.walls[usize::from(trigger.wall)];
+            if trigger.kind == TRIGGER_SWITCH {
+                assert!(wall.neighbour().is_none(), "{name}: a switch on a portal");
+                switches_swapping += usize::from(trigger.used_texture != wall.texture);
+                continue;
+            }
+            let sector = map
+                .sectors
+                .iter()
+                .position(|s| {
+                    (usize::from(s.first_wall)..usize::from(s.first_wall + s.wall_count))
+                        .contains(&usize::from(trigger.wall))
+                })
+                .expect("the line's sector") as u16;
+            let mut world = Box::new(HostWorld::start(&map));
+            let player = portalcast::player::Player::spawn(&map);
+            world.crossed(&map, sector, wall.portal);
+            for _ in 0..20 {
+                world.tick(&map, &player);
+            }
+            for &index in &tagged {
+                let mover = &map.movers[index];
+                assert_ne!(
+                    world.movers()[index].height,
+                    mover.start,
+                    "{name}: crossing {trigger:?} left mover {index} ({mover:?}) at rest"
+                );
+            }
+            lines_crossed += 1;
+        }
+    }
+    println!("{lines_crossed} walk-over lines crossed, {switches_swapping} switches swap texture");
+    assert!(lines_crossed > 0 && switches_swapping > 0);
+}

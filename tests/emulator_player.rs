@@ -12,7 +12,7 @@
 
 mod common;
 
-use common::demos::{replay, PlayerLine, WorldLine};
+use common::demos::{replay, PlayerLine, WorldLine, WorldLines};
 use common::player::sector_index;
 use common::rom_frames::{boot_until_playing, host_frame_matching, play_frames};
 use common::*;
@@ -410,12 +410,15 @@ fn door_height_ok(run: &RomRun, tick: u32) -> bool {
 fn checked_mover_heights(run: &RomRun) -> Vec<(u32, Vec<i32>)> {
     let mut heights = Vec::new();
     let mut tick = None;
+    let mut parts = WorldLines::default();
     for line in &run.log {
         if line.starts_with("player ") {
             tick = Some(PlayerLine::parse(line).tick);
         } else if line.starts_with("world ") {
             let tick = tick.expect("a player line before the world line");
-            let logged = WorldLine::parse(line);
+            let Some(logged) = parts.push(line) else {
+                continue;
+            };
             let host = WorldLine::of(&run.host[tick as usize]);
             assert_eq!(logged, host, "the world after tick {tick}: {line}");
             let logged = logged.heights;

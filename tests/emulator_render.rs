@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::demos::{render_line_settings, PlayerLine, WorldLine};
+use common::demos::{render_line_settings, PlayerLine, WorldLine, WorldLines};
 use common::*;
 use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
 use portalcast::menu::{self, MenuColours, Shown};
@@ -49,6 +49,8 @@ struct Checker {
     /// The live world of the frame the `player` line describes (its `world …` line), on a map
     /// with movers or light effects.
     world: Option<WorldLine>,
+    /// The parts of the frame's `world` lines so far.
+    world_lines: WorldLines,
     compared: Vec<Compared>,
     screenshots: BTreeSet<String>,
 }
@@ -71,7 +73,9 @@ impl Checker {
                 self.player = Some(PlayerLine::parse(&line.text));
                 self.world = None;
             } else if line.text.starts_with("world ") {
-                self.world = Some(WorldLine::parse(&line.text));
+                if let Some(whole) = self.world_lines.push(&line.text) {
+                    self.world = Some(whole);
+                }
             } else if line.text.starts_with("render ") {
                 self.compare(&line.text);
                 drawn = true;
@@ -230,6 +234,7 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         colours: MenuColours::from_palette(&portalcast::assets::PALETTE),
         player: None,
         world: None,
+        world_lines: WorldLines::default(),
         compared: Vec::new(),
         screenshots: BTreeSet::new(),
     };

@@ -175,8 +175,8 @@ pub fn render_line_settings(
     (map, settings)
 }
 
-/// The ROM's `world …` line, printed after a frame's `player` line on a map with movers or
-/// light effects: the live state the frame was drawn with.
+/// The ROM's `world …` lines of one frame, printed after its `player` line on a map with movers
+/// or light effects, gathered ([`WorldLines`]): the live state the frame was drawn with.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct WorldLine {
     /// Each mover's height, in the order of `MapTables::movers`.
@@ -187,8 +187,38 @@ pub struct WorldLine {
     pub lights: Vec<u8>,
 }
 
+/// Gathers a frame's `world … part=P/N` lines into its [`WorldLine`].
+#[derive(Clone, Debug, Default)]
+pub struct WorldLines {
+    gathered: WorldLine,
+    next_part: u32,
+}
+
+impl WorldLines {
+    /// Takes the next `world …` line (without or with its `world ` prefix): the frame's whole
+    /// world once its last part is in. Panics on a part out of order.
+    pub fn push(&mut self, text: &str) -> Option<WorldLine> {
+        let (part, parts) = WorldLine::part(text);
+        if part == 1 {
+            *self = WorldLines::default();
+        }
+        assert_eq!(
+            part,
+            self.next_part.max(1),
+            "world line parts out of order: {text:?}"
+        );
+        let piece = WorldLine::parse(text);
+        self.gathered.heights.extend(piece.heights);
+        self.gathered.thrown.extend(piece.thrown);
+        self.gathered.lights.extend(piece.lights);
+        self.next_part = part + 1;
+        (part == parts).then(|| std::mem::take(&mut self.gathered))
+    }
+}
+
 impl WorldLine {
-    /// Parses a `world …` line.
+    /// Parses a `world …` line: one part of the world (`part=P/N`; the whole of it without
+    /// `part=`).
     pub fn parse(text: &str) -> WorldLine {
         fn list<T>(text: &str, key: &str, item: impl Fn(&str) -> T) -> Vec<T> {
             field(text, key)
@@ -205,6 +235,15 @@ impl WorldLine {
         }
     }
 
+    /// A line's `part=P/N` (1/1 without it).
+    fn part(text: &str) -> (u32, u32) {
+        field(text, "part").map_or((1, 1), |part| {
+            let (p, n) = part
+                .split_once('/')
+                .unwrap_or_else(|| panic!("part=P/N in {text:?}"));
+            (p.parse().expect("a part"), n.parse().expect("a count"))
+        })
+    }
     /// The line the ROM prints after drawing `game`'s frame: its world, the light effects at
     /// the levels the frame shows them with (`Game::show`).
     pub fn of(game: &Game) -> WorldLine {

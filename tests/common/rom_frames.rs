@@ -1,7 +1,7 @@
 //! The ROM's frames against the host's: play keys a frame at a time, and render each frame the
 //! ROM drew from its logged pose and live world on the host, requiring identical VRAM pages.
 
-use super::demos::{render_line_settings, PlayerLine, WorldLine};
+use super::demos::{render_line_settings, PlayerLine, WorldLine, WorldLines};
 use super::*;
 use portalcast::frame::PAGE_ROW_HALFWORDS;
 use portalcast::render::view::View;
@@ -85,6 +85,7 @@ pub fn play_frames(
 ) {
     let mut player = None;
     let mut world = None;
+    let mut world_lines = WorldLines::default();
     for &held in keys {
         emulator.set_keys(held);
         emulator
@@ -101,7 +102,9 @@ pub fn play_frames(
                 player = Some(PlayerLine::parse(&line.text));
                 world = None;
             } else if line.text.starts_with("world ") {
-                world = Some(WorldLine::parse(&line.text));
+                if let Some(whole) = world_lines.push(&line.text) {
+                    world = Some(whole);
+                }
             } else if line.text.starts_with("render ") {
                 // The first frame's player line may have gone with the boot's log.
                 match &player {

@@ -3,17 +3,18 @@
 //! map must (docs/MAP_FORMAT.md), and its list of what does not yet.
 //!
 //! The mapping: each [`Piece`] a sector with its Doom sector's heights, flats (by
-//! [`flat_name`]) and light ([`light_level`]), `F_SKY1` ceilings the sky; a manual door (a
-//! closed sector of one piece behind a line with Doom's door specials 1, 26–28, 31–34, 117 or
-//! 118) a door mover opening as Doom's does; a one-sided side a wall with its middle texture; a
-//! two-sided side a portal with its upper and lower textures; an opening of the partition a
-//! portal without any. Doom's y runs up the map and portalcast's down the screen's top view: y
+//! [`flat_name`]) and light ([`light_level`]), `F_SKY1` ceilings the sky; Doom's doors and lifts
+//! movers, and the lines that start them switches and walk-over lines (`super::movers`); a
+//! one-sided side a wall with its middle texture; a two-sided side a portal with its upper and
+//! lower textures; an opening of the partition a portal without any (with stand-in strips
+//! where a mover's pieces meet). Doom's y runs up the map and portalcast's down the screen's top view: y
 //! is negated, so the map is not mirrored; a map reaching past portalcast's world limits but
 //! fitting within them is recentred. The player stands at player 1's start (moved by a 1/256
-//! step where it lies on a line). Things, remote doors and lifts are still to come
-//! ([`import_report`] lists them).
+//! step where it lies on a line) with Doom's body. Things are still to come ([`import_report`]
+//! lists them).
 
-use super::level::{DoomLevel, DoomSector};
+use super::level::DoomLevel;
+use super::movers::{from_doom_ticks, thrown_switch_texture, LineTrigger, Motion, Movers};
 use super::partition::{Piece, PieceWall};
 use crate::diag::Loc;
 use crate::geometry::{cross, Point};
@@ -24,79 +25,6 @@ use crate::source::{
 };
 use portalcast_format::limits::{LIGHTS_MAX, WORLD_COORD_MAX};
 use portalcast_format::{PlayerSize, LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE};
-
-/// Doom's game ticks a second; portalcast's are 60.
-const DOOM_TICKS_PER_SECOND: u32 = 35;
-
-/// How a Doom door moves, in portalcast's units.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct DoorTiming {
-    /// World units a portalcast tick.
-    speed: u16,
-    /// portalcast ticks it stays open.
-    wait: u16,
-}
-
-/// Doom's door speed, 2 units a Doom tick (70 a second): 1 a portalcast tick (60 a second).
-const DOOR_SPEED: u16 = 1;
-/// Doom's blazing doors, 8 units a Doom tick (280 a second): 5 a portalcast tick.
-const BLAZING_DOOR_SPEED: u16 = 5;
-/// Doom's doors stay open 150 Doom ticks: 257 of portalcast's.
-const DOOR_WAIT: u16 = (150 * 60 / DOOM_TICKS_PER_SECOND) as u16;
-/// A door that opens for good waits as long as a portalcast door can.
-const STAYS_OPEN: u16 = u16::MAX;
-
-/// Doom's manual doors (opened by using the door's own line, from the side facing away from
-/// it): specials 1, 26, 27 and 28 open, wait and close (the last three need a key portalcast
-/// does not have: they open as plain doors); 31 to 34 open and stay; 117 and 118 are the fast
-/// ("blazing") ones of each.
-const MANUAL_DOORS: [(u16, DoorTiming); 10] = {
-    const fn timing(speed: u16, wait: u16) -> DoorTiming {
-        DoorTiming { speed, wait }
-    }
-    let (closes, stays) = (
-        timing(DOOR_SPEED, DOOR_WAIT),
-        timing(DOOR_SPEED, STAYS_OPEN),
-    );
-    [
-        (1, closes),
-        (26, closes),
-        (27, closes),
-        (28, closes),
-        (31, stays),
-        (32, stays),
-        (33, stays),
-        (34, stays),
-        (117, timing(BLAZING_DOOR_SPEED, DOOR_WAIT)),
-        (118, timing(BLAZING_DOOR_SPEED, STAYS_OPEN)),
-    ]
-};
-
-/// The door Doom's sector `sector` is, if it is a manual one: closed, behind a two-sided line
-/// with a manual door special, opening (as Doom's `EV_VerticalDoor`) to 4 below the lowest
-/// ceiling round it. Its open ceiling and its timing.
-fn manual_door(level: &DoomLevel, sector: u16) -> Option<(i16, DoorTiming)> {
-    let own = &level.sectors[usize::from(sector)];
-    if own.floor < own.ceiling {
-        return None;
-    }
-    let sector_of = |side: u16| level.sidedefs[usize::from(side)].sector;
-    let timing = level.linedefs.iter().find_map(|line| {
-        let faces_door = line.two_sided() && sector_of(line.sides[1]) == sector;
-        MANUAL_DOORS
-            .iter()
-            .find(|(special, _)| faces_door && *special == line.special)
-            .map(|&(_, timing)| timing)
-    })?;
-    let lowest = neighbours(level, sector).map(|other| other.ceiling).min()?;
-    let open = lowest.checked_sub(4)?;
-    (open > own.floor).then_some((open, timing))
-}
-
-/// Doom's ticks as portalcast's (60 a second), rounded.
-const fn from_doom_ticks(ticks: u32) -> u16 {
-    ((ticks * 60 + DOOM_TICKS_PER_SECOND / 2) / DOOM_TICKS_PER_SECOND) as u16
-}
 
 /// Doom's strobes (`p_lights.c`): lit `STROBEBRIGHT` (5) Doom ticks of each cycle, dark
 /// `FASTDARK` (15) or `SLOWDARK` (35); portalcast's strobe is lit `STROBE_FLASH_TICKS` (5 of its
@@ -112,28 +40,10 @@ const GLOW_SPEED: u32 = 8;
 /// The least light of the sectors round Doom's sector `sector`, if below `most`
 /// (`P_FindMinSurroundingLight`: `most` itself if none is darker).
 fn min_surrounding_light(level: &DoomLevel, sector: u16, most: i16) -> i16 {
-    neighbours(level, sector)
+    level
+        .neighbours(sector)
         .map(|other| other.light)
         .fold(most, i16::min)
-}
-
-/// The sectors across the two-sided lines of Doom's sector `sector` (one a line, so a sector
-/// may come more than once).
-fn neighbours(level: &DoomLevel, sector: u16) -> impl Iterator<Item = &DoomSector> {
-    let sector_of = |side: u16| level.sidedefs[usize::from(side)].sector;
-    level
-        .linedefs
-        .iter()
-        .filter(|line| line.two_sided())
-        .filter_map(move |line| {
-            let (right, left) = (sector_of(line.sides[0]), sector_of(line.sides[1]));
-            match (right == sector, left == sector) {
-                (true, false) => Some(left),
-                (false, true) => Some(right),
-                _ => None,
-            }
-        })
-        .map(|other| &level.sectors[usize::from(other)])
 }
 
 /// Doom's light special of sector `sector` (`P_SpawnSpecials`) as a portalcast light effect:
@@ -239,16 +149,22 @@ pub(crate) fn light_level(doom_light: i16) -> u8 {
 
 /// `level`'s pieces as a map source, and the names of the textures it uses (flats by
 /// [`flat_name`]).
+///
+/// `texture_exists` says whether the WAD has a wall texture: a switch shows its `SW1`/`SW2`
+/// twin once used only if it does.
 pub(crate) fn source(
     level: &DoomLevel,
     pieces: &[Piece],
     stand_ins: StandIns,
+    texture_exists: &dyn Fn(&str) -> bool,
 ) -> (SourceMap, Vec<String>) {
     let on = stand_ins == StandIns::On;
     let texture =
         |name: &str| texture(name).or_else(|| on.then(|| at(STAND_IN_TEXTURE.to_string())));
     let mut names: Vec<String> = Vec::new();
     let pieces_of = pieces_per_sector(level, pieces);
+    let movers = Movers::of(level, &pieces_of);
+    let moves = |piece: u32| movers.sectors[usize::from(pieces[piece as usize].sector)].is_some();
     let (shift_x, shift_y) = recentring(level);
     // Light effects a map may hold (`LIGHTS_MAX`): the pieces after are lit steadily.
     let mut lights_left = LIGHTS_MAX as usize;
@@ -267,10 +183,7 @@ pub(crate) fn source(
         .enumerate()
         .map(|(index, piece)| {
             let doom = &level.sectors[usize::from(piece.sector)];
-            // A door cut into several pieces would need them moving as one: not yet (they
-            // stay shut, and the compiler says so).
-            let door = manual_door(level, piece.sector)
-                .filter(|_| pieces_of[usize::from(piece.sector)] == 1);
+            let mover = movers.sectors[usize::from(piece.sector)];
             let floor_flat = flat_name(&doom.floor_flat);
             names.push(floor_flat.clone());
             let ceiling = if doom.ceiling_flat == SKY_FLAT {
@@ -291,16 +204,19 @@ pub(crate) fn source(
                         let line = &level.linedefs[usize::from(linedef)];
                         &level.sidedefs[usize::from(line.sides[usize::from(side)])]
                     };
-                    let (texture_name, portal, upper, lower, offsets) = match piece.walls[k] {
+                    let mut wall = SourceWall::new(Loc::START, start, end);
+                    let offsets = match piece.walls[k] {
                         PieceWall::Solid { linedef, side: s } => {
                             let side = side(linedef, s);
-                            (
-                                texture(&side.middle),
-                                None,
-                                None,
-                                None,
-                                (side.x_offset, side.y_offset),
-                            )
+                            wall.texture = texture(&side.middle);
+                            if let (Some(LineTrigger::Switch { tag }), Some(shown)) =
+                                (movers.lines[usize::from(linedef)], &wall.texture)
+                            {
+                                let thrown = thrown_switch_texture(&shown.value, texture_exists);
+                                wall.switch = Some(at(thrown));
+                                wall.tag = Some(at(tag));
+                            }
+                            (side.x_offset, side.y_offset)
                         }
                         PieceWall::Portal {
                             linedef,
@@ -308,54 +224,66 @@ pub(crate) fn source(
                             piece: behind,
                         } => {
                             let side = side(linedef, s);
-                            (
-                                None,
-                                Some(at(behind as usize)),
-                                texture(&side.upper),
-                                texture(&side.lower),
-                                (side.x_offset, side.y_offset),
-                            )
+                            wall.portal = Some(at(behind as usize));
+                            wall.upper = texture(&side.upper);
+                            wall.lower = texture(&side.lower);
+                            if let Some(LineTrigger::Walk { tag }) =
+                                movers.lines[usize::from(linedef)]
+                            {
+                                wall.trigger = Some(at(tag));
+                            }
+                            (side.x_offset, side.y_offset)
                         }
                         PieceWall::Open { piece: beside } => {
-                            (None, Some(at(beside as usize)), None, None, (0, 0))
+                            wall.portal = Some(at(beside as usize));
+                            // Pieces of one mover move as one, so the strips between them
+                            // show only if one is held back (a door coming down on the
+                            // player goes back up alone): the compiler wants them anyway.
+                            if mover.is_some() || moves(beside) {
+                                wall.upper = Some(at(STAND_IN_TEXTURE.to_string()));
+                                wall.lower = Some(at(STAND_IN_TEXTURE.to_string()));
+                            }
+                            (0, 0)
                         }
                     };
-                    for name in [&texture_name, &upper, &lower].into_iter().flatten() {
+                    wall.x_offset = at(i64::from(offsets.0));
+                    wall.y_offset = at(i64::from(offsets.1));
+                    let strips = [&wall.texture, &wall.upper, &wall.lower, &wall.switch];
+                    for name in strips.into_iter().flatten() {
                         names.push(name.value.clone());
                     }
-                    SourceWall {
-                        texture: texture_name,
-                        portal,
-                        upper,
-                        lower,
-                        x_offset: at(i64::from(offsets.0)),
-                        y_offset: at(i64::from(offsets.1)),
-                        ..SourceWall::new(Loc::START, start, end)
-                    }
+                    wall
                 })
                 .collect();
             SourceSector {
                 label: format!("piece {index} (sector {})", piece.sector),
                 loc: Loc::START,
                 floor: at(i64::from(doom.floor)),
-                // A door is drawn open (docs/MAP_FORMAT.md, "Movers") and starts shut.
-                ceil: at(match door {
-                    Some((open, _)) => i64::from(open),
-                    None if on => i64::from(doom.ceiling.max(doom.floor.saturating_add(1))),
-                    None => i64::from(doom.ceiling),
+                // A door is drawn open (docs/MAP_FORMAT.md, "Movers") and starts shut; a lift
+                // is drawn raised, as Doom's is.
+                ceil: at(match mover.map(|mover| mover.motion) {
+                    Some(Motion::Door { open }) => i64::from(open),
+                    _ if on => i64::from(doom.ceiling.max(doom.floor.saturating_add(1))),
+                    _ => i64::from(doom.ceiling),
                 }),
                 floor_texture: at(floor_flat),
                 ceiling,
                 light: light_level(doom.light),
-                mover: door.map(|(_, timing)| SourceMover {
-                    kind: MoverKind::Door,
-                    loc: Loc::START,
-                    height: None,
-                    touch: false,
-                    locked: None,
-                    speed: timing.speed,
-                    wait: timing.wait,
-                    tag: None,
+                mover: mover.map(|mover| {
+                    let (kind, height) = match mover.motion {
+                        Motion::Door { .. } => (MoverKind::Door, None),
+                        Motion::Lift { low } => (MoverKind::Lift, Some(at(i64::from(low)))),
+                    };
+                    SourceMover {
+                        kind,
+                        loc: Loc::START,
+                        height,
+                        touch: false,
+                        locked: mover.locked.then_some(Loc::START),
+                        speed: mover.timing.speed,
+                        wait: mover.timing.wait,
+                        tag: mover.tag.map(at),
+                    }
                 }),
                 light_effect: light_effect(level, piece.sector).filter(|_| {
                     let room = lights_left > 0;
@@ -483,7 +411,7 @@ fn off_the_lines(
 /// portal depth) and stops after the first that finds something: [`StandIns::On`] lets the
 /// later ones run.
 pub fn compiler_findings(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> Vec<String> {
-    let (source, names) = source(level, pieces, stand_ins);
+    let (source, names) = source(level, pieces, stand_ins, &|_| false);
     let catalog = Catalog::new(names, Vec::<String>::new(), true);
     match map_build::build(&level.name, &source, &catalog) {
         Ok(_) => Vec::new(),
@@ -492,18 +420,18 @@ pub fn compiler_findings(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIn
 }
 
 /// What the mapping leaves out of `level` so far, one line each, for the importer's report
-/// (issue 19: it names what it could not map and does not fail on it): closed sectors that are
-/// not manual doors of one piece (they stay shut), linedef specials it does not map (by
-/// special, with how many lines have it) and the things (not imported yet).
+/// (issue 19: it names what it could not map and does not fail on it): closed sectors that do
+/// not move (they stay shut), the doors and lifts it could not map and why, linedef specials it
+/// does not map (by special, with how many lines have it) and the things (not imported yet).
 pub fn import_report(level: &DoomLevel, pieces: &[Piece]) -> Vec<String> {
     let mut report = Vec::new();
     let pieces_of = pieces_per_sector(level, pieces);
+    let movers = Movers::of(level, &pieces_of);
     for (index, sector) in level.sectors.iter().enumerate() {
-        if sector.floor < sector.ceiling {
+        if sector.floor < sector.ceiling || movers.sectors[index].is_some() {
             continue;
         }
-        let door = manual_door(level, index as u16).is_some();
-        let why = if door {
+        let why = if super::movers::manual_door(level, index as u16).is_some() {
             format!("a manual door cut into {} pieces", pieces_of[index])
         } else {
             let moved_by: Vec<String> = level
@@ -515,31 +443,24 @@ pub fn import_report(level: &DoomLevel, pieces: &[Piece]) -> Vec<String> {
             if moved_by.is_empty() {
                 "no special opens it".to_string()
             } else {
-                format!(
-                    "opened by specials {} (not mapped yet)",
-                    moved_by.join(", ")
-                )
+                format!("opened by specials {}", moved_by.join(", "))
             }
         };
-        if !door || pieces_of[index] != 1 {
-            report.push(format!(
-                "sector {index} is closed (floor {}, ceiling {}): {why}; it stays shut, drawn open 1 unit above its floor",
-                sector.floor, sector.ceiling
-            ));
-        }
+        report.push(format!(
+            "sector {index} is closed (floor {}, ceiling {}): {why}; it stays shut, drawn open 1 unit above its floor",
+            sector.floor, sector.ceiling
+        ));
     }
+    report.extend(movers.left_out.iter().cloned());
     let mut specials: std::collections::BTreeMap<u16, usize> = std::collections::BTreeMap::new();
-    for line in &level.linedefs {
-        let mapped = MANUAL_DOORS
-            .iter()
-            .any(|(special, _)| *special == line.special);
-        if line.special != 0 && !mapped {
+    for (index, line) in level.linedefs.iter().enumerate() {
+        if line.special != 0 && !movers.maps_special_of(level, index) {
             *specials.entry(line.special).or_default() += 1;
         }
     }
     for (special, lines) in specials {
         report.push(format!(
-            "linedef special {special} on {lines} line(s) is not mapped yet"
+            "linedef special {special} on {lines} line(s) is not mapped"
         ));
     }
     // Sector specials: the lights are mapped (`light_effect`), but not damage, secrets, timed

@@ -187,6 +187,7 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
         Wad::over(&wad, &iwad)
     };
 
+    let wall_textures = Textures::read(&graphics_wad).map_err(one)?;
     let mut errors = Vec::new();
     let mut report = Vec::new();
     let mut sources = Vec::new();
@@ -215,7 +216,9 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
                 .into_iter()
                 .map(|line| format!("{name}: {line}")),
         );
-        let (source, used) = convert::source(&level, &pieces, StandIns::On);
+        let (source, used) = convert::source(&level, &pieces, StandIns::On, &|name| {
+            wall_textures.def(name).is_some()
+        });
         let stand_ins = source
             .sectors
             .iter()
@@ -266,7 +269,6 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
         .map_err(one)?;
     let doom_rows = graphics::colormaps(&graphics_wad).map_err(one)?;
     let mut quantiser = Quantiser::fixed(doom_palette.palette);
-    let wall_textures = Textures::read(&graphics_wad).map_err(one)?;
     // The first map using each catalog texture, for errors.
     let first_user = |index: usize| {
         maps.iter()

@@ -143,6 +143,24 @@ fn records<T>(
 }
 
 impl DoomLevel {
+    /// The sectors across the two-sided lines of sector `sector` (one a line, so a sector may
+    /// come more than once).
+    pub fn neighbours(&self, sector: u16) -> impl Iterator<Item = &DoomSector> {
+        let sector_of = |side: u16| self.sidedefs[usize::from(side)].sector;
+        self.linedefs
+            .iter()
+            .filter(|line| line.two_sided())
+            .filter_map(move |line| {
+                let (right, left) = (sector_of(line.sides[0]), sector_of(line.sides[1]));
+                match (right == sector, left == sector) {
+                    (true, false) => Some(left),
+                    (false, true) => Some(right),
+                    _ => None,
+                }
+            })
+            .map(|index| &self.sectors[usize::from(index)])
+    }
+
     /// Map `name` (`E1M1`, `MAP01`, …) of `wad`, its references checked.
     pub fn read(wad: &Wad, name: &str) -> Result<DoomLevel, DoomError> {
         let marker = name.to_ascii_uppercase();

@@ -19,9 +19,8 @@
 //! [`compiler_findings`] runs the compiler alone (with or without stand-ins for what is not
 //! mapped yet), for the tests over all of Freedoom's maps.
 //!
-//! Still to come (issue 19): the player's dimensions per map, remote doors and lifts (switches
-//! and walk-over lines), doors cut into several pieces, masked middle textures, the things, and
-//! views deeper than the walk's 256 portals.
+//! Still to come (issue 19): manual doors cut into several pieces, masked middle textures, the
+//! things, and views deeper than the walk's 256 portals.
 
 mod cells;
 mod colours;
@@ -30,6 +29,7 @@ mod gl;
 mod graphics;
 mod import;
 mod level;
+mod movers;
 mod partition;
 mod wad;
 
