@@ -167,3 +167,59 @@ fn freedoom_s_remote_doors_and_lifts_start_from_their_lines_and_switches() {
     println!("{lines_crossed} walk-over lines crossed, {switches_swapping} switches swap texture");
     assert!(lines_crossed > 0 && switches_swapping > 0);
 }
+
+/// Doom's things (issue 19): each map's things of medium skill that portalcast knows and that
+/// fit their piece, with sprite sets composed from the WAD's sprite lumps: a monster still in
+/// eight rotations, an item's frames in Doom's order, decorations solid as Doom's block.
+#[test]
+fn freedoom_s_things_come_with_their_sprites_from_the_wad() {
+    use portalcast_format::{THING_HANGING, THING_SOLID};
+    let compiled = common::freedoom_assets();
+    let sets = compiled.sprite_sets();
+    let set = |name: &str| {
+        sets.iter()
+            .position(|set| set.name == name)
+            .unwrap_or_else(|| panic!("no set {name}"))
+    };
+    let zombie = &sets[set("poss_a")];
+    assert_eq!((zombie.frames, zombie.rotations), (1, 8));
+    let image = &compiled.sprites()[usize::from(zombie.first)];
+    assert!(
+        (30..=64).contains(&image.width) && (50..=64).contains(&image.height),
+        "a zombieman's canvas is {}x{}",
+        image.width,
+        image.height
+    );
+    let barrel = set("bar1_ab");
+    assert_eq!((sets[barrel].frames, sets[barrel].rotations), (2, 1));
+    for name in MAPS {
+        let map = compiled.map(name).expect("the map was built");
+        let of = |index: usize| {
+            map.things
+                .iter()
+                .filter(move |t| usize::from(t.sprite) == index)
+        };
+        println!(
+            "{name}: {} things, {} solid, {} hanging",
+            map.things.len(),
+            map.things
+                .iter()
+                .filter(|t| t.flags & THING_SOLID != 0)
+                .count(),
+            map.things
+                .iter()
+                .filter(|t| t.flags & THING_HANGING != 0)
+                .count()
+        );
+        assert!(
+            map.things.len() >= 100,
+            "{name}: {} things",
+            map.things.len()
+        );
+        assert!(of(barrel).all(|t| t.flags & THING_SOLID != 0));
+    }
+    assert!(compiled
+        .import_report()
+        .iter()
+        .any(|line| line.contains("things do not fit their piece")));
+}

@@ -488,6 +488,32 @@ pub(crate) fn finish_things(
     errors
 }
 
+/// The places of `map`'s things whose sprite (its size by `size`) [`finish_things`] would
+/// refuse: a footprint crossing a wall's line of its sector, or a sprite through its floor or
+/// ceiling. The Doom importer leaves those things out.
+pub(crate) fn misfits(
+    map: &CompiledMap,
+    fits: &[ThingFit],
+    size: impl Fn(u16) -> Option<(u16, u16)>,
+) -> Vec<Loc> {
+    map.things
+        .iter()
+        .zip(fits)
+        .filter(|(thing, fit)| {
+            let Some((width, height)) = size(thing.sprite) else {
+                return false;
+            };
+            let least = i64::from(width.div_ceil(2));
+            let radius = fit.radius.as_ref().map_or(least, |r| r.value.max(least));
+            let mut errors = Vec::new();
+            check_footprint(fit, radius, least, &mut errors);
+            check_thing_height(fit, i64::from(height), &mut errors);
+            !errors.is_empty()
+        })
+        .map(|(_, fit)| fit.loc)
+        .collect()
+}
+
 /// Refuses a thing whose footprint disc crosses the line of a wall of its sector, naming the
 /// wall it crosses most.
 fn check_footprint(fit: &ThingFit, radius: i64, least: i64, errors: &mut Vec<Located>) {

@@ -10,18 +10,19 @@
 //! where a mover's pieces meet). Doom's y runs up the map and portalcast's down the screen's top view: y
 //! is negated, so the map is not mirrored; a map reaching past portalcast's world limits but
 //! fitting within them is recentred. The player stands at player 1's start (moved by a 1/256
-//! step where it lies on a line) with Doom's body. Things are still to come ([`import_report`]
-//! lists them).
+//! step where it lies on a line) with Doom's body; its things as things (`super::things`:
+//! [`import_report`] lists those left out).
 
 use super::level::DoomLevel;
 use super::movers::{from_doom_ticks, thrown_switch_texture, LineTrigger, Motion, Movers};
 use super::partition::{Piece, PieceWall};
+use super::things;
 use crate::diag::Loc;
 use crate::geometry::{cross, Point};
 use crate::map_build::{self, Catalog};
 use crate::source::{
     CeilingSource, MoverKind, SourceLight, SourceMap, SourceMover, SourcePlace, SourceSector,
-    SourceVertex, SourceWall, Spanned,
+    SourceThing, SourceVertex, SourceWall, Spanned, ThingOptions,
 };
 use portalcast_format::limits::{LIGHTS_MAX, WORLD_COORD_MAX};
 use portalcast_format::{PlayerSize, LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE};
@@ -102,6 +103,9 @@ fn pieces_per_sector(level: &DoomLevel, pieces: &[Piece]) -> Vec<usize> {
 
 /// Doom's thing type of player 1's start.
 const PLAYER_1_START: u16 = 1;
+/// Doom's thing types that mark places rather than show something: the players' starts (1–4,
+/// deathmatch 11), teleport destinations (14), the boss brain's targets (87) and spawner (89).
+const NOT_DRAWN: [u16; 8] = [1, 2, 3, 4, 11, 14, 87, 89];
 
 /// Doom's name of the sky's ceiling flat.
 const SKY_FLAT: &str = "F_SKY1";
@@ -313,19 +317,64 @@ pub(crate) fn source(
         loc: Loc::START,
         x_fx8: at(x_fx8),
         y_fx8: at(-y_fx8),
-        // Doom's angles run anticlockwise from east with y up; with y down they run clockwise.
-        angle: ((-i32::from(start.angle)).rem_euclid(360) * 65536 / 360) as u16,
+        angle: portalcast_angle(start.angle),
     };
+    let things = thing_places(level, pieces, &movers, (shift_x, shift_y))
+        .into_iter()
+        .filter_map(|(index, place)| match place {
+            ThingPlace::Piece(place) => Some((index, place)),
+            ThingPlace::Door | ThingPlace::Nowhere => None,
+        })
+        .filter_map(|(index, (x_fx8, y_fx8))| {
+            let thing = &level.things[index];
+            let kind = things::kind_of(thing.kind)?;
+            Some(SourceThing {
+                sprite: at(kind.set_name()),
+                place: SourcePlace {
+                    loc: thing_loc(index),
+                    x_fx8: at(x_fx8),
+                    y_fx8: at(-y_fx8),
+                    angle: portalcast_angle(thing.angle),
+                },
+                options: ThingOptions {
+                    hanging: kind.hanging,
+                    solid: kind.solid,
+                    ..ThingOptions::default()
+                },
+            })
+        })
+        .collect();
     (
         SourceMap {
             vertices,
             sectors,
             player,
             player_size: PlayerSize::DOOM,
-            things: Vec::new(),
+            things,
         },
         names,
     )
+}
+
+/// Where a source made from Doom's thing `index` says it is: its line is the thing's number
+/// plus one, so that the compiler's findings about it lead back to the thing
+/// ([`thing_of_loc`]).
+fn thing_loc(index: usize) -> Loc {
+    Loc {
+        line: u32::try_from(index + 1).unwrap_or(u32::MAX),
+        col: 1,
+    }
+}
+
+/// The Doom thing a source thing's [`thing_loc`] names.
+pub(crate) fn thing_of_loc(loc: Loc) -> usize {
+    (loc.line as usize).saturating_sub(1)
+}
+
+/// Doom's angle in degrees (anticlockwise from east, y up) as portalcast's binary angle (y
+/// down, so clockwise).
+fn portalcast_angle(degrees: i16) -> u16 {
+    ((-i32::from(degrees)).rem_euclid(360) * 65536 / 360) as u16
 }
 
 /// The whole-unit shift that centres `level` on the origin where it reaches past portalcast's
@@ -343,6 +392,71 @@ fn recentring(level: &DoomLevel) -> (i64, i64) {
         }
     };
     (axis(|v| v.x), axis(|v| v.y))
+}
+
+/// The piece `place` (Doom's axes, 24.8 units, shifted by `shift`) lies strictly inside, if
+/// one.
+fn piece_at(level: &DoomLevel, pieces: &[Piece], place: Point, shift: (i64, i64)) -> Option<usize> {
+    let corner = |v: u16| {
+        let v = level.vertices[usize::from(v)];
+        (
+            (i64::from(v.x) + shift.0) << 8,
+            (i64::from(v.y) + shift.1) << 8,
+        )
+    };
+    pieces.iter().position(|piece| {
+        let n = piece.outline.len();
+        (0..n).all(|k| {
+            cross(
+                corner(piece.outline[k]),
+                corner(piece.outline[(k + 1) % n]),
+                place,
+            ) < 0
+        })
+    })
+}
+
+/// Where a Doom thing the import would take stands, if it can be taken.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ThingPlace {
+    /// Strictly inside a piece that is no door: its place (24.8, Doom's axes).
+    Piece(Point),
+    /// In a door's piece: portalcast's doors are shut when a map starts, and the compiler
+    /// refuses a thing in one.
+    Door,
+    /// In no piece (outside the map, or on a line no 1/256 step takes it off).
+    Nowhere,
+}
+
+/// The places of `level`'s things the import would take (of medium skill, of kinds it knows),
+/// by thing index.
+fn thing_places(
+    level: &DoomLevel,
+    pieces: &[Piece],
+    movers: &Movers,
+    shift: (i64, i64),
+) -> Vec<(usize, ThingPlace)> {
+    level
+        .things
+        .iter()
+        .enumerate()
+        .filter(|(_, thing)| things::in_the_game(thing) && things::kind_of(thing.kind).is_some())
+        .map(|(index, thing)| {
+            let place = (
+                (i64::from(thing.x) + shift.0) << 8,
+                (i64::from(thing.y) + shift.1) << 8,
+            );
+            let place = off_the_lines(level, pieces, place, shift);
+            let at = match piece_at(level, pieces, place, shift) {
+                None => ThingPlace::Nowhere,
+                Some(piece) => match movers.sectors[usize::from(pieces[piece].sector)] {
+                    Some(mover) if matches!(mover.motion, Motion::Door { .. }) => ThingPlace::Door,
+                    _ => ThingPlace::Piece(place),
+                },
+            };
+            (index, at)
+        })
+        .collect()
 }
 
 /// `place` (Doom's axes, 24.8 units, shifted by `shift`), moved by the least 1/256 steps that
@@ -412,7 +526,8 @@ fn off_the_lines(
 /// later ones run.
 pub fn compiler_findings(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> Vec<String> {
     let (source, names) = source(level, pieces, stand_ins, &|_| false);
-    let catalog = Catalog::new(names, Vec::<String>::new(), true);
+    let sets = source.things.iter().map(|thing| thing.sprite.value.clone());
+    let catalog = Catalog::new(names, sets, true);
     match map_build::build(&level.name, &source, &catalog) {
         Ok(_) => Vec::new(),
         Err(errors) => errors.into_iter().map(|(_, message)| message).collect(),
@@ -422,7 +537,7 @@ pub fn compiler_findings(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIn
 /// What the mapping leaves out of `level` so far, one line each, for the importer's report
 /// (issue 19: it names what it could not map and does not fail on it): closed sectors that do
 /// not move (they stay shut), the doors and lifts it could not map and why, linedef specials it
-/// does not map (by special, with how many lines have it) and the things (not imported yet).
+/// does not map (by special, with how many lines have it) and the things it leaves out.
 pub fn import_report(level: &DoomLevel, pieces: &[Piece]) -> Vec<String> {
     let mut report = Vec::new();
     let pieces_of = pieces_per_sector(level, pieces);
@@ -492,14 +607,39 @@ pub fn import_report(level: &DoomLevel, pieces: &[Piece]) -> Vec<String> {
             lit - LIGHTS_MAX as usize
         ));
     }
-    let others = level
-        .things
-        .iter()
-        .filter(|thing| thing.kind != PLAYER_1_START)
-        .count();
-    if others > 0 {
+    let mut unknown: std::collections::BTreeMap<u16, usize> = std::collections::BTreeMap::new();
+    let mut other_games = 0;
+    for thing in &level.things {
+        if NOT_DRAWN.contains(&thing.kind) {
+            continue;
+        }
+        if !things::in_the_game(thing) {
+            other_games += 1;
+        } else if things::kind_of(thing.kind).is_none() {
+            *unknown.entry(thing.kind).or_default() += 1;
+        }
+    }
+    let places = thing_places(level, pieces, &movers, recentring(level));
+    for (kind, what) in [
+        (
+            ThingPlace::Door,
+            "stand in doors, which are shut when the map starts",
+        ),
+        (ThingPlace::Nowhere, "stand in no piece of the map"),
+    ] {
+        let count = places.iter().filter(|(_, place)| *place == kind).count();
+        if count > 0 {
+            report.push(format!("{count} things {what}: left out"));
+        }
+    }
+    if other_games > 0 {
         report.push(format!(
-            "{others} things are not imported yet (only player 1's start is used)"
+            "{other_games} things are only in other skills or in multiplayer games: left out (the import takes medium skill's)"
+        ));
+    }
+    for (kind, count) in unknown {
+        report.push(format!(
+            "thing type {kind} on {count} thing(s) is not a kind the import knows: left out"
         ));
     }
     report

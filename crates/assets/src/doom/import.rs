@@ -14,6 +14,7 @@
 //! - what `super::convert` leaves out (closed sectors other than manual doors, specials, things)
 //!   and the walls Doom leaves without a texture, which take a black stand-in.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use image::{Rgba, RgbaImage};
@@ -24,6 +25,7 @@ use super::convert::{self, StandIns, FLAT_PREFIX, STAND_IN_TEXTURE};
 use super::graphics::{self, IndexedImage, Textures};
 use super::level::{is_map_name, DoomLevel};
 use super::partition::partition;
+use super::things::{self, ComposedSet};
 use super::wad::Wad;
 use super::DoomError;
 use crate::images::{
@@ -31,7 +33,11 @@ use crate::images::{
 };
 use crate::map_build::{self, Catalog, CompiledMap};
 use crate::palette::{colormap_of, Quantiser};
-use crate::{texels, Compiled, CompiledSky, CompiledTexture, Usage};
+use crate::source::SourceMap;
+use crate::sprite_sets::SetSource;
+use crate::{
+    texels, Compiled, CompiledSky, CompiledSprite, CompiledSpriteSet, CompiledTexture, Usage,
+};
 
 /// Where Debian's `freedoom` package puts its WADs.
 pub const FREEDOOM_DIR: &str = "/usr/share/games/doom";
@@ -151,6 +157,67 @@ fn picture(
     })
 }
 
+/// A sprite's picture: Doom's palette colours, transparent where nothing is drawn.
+fn sprite_picture(image: &IndexedImage, palette: &DoomPalette, quantiser: &Quantiser) -> RgbaImage {
+    RgbaImage::from_fn(
+        u32::from(image.width),
+        u32::from(image.height),
+        |x, y| match image.at(x as u16, y as u16) {
+            Some(texel) => {
+                let [r, g, b] = quantiser.shown(palette.index(texel));
+                Rgba([r, g, b, 255])
+            }
+            None => Rgba([0, 0, 0, 0]),
+        },
+    )
+}
+
+/// The sprite sets the things of `sources` show, composed from `wad`'s sprite lumps, by name.
+/// A set that cannot be is reported, and its things are left out.
+fn sprite_sets(
+    wad: &Wad,
+    sources: &mut [(String, SourceMap)],
+    report: &mut Vec<String>,
+) -> BTreeMap<String, ComposedSet> {
+    let mut sets = BTreeMap::new();
+    let mut failed = BTreeMap::new();
+    for (name, source) in sources.iter_mut() {
+        let before = source.things.len();
+        source.things.retain(|thing| {
+            let set_name = &thing.sprite.value;
+            if sets.contains_key(set_name) {
+                return true;
+            }
+            if failed.contains_key(set_name) {
+                return false;
+            }
+            let composed = things::kind_of_set(set_name)
+                .ok_or_else(|| format!("no thing kind shows {set_name}"))
+                .and_then(|kind| things::compose_set(wad, kind));
+            match composed {
+                Ok(set) => {
+                    sets.insert(set_name.clone(), set);
+                    true
+                }
+                Err(why) => {
+                    failed.insert(set_name.clone(), why);
+                    false
+                }
+            }
+        });
+        if source.things.len() < before {
+            report.push(format!(
+                "{name}: {} things whose sprites cannot be composed are left out",
+                before - source.things.len()
+            ));
+        }
+    }
+    for (set_name, why) in failed {
+        report.push(format!("sprite set {set_name}: {why}"));
+    }
+    sets
+}
+
 /// The power-of-two side a texture side `side` becomes (`TEXTURE_SIDE_MIN..=TEXTURE_SIDE_MAX`).
 fn texture_side(side: u16) -> u32 {
     u32::from(side)
@@ -235,11 +302,48 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
         all_names.extend(used);
         sources.push((name.clone(), source));
     }
-    let catalog = Catalog::new(all_names, Vec::<String>::new(), true);
+    let sets = sprite_sets(&graphics_wad, &mut sources, &mut report);
+    let mut catalog = Catalog::new(all_names, sets.keys().cloned(), true);
+    for (set_name, set) in &sets {
+        let first = &set.images[0];
+        catalog = catalog
+            .with_sprite_frames(set_name, set.frames, set.rotations)
+            .with_sprite_size(set_name, first.width, first.height);
+    }
+    let size = |sprite: u16| {
+        let set = sets.get(catalog.sprite_sets().get(usize::from(sprite))?)?;
+        Some((set.images[0].width, set.images[0].height))
+    };
     let mut maps: Vec<CompiledMap> = Vec::new();
-    for (name, source) in &sources {
-        match map_build::build(name, source, &catalog) {
-            Ok((map, _, _)) => maps.push(map),
+    for (name, source) in &mut sources {
+        let mut built = map_build::build(name, source, &catalog);
+        // Things whose sprite does not fit their piece are left out, and the map built again.
+        if let Ok((map, _, fits)) = &built {
+            let out: std::collections::BTreeSet<usize> = map_build::misfits(map, fits, size)
+                .into_iter()
+                .map(convert::thing_of_loc)
+                .collect();
+            if !out.is_empty() {
+                source
+                    .things
+                    .retain(|thing| !out.contains(&convert::thing_of_loc(thing.place.loc)));
+                report.push(format!(
+                    "{name}: {} things do not fit their piece of the map (a footprint half the sprite's width across, crossing a wall or a cut between pieces, or a sprite through the floor or the ceiling): left out",
+                    out.len()
+                ));
+                built = map_build::build(name, source, &catalog);
+            }
+        }
+        match built {
+            Ok((mut map, _, fits)) => {
+                let found = map_build::finish_things(&mut map, &fits, size);
+                errors.extend(
+                    found
+                        .into_iter()
+                        .map(|(_, message)| DoomError::new(wad.path(), Some(name), message)),
+                );
+                maps.push(map);
+            }
             Err(found) => errors.extend(
                 found
                     .into_iter()
@@ -369,7 +473,38 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
     if !errors.is_empty() {
         return Err(errors);
     }
-    crate::renumber(&mut maps, &texture_index, &[]);
+    let mut set_index = vec![0u16; catalog.sprite_sets().len()];
+    let mut sprite_sets = Vec::new();
+    let mut sprites = Vec::new();
+    for (old, set_name) in catalog.sprite_sets().iter().enumerate() {
+        let Some(set) = sets.get(set_name).filter(|_| usage.sprites[old]) else {
+            continue;
+        };
+        set_index[old] = sprite_sets.len() as u16;
+        sprite_sets.push(CompiledSpriteSet {
+            name: set_name.clone(),
+            first: sprites.len() as u16,
+            frames: set.frames,
+            rotations: set.rotations,
+        });
+        let naming = SetSource {
+            name: set_name.clone(),
+            frames: set.frames,
+            rotations: set.rotations,
+            files: Vec::new(),
+            file_names: Vec::new(),
+        };
+        for (index, image) in set.images.iter().enumerate() {
+            let rgba = sprite_picture(image, &doom_palette, &quantiser);
+            sprites.push(CompiledSprite {
+                name: naming.image_name(index),
+                width: image.width,
+                height: image.height,
+                posts: texels::sprite_columns(&rgba, &mut quantiser),
+            });
+        }
+    }
+    crate::renumber(&mut maps, &texture_index, &set_index);
     Ok(Compiled {
         source_dir: request.wad.clone(),
         files_read,
@@ -377,8 +512,8 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
         colormap: colormap(&doom_rows, &doom_palette),
         textures,
         sky,
-        sprites: Vec::new(),
-        sprite_sets: Vec::new(),
+        sprites,
+        sprite_sets,
         maps,
         left_out: Vec::new(),
         import_report: report,
