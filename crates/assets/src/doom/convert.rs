@@ -101,6 +101,53 @@ fn pieces_per_sector(level: &DoomLevel, pieces: &[Piece]) -> Vec<usize> {
     counts
 }
 
+/// Doom's linedef flag: the line blocks players and monsters.
+const BLOCKING: u16 = 1;
+
+/// What [`middle_set_name`] puts before a texture's name.
+pub(crate) const MIDDLE_PREFIX: &str = "mid_";
+
+/// The sprite set a two-sided line's middle texture `texture` becomes (a grate, bars: a portal
+/// middle, docs/MAP_FORMAT.md "Portal middles"): `mid_` and its name.
+pub(crate) fn middle_set_name(texture: &str) -> String {
+    format!("{MIDDLE_PREFIX}{}", texture.to_ascii_lowercase())
+}
+
+/// The middle texture two-sided `line` shows: its right side's, else its left side's.
+fn line_middle<'l>(level: &'l DoomLevel, line: &super::level::Linedef) -> Option<&'l str> {
+    line.sides
+        .iter()
+        .map(|&side| level.sidedefs[usize::from(side)].middle.as_str())
+        .find(|name| *name != "-" && !name.is_empty())
+}
+
+/// Doom's linedef flag "lower unpegged": a two-sided line's middle texture stands on the
+/// higher floor instead of hanging from the lower ceiling.
+const LOWER_UNPEGGED: u16 = 16;
+
+/// How far a side's middle texture `middle` of size `texture_size` is raised above hanging
+/// from the opening's top (portalcast's rule, `y_offset` up) to stand where Doom draws it on a
+/// lower unpegged line: its bottom on the higher floor. Only on a side with no upper or lower
+/// texture, whose offset moves nothing else.
+fn standing_middle(
+    level: &DoomLevel,
+    line: &super::level::Linedef,
+    side: &super::level::Sidedef,
+    middle: &str,
+    texture_size: &dyn Fn(&str) -> Option<(u16, u16)>,
+) -> Option<i16> {
+    if line.flags & LOWER_UNPEGGED == 0 || side.upper != "-" || side.lower != "-" {
+        return None;
+    }
+    let (_, height) = texture_size(middle)?;
+    let sectors = line
+        .sides
+        .map(|s| &level.sectors[usize::from(level.sidedefs[usize::from(s)].sector)]);
+    let floor = sectors[0].floor.max(sectors[1].floor);
+    let ceiling = sectors[0].ceiling.min(sectors[1].ceiling);
+    i16::try_from(i32::from(floor) + i32::from(height) - i32::from(ceiling)).ok()
+}
+
 /// Doom's thing type of player 1's start.
 const PLAYER_1_START: u16 = 1;
 /// Doom's thing types that mark places rather than show something: the players' starts (1–4,
@@ -154,13 +201,14 @@ pub(crate) fn light_level(doom_light: i16) -> u8 {
 /// `level`'s pieces as a map source, and the names of the textures it uses (flats by
 /// [`flat_name`]).
 ///
-/// `texture_exists` says whether the WAD has a wall texture: a switch shows its `SW1`/`SW2`
-/// twin once used only if it does.
+/// `texture_size` gives the size of a wall texture the WAD has: a switch shows its `SW1`/`SW2`
+/// twin once used only if it has it, and a middle texture Doom stands on the floor ("lower
+/// unpegged") is placed by its height.
 pub(crate) fn source(
     level: &DoomLevel,
     pieces: &[Piece],
     stand_ins: StandIns,
-    texture_exists: &dyn Fn(&str) -> bool,
+    texture_size: &dyn Fn(&str) -> Option<(u16, u16)>,
 ) -> (SourceMap, Vec<String>) {
     let on = stand_ins == StandIns::On;
     let texture =
@@ -216,7 +264,9 @@ pub(crate) fn source(
                             if let (Some(LineTrigger::Switch { tag }), Some(shown)) =
                                 (movers.lines[usize::from(linedef)], &wall.texture)
                             {
-                                let thrown = thrown_switch_texture(&shown.value, texture_exists);
+                                let thrown = thrown_switch_texture(&shown.value, |name| {
+                                    texture_size(name).is_some()
+                                });
                                 wall.switch = Some(at(thrown));
                                 wall.tag = Some(at(tag));
                             }
@@ -236,7 +286,22 @@ pub(crate) fn source(
                             {
                                 wall.trigger = Some(at(tag));
                             }
-                            (side.x_offset, side.y_offset)
+                            // The line's middle texture, given on its right side's wall (the
+                            // twin shares it).
+                            let line = &level.linedefs[usize::from(linedef)];
+                            let middle = line_middle(level, line);
+                            if let (0, Some(middle)) = (s, middle) {
+                                wall.middle = Some(at(middle_set_name(middle)));
+                                if line.flags & BLOCKING != 0 {
+                                    wall.blocks = Some(Loc::START);
+                                }
+                            }
+                            let raise = middle
+                                .and_then(|middle| {
+                                    standing_middle(level, line, side, middle, texture_size)
+                                })
+                                .unwrap_or(0);
+                            (side.x_offset, side.y_offset.saturating_add(raise))
                         }
                         PieceWall::Open { piece: beside } => {
                             wall.portal = Some(at(beside as usize));
@@ -525,8 +590,16 @@ fn off_the_lines(
 /// portal depth) and stops after the first that finds something: [`StandIns::On`] lets the
 /// later ones run.
 pub fn compiler_findings(level: &DoomLevel, pieces: &[Piece], stand_ins: StandIns) -> Vec<String> {
-    let (source, names) = source(level, pieces, stand_ins, &|_| false);
-    let sets = source.things.iter().map(|thing| thing.sprite.value.clone());
+    let (source, names) = source(level, pieces, stand_ins, &|_| None);
+    let things = source.things.iter().map(|thing| thing.sprite.value.clone());
+    let middles = source
+        .sectors
+        .iter()
+        .flat_map(|sector| &sector.walls)
+        .filter_map(|wall| wall.middle.as_ref().map(|middle| middle.value.clone()));
+    let mut sets: Vec<String> = things.chain(middles).collect();
+    sets.sort();
+    sets.dedup();
     let catalog = Catalog::new(names, sets, true);
     match map_build::build(&level.name, &source, &catalog) {
         Ok(_) => Vec::new(),

@@ -172,10 +172,12 @@ fn sprite_picture(image: &IndexedImage, palette: &DoomPalette, quantiser: &Quant
     )
 }
 
-/// The sprite sets the things of `sources` show, composed from `wad`'s sprite lumps, by name.
-/// A set that cannot be is reported, and its things are left out.
+/// The sprite sets the things of `sources` show, composed from `wad`'s sprite lumps, and the
+/// portal middles its two-sided lines show, from its wall `textures`, by name. A set that
+/// cannot be is reported, and its things (or its lines' middles) are left out.
 fn sprite_sets(
     wad: &Wad,
+    textures: &Textures,
     sources: &mut [(String, SourceMap)],
     report: &mut Vec<String>,
 ) -> BTreeMap<String, ComposedSet> {
@@ -215,7 +217,65 @@ fn sprite_sets(
     for (set_name, why) in failed {
         report.push(format!("sprite set {set_name}: {why}"));
     }
+    // The two-sided lines' middle textures, each a sprite set of one still image.
+    let mut failed_middles = BTreeMap::new();
+    for (_, source) in sources.iter_mut() {
+        let walls = source
+            .sectors
+            .iter_mut()
+            .flat_map(|sector| &mut sector.walls);
+        for wall in walls {
+            let Some(set_name) = wall.middle.as_ref().map(|middle| middle.value.clone()) else {
+                continue;
+            };
+            if !sets.contains_key(&set_name) && !failed_middles.contains_key(&set_name) {
+                let texture = set_name
+                    .trim_start_matches(convert::MIDDLE_PREFIX)
+                    .to_ascii_uppercase();
+                match middle_image(wad, textures, &texture) {
+                    Ok(image) => {
+                        sets.insert(
+                            set_name.clone(),
+                            ComposedSet {
+                                frames: 1,
+                                rotations: 1,
+                                images: vec![image],
+                            },
+                        );
+                    }
+                    Err(why) => {
+                        failed_middles.insert(set_name.clone(), why);
+                    }
+                }
+            }
+            if failed_middles.contains_key(&set_name) {
+                wall.middle = None;
+                wall.blocks = None;
+            }
+        }
+    }
+    for (set_name, why) in failed_middles {
+        report.push(format!(
+            "middle texture {set_name}: {why}: those lines show none"
+        ));
+    }
     sets
+}
+
+/// Wall texture `name` composed as a portal middle's image: transparent where no patch draws,
+/// at most `SIDE_MAX` a side, with something drawn.
+fn middle_image(wad: &Wad, textures: &Textures, name: &str) -> Result<IndexedImage, String> {
+    let image = textures.compose(wad, name).map_err(|error| error.message)?;
+    if image.width > 256 || image.height > 256 {
+        return Err(format!(
+            "{}x{} is more than 256 a side",
+            image.width, image.height
+        ));
+    }
+    if image.gaps() == image.texels.len() {
+        return Err("nothing is drawn".to_string());
+    }
+    Ok(image)
 }
 
 /// The power-of-two side a texture side `side` becomes (`TEXTURE_SIDE_MIN..=TEXTURE_SIDE_MAX`).
@@ -284,7 +344,7 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
                 .map(|line| format!("{name}: {line}")),
         );
         let (source, used) = convert::source(&level, &pieces, StandIns::On, &|name| {
-            wall_textures.def(name).is_some()
+            wall_textures.def(name).map(|def| (def.width, def.height))
         });
         let stand_ins = source
             .sectors
@@ -302,7 +362,7 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
         all_names.extend(used);
         sources.push((name.clone(), source));
     }
-    let sets = sprite_sets(&graphics_wad, &mut sources, &mut report);
+    let sets = sprite_sets(&graphics_wad, &wall_textures, &mut sources, &mut report);
     let mut catalog = Catalog::new(all_names, sets.keys().cloned(), true);
     for (set_name, set) in &sets {
         let first = &set.images[0];

@@ -79,6 +79,8 @@ fn accuracy_lines() -> TaskResult<Vec<String>> {
             "doom_maps",
             "--",
             "--nocapture",
+            "--exact",
+            ORACLE_TEST,
         ])
         .output()
         .map_err(|error| TaskError(format!("running tests/doom_maps.rs: {error}")))?;
@@ -90,12 +92,24 @@ fn accuracy_lines() -> TaskResult<Vec<String>> {
             String::from_utf8_lossy(&output.stderr).trim()
         )));
     }
-    Ok(stdout
+    // The test harness's progress dot may share a line with the first.
+    let lines: Vec<String> = stdout
         .lines()
-        .filter(|line| line.starts_with("doom-accuracy "))
-        .map(str::to_string)
-        .collect())
+        .filter_map(|line| line.find("doom-accuracy ").map(|at| line[at..].to_string()))
+        .collect();
+    for map in freedoom::MAPS {
+        if !lines.iter().any(|line| field(line, "map") == Some(map)) {
+            return Err(TaskError(format!(
+                "tests/doom_maps.rs printed no doom-accuracy line for {map}: {}",
+                stdout.trim()
+            )));
+        }
+    }
+    Ok(lines)
 }
+
+/// The test of `tests/doom_maps.rs` that prints the `doom-accuracy` lines.
+const ORACLE_TEST: &str = "freedoom_maps_match_the_oracle_from_their_starts_and_sampled_poses";
 
 /// The section, heading included.
 pub fn section() -> TaskResult<String> {
