@@ -157,6 +157,68 @@ fn picture(
     })
 }
 
+/// How many stand-in textures of `source` can show: on solid walls, and on step strips whose
+/// step exists or may come as the movers move (the neighbour's ceiling at its lowest below this
+/// sector's at its highest, its floor at its highest above this one's at its lowest; not
+/// between two pieces of one mover, which move together). A portal with equal heights on
+/// both sides shows no strip, so Doom leaves those textures out, and their stand-ins are never
+/// drawn.
+fn shown_stand_ins(source: &SourceMap) -> usize {
+    use crate::source::{MoverKind, SourceSector};
+    // The floor's and the ceiling's lowest and highest, as the sector's mover moves them.
+    let heights = |sector: &SourceSector| {
+        let (floor, ceil) = (sector.floor.value, sector.ceil.value);
+        let other = sector
+            .mover
+            .as_ref()
+            .and_then(|mover| Some((mover.kind, mover.height.as_ref()?.value)));
+        match (sector.mover.as_ref().map(|mover| mover.kind), other) {
+            (Some(MoverKind::Door), _) => ((floor, floor), (floor, ceil)),
+            (_, Some((MoverKind::Lift | MoverKind::Platform, to))) => {
+                ((floor.min(to), floor.max(to)), (ceil, ceil))
+            }
+            (_, Some((MoverKind::Crusher, to))) => ((floor, floor), (ceil.min(to), ceil.max(to))),
+            _ => ((floor, floor), (ceil, ceil)),
+        }
+    };
+    let is_stand_in = |texture: &Option<crate::source::Spanned<String>>| {
+        texture
+            .as_ref()
+            .is_some_and(|t| t.value == STAND_IN_TEXTURE)
+    };
+    let mut shown = 0;
+    for sector in &source.sectors {
+        for wall in &sector.walls {
+            let Some(behind) = wall
+                .portal
+                .as_ref()
+                .and_then(|p| source.sectors.get(p.value))
+            else {
+                shown += usize::from(is_stand_in(&wall.texture));
+                continue;
+            };
+            // Two pieces of one mover move together: the cut between them shows nothing.
+            let one_mover = match (&sector.mover, &behind.mover) {
+                (Some(a), Some(b)) => {
+                    a.kind == b.kind
+                        && a.tag.as_ref().map(|t| t.value) == b.tag.as_ref().map(|t| t.value)
+                        && (sector.floor.value, sector.ceil.value)
+                            == (behind.floor.value, behind.ceil.value)
+                }
+                _ => false,
+            };
+            if one_mover {
+                continue;
+            }
+            let upper = heights(behind).1 .0 < heights(sector).1 .1;
+            let lower = heights(behind).0 .1 > heights(sector).0 .0;
+            shown += usize::from(upper && is_stand_in(&wall.upper));
+            shown += usize::from(lower && is_stand_in(&wall.lower));
+        }
+    }
+    shown
+}
+
 /// A sprite's picture: Doom's palette colours, transparent where nothing is drawn.
 fn sprite_picture(image: &IndexedImage, palette: &DoomPalette, quantiser: &Quantiser) -> RgbaImage {
     RgbaImage::from_fn(
@@ -346,14 +408,7 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
         let (source, used) = convert::source(&level, &pieces, StandIns::On, &|name| {
             wall_textures.def(name).map(|def| (def.width, def.height))
         });
-        let stand_ins = source
-            .sectors
-            .iter()
-            .flat_map(|sector| &sector.walls)
-            .flat_map(|wall| [&wall.texture, &wall.upper, &wall.lower])
-            .flatten()
-            .filter(|texture| texture.value == STAND_IN_TEXTURE)
-            .count();
+        let stand_ins = shown_stand_ins(&source);
         if stand_ins > 0 {
             report.push(format!(
                 "{name}: {stand_ins} wall(s) or step strip(s) Doom leaves without a texture show black ({STAND_IN_TEXTURE})"
