@@ -210,8 +210,10 @@ fn shown_stand_ins(source: &SourceMap) -> usize {
             if one_mover {
                 continue;
             }
-            let upper = heights(behind).1 .0 < heights(sector).1 .1;
-            let lower = heights(behind).0 .1 > heights(sector).0 .0;
+            let ((_, behind_floor_highest), (behind_ceil_lowest, _)) = heights(behind);
+            let ((own_floor_lowest, _), (_, own_ceil_highest)) = heights(sector);
+            let upper = behind_ceil_lowest < own_ceil_highest;
+            let lower = behind_floor_highest > own_floor_lowest;
             shown += usize::from(upper && is_stand_in(&wall.upper));
             shown += usize::from(lower && is_stand_in(&wall.lower));
         }
