@@ -459,16 +459,19 @@ fn recentring(level: &DoomLevel) -> (i64, i64) {
     (axis(|v| v.x), axis(|v| v.y))
 }
 
+/// Map vertex `v` in Doom's axes, 24.8 units, shifted by `shift`.
+fn corner_fx8(level: &DoomLevel, v: u16, shift: (i64, i64)) -> Point {
+    let v = level.vertices[usize::from(v)];
+    (
+        (i64::from(v.x) + shift.0) << 8,
+        (i64::from(v.y) + shift.1) << 8,
+    )
+}
+
 /// The piece `place` (Doom's axes, 24.8 units, shifted by `shift`) lies strictly inside, if
 /// one.
 fn piece_at(level: &DoomLevel, pieces: &[Piece], place: Point, shift: (i64, i64)) -> Option<usize> {
-    let corner = |v: u16| {
-        let v = level.vertices[usize::from(v)];
-        (
-            (i64::from(v.x) + shift.0) << 8,
-            (i64::from(v.y) + shift.1) << 8,
-        )
-    };
+    let corner = |v: u16| corner_fx8(level, v, shift);
     pieces.iter().position(|piece| {
         let n = piece.outline.len();
         (0..n).all(|k| {
@@ -533,13 +536,7 @@ fn off_the_lines(
     place: (i64, i64),
     shift: (i64, i64),
 ) -> (i64, i64) {
-    let corner = |v: u16| {
-        let v = level.vertices[usize::from(v)];
-        (
-            (i64::from(v.x) + shift.0) << 8,
-            (i64::from(v.y) + shift.1) << 8,
-        )
-    };
+    let corner = |v: u16| corner_fx8(level, v, shift);
     // Pieces run clockwise with y up: inside is right of every wall.
     let sides = |p: Point| {
         pieces.iter().map(move |piece| {
