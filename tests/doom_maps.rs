@@ -169,7 +169,7 @@ fn freedoom_s_remote_doors_and_lifts_start_from_their_lines_and_switches() {
 }
 
 /// Doom's things (issue 19): each map's things of medium skill that portalcast knows and that
-/// fit their piece, with sprite sets composed from the WAD's sprite lumps: a monster still in
+/// fit their piece (moved by up to 16 units to fit it), with sprite sets composed from the WAD's sprite lumps: a monster still in
 /// eight rotations, an item's frames in Doom's order, decorations solid as Doom's block. And
 /// the middle textures of two-sided lines (grates, bars) as portal middles, composed from the
 /// WAD's wall textures (transparent where no patch draws), blocking where Doom's line blocks.
@@ -232,6 +232,11 @@ fn freedoom_s_things_come_with_their_sprites_from_the_wad() {
         .import_report()
         .iter()
         .any(|line| line.contains("things do not fit their piece")));
+    // Most of those near a cut are moved to fit rather than left out.
+    assert!(compiled
+        .import_report()
+        .iter()
+        .any(|line| line.starts_with("E1M1: ") && line.contains("things moved by up to 16 units")));
     let bars = &sets[set("mid_midbars3")];
     assert_eq!((bars.frames, bars.rotations), (1, 1));
     let image = &compiled.sprites()[usize::from(bars.first)];

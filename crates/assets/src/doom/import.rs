@@ -221,6 +221,54 @@ fn shown_stand_ins(source: &SourceMap) -> usize {
     shown
 }
 
+/// Most a thing is moved to fit its piece, in world units: less than a Doom monster's radius.
+const NUDGE_MAX: i64 = 16;
+
+/// `place` (24.8 units) moved by the fewest whole units, at most [`NUDGE_MAX`], that put a disc
+/// of `radius` around it inside the sector of `sectors` it lies in, if that exists.
+fn nudged(
+    sectors: &[crate::source::SourceSector],
+    vertices: &[crate::source::SourceVertex],
+    place: (i64, i64),
+    radius: i64,
+) -> Option<(i64, i64)> {
+    let corner = |index: usize| {
+        let vertex = &vertices[index];
+        (vertex.x.value as f64, vertex.y.value as f64)
+    };
+    // The least distance from `p` to the lines of `sector`'s walls, negative outside.
+    let clearance = |sector: &crate::source::SourceSector, p: (f64, f64)| {
+        let walls = || {
+            sector
+                .walls
+                .iter()
+                .map(|w| (corner(w.start), corner(w.end)))
+        };
+        let area: f64 = walls().map(|(a, b)| a.0 * b.1 - b.0 * a.1).sum();
+        walls()
+            .map(|(a, b)| {
+                let cross = (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0);
+                cross * area.signum() / (b.0 - a.0).hypot(b.1 - a.1)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let at = |p: (i64, i64)| (p.0 as f64 / 256.0, p.1 as f64 / 256.0);
+    let sector = sectors
+        .iter()
+        .find(|sector| clearance(sector, at(place)) > 0.0)?;
+    let mut steps: Vec<(i64, i64)> = (-NUDGE_MAX..=NUDGE_MAX)
+        .flat_map(|dx| (-NUDGE_MAX..=NUDGE_MAX).map(move |dy| (dx, dy)))
+        .filter(|(dx, dy)| dx * dx + dy * dy <= NUDGE_MAX * NUDGE_MAX)
+        .collect();
+    steps.sort_by_key(|(dx, dy)| dx * dx + dy * dy);
+    // A 256th over the radius: the compiler's test is exact, this one is in f64.
+    let needed = radius as f64 + 1.0 / 256.0;
+    steps
+        .into_iter()
+        .map(|(dx, dy)| (place.0 + dx * 256, place.1 + dy * 256))
+        .find(|&p| clearance(sector, at(p)) >= needed)
+}
+
 /// A sprite's picture: Doom's palette colours, transparent where nothing is drawn.
 fn sprite_picture(image: &IndexedImage, palette: &DoomPalette, quantiser: &Quantiser) -> RgbaImage {
     RgbaImage::from_fn(
@@ -434,19 +482,61 @@ pub fn compile_wad(request: &WadRequest) -> Result<Compiled, Vec<DoomError>> {
     let mut maps: Vec<CompiledMap> = Vec::new();
     for (name, source) in &mut sources {
         let mut built = map_build::build(name, source, &catalog);
-        // Things whose sprite does not fit their piece are left out, and the map built again.
-        if let Ok((map, _, fits)) = &built {
-            let out: std::collections::BTreeSet<usize> = map_build::misfits(map, fits, size)
-                .into_iter()
-                .map(convert::thing_of_loc)
-                .collect();
-            if !out.is_empty() {
+        // Things whose sprite does not fit their piece are moved a little to fit it, or else
+        // left out, and the map built again.
+        type Built = Result<
+            (
+                CompiledMap,
+                Vec<map_build::FlatUse>,
+                Vec<map_build::ThingFit>,
+            ),
+            Vec<crate::diag::Located>,
+        >;
+        let misfits = |built: &Built| -> std::collections::BTreeSet<usize> {
+            match built {
+                Ok((map, _, fits)) => map_build::misfits(map, fits, size)
+                    .into_iter()
+                    .map(convert::thing_of_loc)
+                    .collect(),
+                Err(_) => Default::default(),
+            }
+        };
+        let out = misfits(&built);
+        if !out.is_empty() {
+            let SourceMap {
+                sectors,
+                vertices,
+                things,
+                ..
+            } = &mut *source;
+            let mut moved = 0;
+            for thing in things.iter_mut() {
+                let set = sets.get(&thing.sprite.value);
+                if !out.contains(&convert::thing_of_loc(thing.place.loc)) || set.is_none() {
+                    continue;
+                }
+                let radius = set.map_or(0, |set| i64::from(set.images[0].width.div_ceil(2)));
+                let place = (thing.place.x_fx8.value, thing.place.y_fx8.value);
+                if let Some((x, y)) = nudged(sectors, vertices, place, radius) {
+                    thing.place.x_fx8.value = x;
+                    thing.place.y_fx8.value = y;
+                    moved += 1;
+                }
+            }
+            if moved > 0 {
+                report.push(format!(
+                    "{name}: {moved} things moved by up to {NUDGE_MAX} units so that their footprint (half the sprite's width across) fits their piece of the map"
+                ));
+                built = map_build::build(name, source, &catalog);
+            }
+            let still_out = misfits(&built);
+            if !still_out.is_empty() {
                 source
                     .things
-                    .retain(|thing| !out.contains(&convert::thing_of_loc(thing.place.loc)));
+                    .retain(|thing| !still_out.contains(&convert::thing_of_loc(thing.place.loc)));
                 report.push(format!(
                     "{name}: {} things do not fit their piece of the map (a footprint half the sprite's width across, crossing a wall or a cut between pieces, or a sprite through the floor or the ceiling): left out",
-                    out.len()
+                    still_out.len()
                 ));
                 built = map_build::build(name, source, &catalog);
             }
