@@ -91,9 +91,6 @@ fn freedoom_maps_match_the_oracle_from_their_starts_and_sampled_poses() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// Room in the host's live world for any imported map (the ROM's is sized by its own maps).
-type HostWorld = portalcast::world::World<4096, 64, 256>;
-
 /// Doom's remote doors and lifts (issue 19): each walk-over line crossed starts every mover of
 /// its tag (a door opens, a lift goes down), each switch's tag names movers and a switch
 /// whose texture has an `SW1`/`SW2` twin shows the twin once used; movers that no line here
@@ -147,7 +144,7 @@ fn freedoom_s_remote_doors_and_lifts_start_from_their_lines_and_switches() {
                         .contains(&usize::from(trigger.wall))
                 })
                 .expect("the line's sector") as u16;
-            let mut world = Box::new(HostWorld::start(&map));
+            let mut world = Box::new(common::HostWorld::start(&map));
             let player = portalcast::player::Player::spawn(&map);
             world.crossed(&map, sector, wall.portal);
             for _ in 0..20 {

@@ -30,9 +30,6 @@ use portalcast_xtask::freedoom;
 /// The soak's bound on one frame (`tests/emulator_soak.rs`): 16 display frames.
 const FRAME_CYCLES_BOUND: u64 = 16 * 280_896;
 const SURFACE_MISMATCH_MAX_PERCENT: f64 = 0.5;
-/// Room in the host's live world for any imported map's sectors, movers and triggers (the
-/// ROM's is sized by its own maps).
-type HostWorld = portalcast::world::World<4096, 64, 256>;
 
 fn freedoom_rom() -> &'static Path {
     static ROM: OnceLock<PathBuf> = OnceLock::new();
@@ -92,7 +89,7 @@ fn walk_matches_the_host_and_the_oracle(
             assert_eq!(name, map_name, "{render_line}");
             let map = compiled.map(name).expect("the ROM's map is the host's");
             let settings = settings_of(render_line);
-            let mut live = Box::new(HostWorld::start(&map));
+            let mut live = Box::new(common::HostWorld::start(&map));
             if let Some(world) = world {
                 live.set_heights(&map, &world.heights);
                 live.set_thrown(&world.thrown);

@@ -19,9 +19,6 @@ use proptest::prelude::*;
 /// Moves per case and cases per map: 40 × 256 = 10,240 moves on each map.
 const MOVES_PER_CASE: usize = 256;
 const CASES: u32 = 40;
-/// Room for the live state of every map here, Freedoom's included (the ROM's own world is sized
-/// for the maps it holds).
-type RandomWorld = portalcast::world::World<4096, 64, 256>;
 
 /// One random move: an intent held for 1 to 8 ticks.
 #[derive(Clone, Debug)]
@@ -115,7 +112,7 @@ fn random_moves_keep_the_invariants_on(map: &MapTables, cases: u32) {
         // where it starts, in a door or on a lift as often as anywhere); the use button
         // (`activate`) in the moves starts them again. Doors then close on the body at their
         // time, lifts carry it.
-        let mut world = Box::new(RandomWorld::start(map));
+        let mut world = Box::new(common::HostWorld::start(map));
         for index in 0..map.movers.len() {
             world.use_mover(map, index);
         }

@@ -135,6 +135,10 @@ pub fn shipped_assets() -> &'static portalcast_assets::Compiled {
     })
 }
 
+/// A live world on the host with room for any map's sectors, movers and triggers, Freedoom's
+/// included (the ROM's own, `portalcast::game::GameWorld`, is sized by the maps it holds).
+pub type HostWorld = portalcast::world::World<4096, 64, 256>;
+
 /// Freedoom Phase 1's maps the tests build (`portalcast_xtask::freedoom::MAPS`), compiled once
 /// per test process by the compiler build.rs runs on a WAD: the tables the Freedoom ROM holds.
 pub fn freedoom_assets() -> &'static portalcast_assets::Compiled {

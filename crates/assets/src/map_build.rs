@@ -929,7 +929,7 @@ fn mover_range(sector: &SourceSector) -> Option<(MoverKind, i64, i64)> {
 
 /// The lowest and highest heights a sector's floor and its ceiling take as its mover moves:
 /// `((floor low, floor high), (ceiling low, ceiling high))`.
-fn plane_spans(sector: &SourceSector) -> ((i64, i64), (i64, i64)) {
+pub(crate) fn plane_spans(sector: &SourceSector) -> ((i64, i64), (i64, i64)) {
     let (floor, ceil) = (sector.floor.value, sector.ceil.value);
     match mover_range(sector) {
         Some((kind, low, high)) if kind.moves_ceiling() => ((floor, floor), (low, high)),

@@ -164,23 +164,7 @@ fn picture(
 /// both sides shows no strip, so Doom leaves those textures out, and their stand-ins are never
 /// drawn.
 fn shown_stand_ins(source: &SourceMap) -> usize {
-    use crate::source::{MoverKind, SourceSector};
-    // The floor's and the ceiling's lowest and highest, as the sector's mover moves them.
-    let heights = |sector: &SourceSector| {
-        let (floor, ceil) = (sector.floor.value, sector.ceil.value);
-        let other = sector
-            .mover
-            .as_ref()
-            .and_then(|mover| Some((mover.kind, mover.height.as_ref()?.value)));
-        match (sector.mover.as_ref().map(|mover| mover.kind), other) {
-            (Some(MoverKind::Door), _) => ((floor, floor), (floor, ceil)),
-            (_, Some((MoverKind::Lift | MoverKind::Platform, to))) => {
-                ((floor.min(to), floor.max(to)), (ceil, ceil))
-            }
-            (_, Some((MoverKind::Crusher, to))) => ((floor, floor), (ceil.min(to), ceil.max(to))),
-            _ => ((floor, floor), (ceil, ceil)),
-        }
-    };
+    let heights = map_build::plane_spans;
     let is_stand_in = |texture: &Option<crate::source::Spanned<String>>| {
         texture
             .as_ref()
