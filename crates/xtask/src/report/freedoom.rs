@@ -213,8 +213,31 @@ fn render(
             rate / silent
         );
     }
+    // How far each scenario is from the goal, twice GBADoom's silent rate.
+    let short: Vec<String> = scenarios
+        .iter()
+        .map(|&(name, _, rate, _, _, silent)| {
+            let goal = GOAL_OVER_GBADOOM * silent;
+            if rate >= goal {
+                format!("{name} meets it ({rate:.1} of {goal:.1} fps)")
+            } else {
+                format!(
+                    "{name} is short by {:.1}× ({rate:.1} of {goal:.1} fps)",
+                    goal / rate
+                )
+            }
+        })
+        .collect();
+    let _ = writeln!(
+        doc,
+        "\nThe goal, {GOAL_OVER_GBADOOM}× GBADoom's silent frame rate: {}.",
+        short.join("; ")
+    );
     doc
 }
+
+/// The goal: portalcast's frame rate over GBADoom's (silent) at the same scenario.
+const GOAL_OVER_GBADOOM: f64 = 2.0;
 
 #[cfg(test)]
 mod tests {
