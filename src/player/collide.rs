@@ -1407,6 +1407,7 @@ mod tests {
             floor_texture: 0,
             ceil_texture: 0,
             light: 255,
+            slope: portalcast_format::NO_SLOPE,
         }];
         (vertices, walls, sectors)
     }
@@ -1434,6 +1435,7 @@ mod tests {
             triggers: &[],
             lights: &[],
             wall_twins: &[],
+            slopes: &[],
         }
     }
 

@@ -303,7 +303,7 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
              size: {FORMAT}::PlayerSize {{ eye_height: {}, height: {}, step_up: {} }} }}, \
              things: &MAP_{index}_THINGS, sector_things: &MAP_{index}_SECTOR_THINGS, \
              movers: &MAP_{index}_MOVERS, triggers: &MAP_{index}_TRIGGERS, lights: &MAP_{index}_LIGHTS, \
-             wall_twins: &MAP_{index}_WALL_TWINS }},",
+             wall_twins: &MAP_{index}_WALL_TWINS, slopes: &MAP_{index}_SLOPES }},",
             map.name,
             p.x_fx8,
             p.y_fx8,
@@ -350,8 +350,28 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
     for c in &map.sectors {
         let _ = writeln!(
             s,
-            "    {FORMAT}::Sector {{ first_wall: {}, wall_count: {}, floor_z: {}, ceil_z: {}, floor_texture: {}, ceil_texture: {}, light: {} }},",
-            c.first_wall, c.wall_count, c.floor_z, c.ceil_z, c.floor_texture, c.ceil_texture, c.light
+            "    {FORMAT}::Sector {{ first_wall: {}, wall_count: {}, floor_z: {}, ceil_z: {}, floor_texture: {}, ceil_texture: {}, light: {}, slope: {} }},",
+            c.first_wall, c.wall_count, c.floor_z, c.ceil_z, c.floor_texture, c.ceil_texture, c.light, c.slope
+        );
+    }
+    let _ = writeln!(s, "];");
+    let _ = writeln!(
+        s,
+        "static MAP_{index}_SLOPES: [{FORMAT}::SectorSlope; {}] = [",
+        map.slopes.len()
+    );
+    let plane = |p: &portalcast_format::Plane| {
+        format!(
+            "{FORMAT}::Plane {{ base_fx8: {}, gradient_x_fx24: {}, gradient_y_fx24: {} }}",
+            p.base_fx8, p.gradient_x_fx24, p.gradient_y_fx24
+        )
+    };
+    for slope in &map.slopes {
+        let _ = writeln!(
+            s,
+            "    {FORMAT}::SectorSlope {{ floor: {}, ceiling: {} }},",
+            plane(&slope.floor),
+            plane(&slope.ceiling)
         );
     }
     let _ = writeln!(s, "];");
@@ -457,6 +477,7 @@ pub(crate) fn map_table_bytes(map: &CompiledMap) -> usize {
         + map.walls.len() * size_of::<Wall>()
         + map.sectors.len() * size_of::<Sector>()
         + map.things.len() * size_of::<Thing>()
+        + map.slopes.len() * size_of::<portalcast_format::SectorSlope>()
 }
 
 /// `"1 sprite"`, `"2 sprites"`.

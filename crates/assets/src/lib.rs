@@ -24,6 +24,7 @@ mod map_text;
 pub mod numeric_tables;
 mod palette;
 mod placement;
+mod slopes;
 mod source;
 mod sprite_sets;
 mod texels;

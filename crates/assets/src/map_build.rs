@@ -12,10 +12,11 @@ use portalcast_format::limits::{
     THINGS_MAX, TRIGGERS_MAX, WORLD_COORD_MAX,
 };
 use portalcast_format::{
-    find_twin, Light, MapTables, Mover, PlayerStart, Sector, Thing, Trigger, Vertex, Wall,
-    MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM, NO_PORTAL,
-    NO_TEXTURE, NO_TWIN, SKY, THING_HANGING, THING_SOLID, THING_TRANSLUCENT, TRIGGER_LINE,
-    TRIGGER_SWITCH, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT, WALL_SWITCH,
+    find_twin, Light, MapTables, Mover, Plane, PlayerStart, Sector, SectorSlope, Thing, Trigger,
+    Vertex, Wall, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
+    MOVER_PLATFORM, NO_PORTAL, NO_SLOPE, NO_TEXTURE, NO_TWIN, SKY, THING_HANGING, THING_SOLID,
+    THING_TRANSLUCENT, TRIGGER_LINE, TRIGGER_SWITCH, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
+    WALL_SWITCH,
 };
 
 use crate::diag::{Loc, Located};
@@ -186,6 +187,8 @@ pub struct CompiledMap {
     pub lights: Vec<Light>,
     /// [`MapTables::wall_twins`].
     pub wall_twins: Vec<u16>,
+    /// [`MapTables::slopes`].
+    pub slopes: Vec<SectorSlope>,
     /// Player start.
     pub player_start: PlayerStart,
 }
@@ -205,6 +208,7 @@ impl CompiledMap {
             triggers: &self.triggers,
             lights: &self.lights,
             wall_twins: &self.wall_twins,
+            slopes: &self.slopes,
         }
     }
 }
@@ -313,7 +317,19 @@ pub(crate) fn build(
         return Err(errors);
     }
     let outlines: Vec<Outline<'_>> = outlines.into_iter().flatten().collect();
-    check_portals(source, &outlines, &mut errors);
+    // Sloped sectors take their lowest floor and highest ceiling as their heights from here on.
+    let sloped;
+    let (source, slopes) = match resolve_slopes(source, &outlines, &mut errors) {
+        Some((resolved, slopes)) => {
+            sloped = resolved;
+            (&sloped, slopes)
+        }
+        None => (source, vec![None; source.sectors.len()]),
+    };
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    check_portals(source, &outlines, &slopes, &mut errors);
     if errors.is_empty() {
         check_overlaps(source, &outlines, &mut errors);
     }
@@ -352,6 +368,15 @@ pub(crate) fn build(
             if sector != NO_PORTAL {
                 let sector = usize::from(sector);
                 check_not_in_closing_sector(source, sector, &thing.place, &what, &mut errors);
+                if slopes[sector].is_some() {
+                    errors.push((
+                        thing.place.loc,
+                        format!(
+                            "{what} stands in {}, which slopes; things on slopes are not supported yet, so move it to a sector with a flat floor and ceiling",
+                            source.sectors[sector].label
+                        ),
+                    ));
+                }
             }
             sector
         })
@@ -374,8 +399,52 @@ pub(crate) fn build(
         player_sector,
         &thing_sectors,
         fits,
+        &slopes,
     );
     Ok((map, flat_uses(source, catalog), fits))
+}
+
+/// The planes of every sector with a slope ([`crate::slopes::resolve`]), and a copy of `source`
+/// whose sloped sectors have their lowest floor and highest ceiling as their heights; `None`
+/// when no sector slopes (and then nothing is reported). A portal middle on a portal of a
+/// sector with a sloped ceiling is refused: its top is the lower ceiling's height.
+fn resolve_slopes(
+    source: &SourceMap,
+    outlines: &[Outline<'_>],
+    errors: &mut Vec<Located>,
+) -> Option<(SourceMap, Vec<Option<SectorSlope>>)> {
+    if source
+        .sectors
+        .iter()
+        .all(|sector| sector.floor_slope.is_none() && sector.ceil_slope.is_none())
+    {
+        return None;
+    }
+    let mut resolved = source.clone();
+    let slopes: Vec<Option<SectorSlope>> = resolved
+        .sectors
+        .iter_mut()
+        .zip(outlines)
+        .map(|(sector, outline)| {
+            let corners: Vec<usize> = outline.walls.iter().map(|wall| wall.start).collect();
+            crate::slopes::resolve(source, sector, &corners, source.player_size, errors)
+        })
+        .collect();
+    let ceiling_slopes = |sector: usize| source.sectors[sector].ceil_slope.is_some();
+    for (index, sector) in source.sectors.iter().enumerate() {
+        for wall in &sector.walls {
+            let (Some(middle), Some(portal)) = (&wall.middle, &wall.portal) else {
+                continue;
+            };
+            if ceiling_slopes(index) || ceiling_slopes(portal.value) {
+                errors.push((
+                    middle.loc,
+                    "a portal middle (mid=) hangs from the lower of the two ceilings, which a sloped ceiling does not give as one height; make both sectors' ceilings flat, or remove mid=".to_string(),
+                ));
+            }
+        }
+    }
+    Some((resolved, slopes))
 }
 
 /// What [`finish_things`] needs of `thing`, which stands strictly inside sector `sector`.
@@ -1299,7 +1368,12 @@ fn check_outline<'s>(
     Some(Outline { walls: oriented })
 }
 
-fn check_portals(source: &SourceMap, outlines: &[Outline<'_>], errors: &mut Vec<Located>) {
+fn check_portals(
+    source: &SourceMap,
+    outlines: &[Outline<'_>],
+    slopes: &[Option<SectorSlope>],
+    errors: &mut Vec<Located>,
+) {
     let label = |vertex: usize| source.vertices[vertex].label.as_str();
     let mut edges: HashMap<(usize, usize), (usize, &OrientedWall<'_>)> = HashMap::new();
     for (sector_index, outline) in outlines.iter().enumerate() {
@@ -1369,7 +1443,79 @@ fn check_portals(source: &SourceMap, outlines: &[Outline<'_>], errors: &mut Vec<
                     )),
                 },
             }
-            check_strips(here, there, wall.source, portal.loc, errors);
+            if slopes[here_index].is_some() || slopes[portal.value].is_some() {
+                let planes = |index: usize, sector: &SourceSector| {
+                    slopes[index].unwrap_or(SectorSlope {
+                        floor: Plane::flat(sector.floor.value as i32),
+                        ceiling: Plane::flat(sector.ceil.value as i32),
+                    })
+                };
+                let ends = [wall.start, wall.end].map(|vertex| {
+                    let (x, y) = point(source, vertex);
+                    (
+                        source.vertices[vertex].label.as_str(),
+                        (x * 256) as i32,
+                        (y * 256) as i32,
+                    )
+                });
+                check_sloped_strips(
+                    (here, planes(here_index, here)),
+                    (there, planes(portal.value, there)),
+                    wall.source,
+                    ends,
+                    portal.loc,
+                    errors,
+                );
+            } else {
+                check_strips(here, there, wall.source, portal.loc, errors);
+            }
+        }
+    }
+}
+
+/// [`check_strips`] where either sector slopes (neither moves): the strips show where the
+/// heights at either end of the wall `ends` (each a vertex's name and 24.8 position) say so.
+fn check_sloped_strips(
+    (here, here_planes): (&SourceSector, SectorSlope),
+    (there, there_planes): (&SourceSector, SectorSlope),
+    wall: &SourceWall,
+    ends: [(&str, i32, i32); 2],
+    at: Loc,
+    errors: &mut Vec<Located>,
+) {
+    let both_sky =
+        matches!(here.ceiling, CeilingSource::Sky) && matches!(there.ceiling, CeilingSource::Sky);
+    let units = |fx8: i32| fx8 as f64 / 256.0;
+    for (name, x, y) in ends {
+        let height = |plane: &Plane| plane.height_fx8_at(x, y);
+        let (here_ceil, there_ceil) = (height(&here_planes.ceiling), height(&there_planes.ceiling));
+        if wall.upper.is_none() && !both_sky && there_ceil < here_ceil {
+            errors.push((
+                at,
+                format!(
+                    "portal to {} needs upper=TEXTURE: at {name} its ceiling ({}) is lower than this sector's ({}), so a strip of wall shows above the opening",
+                    there.label,
+                    units(there_ceil),
+                    units(here_ceil)
+                ),
+            ));
+            break;
+        }
+    }
+    for (name, x, y) in ends {
+        let height = |plane: &Plane| plane.height_fx8_at(x, y);
+        let (here_floor, there_floor) = (height(&here_planes.floor), height(&there_planes.floor));
+        if wall.lower.is_none() && there_floor > here_floor {
+            errors.push((
+                at,
+                format!(
+                    "portal to {} needs lower=TEXTURE: at {name} its floor ({}) is higher than this sector's ({}), so a step shows below the opening",
+                    there.label,
+                    units(there_floor),
+                    units(here_floor)
+                ),
+            ));
+            break;
         }
     }
 }
@@ -1910,7 +2056,23 @@ fn tables(
     player_sector: u16,
     thing_sectors: &[u16],
     fits: Vec<ThingFit>,
+    sector_slopes: &[Option<SectorSlope>],
 ) -> (CompiledMap, Vec<ThingFit>) {
+    // Each distinct pair of planes once, so equal indices mean equal planes.
+    let mut slopes: Vec<SectorSlope> = Vec::new();
+    let slope_index: Vec<u16> = sector_slopes
+        .iter()
+        .map(|slope| match slope {
+            None => NO_SLOPE,
+            Some(slope) => match slopes.iter().position(|known| known == slope) {
+                Some(at) => at as u16,
+                None => {
+                    slopes.push(*slope);
+                    (slopes.len() - 1) as u16
+                }
+            },
+        })
+        .collect();
     // Every reference was checked above, so these lookups cannot fail.
     let mut ignore = Vec::new();
     let mut texture = |name: &Option<Spanned<String>>| {
@@ -1997,6 +2159,7 @@ fn tables(
                 CeilingSource::Texture(name) => texture(&Some(name.clone())),
             },
             light: sector.light,
+            slope: slope_index[sectors.len()],
         });
         if let Some(mover) = mover(sector, (sectors.len() - 1) as u16) {
             movers.push(mover);
@@ -2055,6 +2218,7 @@ fn tables(
         triggers,
         lights,
         wall_twins,
+        slopes,
         player_start: PlayerStart {
             x_fx8,
             y_fx8,

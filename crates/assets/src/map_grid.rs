@@ -448,6 +448,8 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             loc,
             floor: kind.floor.clone(),
             ceil: kind.ceil.clone(),
+            floor_slope: None,
+            ceil_slope: None,
             floor_texture: kind.floor_texture.clone(),
             ceiling: kind.ceiling.clone(),
             light: kind.light,

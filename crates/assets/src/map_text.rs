@@ -9,8 +9,8 @@ use portalcast_format::PlayerSize;
 use crate::diag::{Loc, Located};
 use crate::lex::{self, KeyValues, Token};
 use crate::source::{
-    CeilingSource, SourceMap, SourcePlace, SourceSector, SourceThing, SourceVertex, SourceWall,
-    Spanned,
+    CeilingSource, SourceMap, SourcePlace, SourceSector, SourceSlope, SourceThing, SourceVertex,
+    SourceWall, Spanned,
 };
 
 /// Light level of a sector that does not set `light=`: textures shown as painted.
@@ -19,6 +19,8 @@ const DEFAULT_LIGHT: u8 = portalcast_format::LIGHT_NEUTRAL;
 const SECTOR_KEYS: &[&str] = &[
     "floor",
     "ceil",
+    "floor_slope",
+    "ceil_slope",
     "floor_tex",
     "ceil_tex",
     "light",
@@ -62,6 +64,14 @@ struct WrittenWall<'t> {
 struct WrittenSector<'t> {
     sector: SourceSector,
     walls: Vec<WrittenWall<'t>>,
+    /// `floor_slope=` and `ceil_slope=` as written: vertex names not yet resolved.
+    slopes: [Option<WrittenSlope<'t>>; 2],
+}
+
+/// A slope's value as written: `NAME:HEIGHT` pairs, vertex names not yet resolved.
+struct WrittenSlope<'t> {
+    loc: Loc,
+    points: Vec<(Token<'t>, Spanned<i64>)>,
 }
 
 /// Parses a `.map` file. Reports every syntax and name error it finds.
@@ -129,7 +139,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 });
             }
             "sector" => {
-                let (name, parsed) =
+                let (name, parsed, slopes) =
                     parse_sector(directive, &positional, &flags, &mut keys, &mut errors);
                 keys.report_unknown("sector", SECTOR_KEYS, &mut errors);
                 if let Some(name) = name {
@@ -150,6 +160,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 sectors.push(WrittenSector {
                     sector: parsed.unwrap_or_else(|| placeholder_sector(directive.loc)),
                     walls: Vec::new(),
+                    slopes,
                 });
             }
             "wall" => {
@@ -264,6 +275,8 @@ fn placeholder_sector(loc: Loc) -> SourceSector {
         loc,
         floor: Spanned::new(0, loc),
         ceil: Spanned::new(0, loc),
+        floor_slope: None,
+        ceil_slope: None,
         floor_texture: Spanned::new(String::new(), loc),
         ceiling: CeilingSource::Sky,
         light: DEFAULT_LIGHT,
@@ -278,17 +291,71 @@ fn texture_name(token: Token<'_>, errors: &mut Vec<Located>) -> Option<Spanned<S
 }
 
 /// Parses a `sector` line: its name (if valid) and the sector (if every value is).
-fn parse_sector(
-    directive: Token<'_>,
-    positional: &[Token<'_>],
-    flags: &[Token<'_>],
-    keys: &mut KeyValues<'_>,
+#[allow(clippy::type_complexity)]
+fn parse_sector<'t>(
+    directive: Token<'t>,
+    positional: &[Token<'t>],
+    flags: &[Token<'t>],
+    keys: &mut KeyValues<'t>,
     errors: &mut Vec<Located>,
-) -> (Option<String>, Option<SourceSector>) {
+) -> (
+    Option<String>,
+    Option<SourceSector>,
+    [Option<WrittenSlope<'t>>; 2],
+) {
     let name = expect_words(directive, positional, ["NAME"], errors)
         .and_then(|[name]| record(lex::name(name, "sector name"), errors));
-    let sector = parse_sector_values(directive, name.as_deref(), flags, keys, errors);
-    (name, sector)
+    let slopes = [
+        keys.take("floor_slope")
+            .and_then(|t| parse_slope(t, "floor", errors)),
+        keys.take("ceil_slope")
+            .and_then(|t| parse_slope(t, "ceiling", errors)),
+    ];
+    let sector = parse_sector_values(directive, name.as_deref(), flags, keys, &slopes, errors);
+    (name, sector, slopes)
+}
+
+/// A `floor_slope=` or `ceil_slope=` value: `NAME:HEIGHT` pairs separated by commas, each
+/// part located at its own column.
+fn parse_slope<'t>(
+    value: Token<'t>,
+    what: &str,
+    errors: &mut Vec<Located>,
+) -> Option<WrittenSlope<'t>> {
+    let mut points = Vec::new();
+    let mut ok = true;
+    let mut offset = 0u32;
+    for part in value.text.split(',') {
+        let at = Loc::new(value.loc.line, value.loc.col + offset);
+        offset += part.chars().count() as u32 + 1;
+        let Some((name, height)) = part.split_once(':') else {
+            errors.push((
+                at,
+                format!(
+                    "{what} slope point '{part}' needs a vertex and a height: write VERTEX:HEIGHT, e.g. v3:32, and separate the points with commas"
+                ),
+            ));
+            ok = false;
+            continue;
+        };
+        let name = Token {
+            text: name,
+            loc: at,
+        };
+        let height = Token {
+            text: height,
+            loc: Loc::new(at.line, at.col + name.text.chars().count() as u32 + 1),
+        };
+        let name_ok = record(lex::name(name, "vertex name"), errors).is_some();
+        match record(lex::integer(height, &format!("{what} height")), errors) {
+            Some(value) if name_ok => points.push((name, Spanned::new(value, height.loc))),
+            _ => ok = false,
+        }
+    }
+    ok.then_some(WrittenSlope {
+        loc: value.loc,
+        points,
+    })
 }
 
 /// The values of a `sector` line named `name`, if all are valid (each bad one is reported):
@@ -299,6 +366,7 @@ fn parse_sector_values(
     name: Option<&str>,
     flags: &[Token<'_>],
     keys: &mut KeyValues<'_>,
+    slopes: &[Option<WrittenSlope<'_>>; 2],
     errors: &mut Vec<Located>,
 ) -> Option<SourceSector> {
     let mut missing = |key: &str, example: &str| {
@@ -312,24 +380,56 @@ fn parse_sector_values(
     let floor_tex = keys.take("floor_tex");
     let ceil_tex = keys.take("ceil_tex");
     let light = keys.take("light");
-    if floor.is_none() {
-        missing("floor", "0");
+    // A sloped floor or ceiling takes its heights from its slope: `floor=` or `ceil=` would say
+    // a second thing.
+    let [floor_slope, ceil_slope] = slopes;
+    let mut both_given = Vec::new();
+    // A slope written but not parsed was reported already: no "needs floor=" on top.
+    let slope_written = [keys.has("floor_slope"), keys.has("ceil_slope")];
+    for ((key, given, slope), written) in
+        [("floor", floor, floor_slope), ("ceil", ceil, ceil_slope)]
+            .into_iter()
+            .zip(slope_written)
+    {
+        match (given, slope) {
+            (None, None) if !written => missing(key, if key == "floor" { "0" } else { "128" }),
+            (Some(t), Some(_)) => both_given.push((
+                t.loc,
+                format!("{key}= and {key}_slope= both give this height; keep one (a slope gives its heights at the vertices it lists)"),
+            )),
+            _ => {}
+        }
     }
-    if ceil.is_none() {
-        missing("ceil", "128");
-    }
+    let slope_floor = |slope: &Option<WrittenSlope<'_>>| {
+        slope.as_ref().map(|s| {
+            let low = s.points.iter().map(|(_, h)| h.value).min().unwrap_or(0);
+            Spanned::new(low, s.loc)
+        })
+    };
     if floor_tex.is_none() {
         missing("floor_tex", "stone");
     }
     if ceil_tex.is_none() {
         missing("ceil_tex", "sky");
     }
-    let floor = floor.and_then(|t| {
-        record(lex::integer(t, "floor height"), errors).map(|v| Spanned::new(v, t.loc))
-    });
-    let ceil = ceil.and_then(|t| {
-        record(lex::integer(t, "ceiling height"), errors).map(|v| Spanned::new(v, t.loc))
-    });
+    errors.append(&mut both_given);
+    // A slope's heights stand in until the slope is resolved against the sector's outline
+    // (`crate::slopes`), which sets the lowest floor and highest ceiling at its vertices.
+    let floor = match floor {
+        Some(t) if floor_slope.is_none() => {
+            record(lex::integer(t, "floor height"), errors).map(|v| Spanned::new(v, t.loc))
+        }
+        _ => slope_floor(floor_slope),
+    };
+    let ceil = match ceil {
+        Some(t) if ceil_slope.is_none() => {
+            record(lex::integer(t, "ceiling height"), errors).map(|v| Spanned::new(v, t.loc))
+        }
+        _ => ceil_slope.as_ref().map(|s| {
+            let high = s.points.iter().map(|(_, h)| h.value).max().unwrap_or(0);
+            Spanned::new(high, s.loc)
+        }),
+    };
     let floor_texture = match floor_tex {
         Some(t) if t.text == "sky" => {
             errors.push((
@@ -363,6 +463,8 @@ fn parse_sector_values(
         loc: directive.loc,
         floor: floor?,
         ceil: ceil?,
+        floor_slope: None,
+        ceil_slope: None,
         floor_texture: floor_texture?,
         ceiling: ceiling?,
         light: light?,
@@ -505,21 +607,42 @@ fn resolve_walls(
     errors: &mut Vec<Located>,
 ) -> Vec<SourceSector> {
     let mut resolved = Vec::with_capacity(sectors.len());
-    for WrittenSector { mut sector, walls } in sectors {
+    let vertex = |token: Token<'_>, errors: &mut Vec<Located>| {
+        let found = vertex_names.get(token.text).copied();
+        if found.is_none() {
+            errors.push((
+                token.loc,
+                format!(
+                    "unknown vertex '{}'; declare it with `vertex {} X Y`",
+                    token.text, token.text
+                ),
+            ));
+        }
+        found
+    };
+    for WrittenSector {
+        mut sector,
+        walls,
+        slopes,
+    } in sectors
+    {
+        let [floor_slope, ceil_slope] = slopes.map(|slope| {
+            let slope = slope?;
+            let points: Vec<_> = slope
+                .points
+                .into_iter()
+                .filter_map(|(name, height)| {
+                    Some((Spanned::new(vertex(name, errors)?, name.loc), height))
+                })
+                .collect();
+            Some(SourceSlope {
+                loc: slope.loc,
+                points,
+            })
+        });
+        sector.floor_slope = floor_slope;
+        sector.ceil_slope = ceil_slope;
         for wall in walls {
-            let vertex = |token: Token<'_>, errors: &mut Vec<Located>| {
-                let found = vertex_names.get(token.text).copied();
-                if found.is_none() {
-                    errors.push((
-                        token.loc,
-                        format!(
-                            "unknown vertex '{}'; declare it with `vertex {} X Y`",
-                            token.text, token.text
-                        ),
-                    ));
-                }
-                found
-            };
             let start = vertex(wall.start, errors);
             let end = vertex(wall.end, errors);
             let portal = match wall.portal {

@@ -47,8 +47,15 @@ pub(crate) struct SourceSector {
     /// How error messages name it: "sector 'hall'" or "area '.' at row 3, column 5".
     pub label: String,
     pub loc: Loc,
+    /// The floor's height; where `floor_slope` is given, its lowest height at the sector's
+    /// vertices (rounded down), set once the slope is resolved ([`crate::slopes`]).
     pub floor: Spanned<i64>,
+    /// The ceiling's height; where `ceil_slope` is given, its highest (rounded up).
     pub ceil: Spanned<i64>,
+    /// `floor_slope=`: the floor's heights at some of the sector's vertices.
+    pub floor_slope: Option<SourceSlope>,
+    /// `ceil_slope=`: the ceiling's heights at some of the sector's vertices.
+    pub ceil_slope: Option<SourceSlope>,
     pub floor_texture: Spanned<String>,
     pub ceiling: CeilingSource,
     pub light: u8,
@@ -59,6 +66,16 @@ pub(crate) struct SourceSector {
     /// `switched=`).
     pub light_effect: Option<SourceLight>,
     pub walls: Vec<SourceWall>,
+}
+
+/// A sloped floor or ceiling as a map gives it: its heights at three or more of the sector's
+/// vertices, which must lie on one plane.
+#[derive(Clone, Debug)]
+pub(crate) struct SourceSlope {
+    /// Where the `floor_slope=` or `ceil_slope=` value is written.
+    pub loc: Loc,
+    /// Each vertex (index into [`SourceMap::vertices`]) with its height, as written.
+    pub points: Vec<(Spanned<usize>, Spanned<i64>)>,
 }
 
 /// How a sector moves: its mover word.

@@ -44,6 +44,12 @@ pub const HEIGHT_MIN: i32 = -8192;
 /// Highest floor or ceiling height, in world units (and highest eye height).
 pub const HEIGHT_MAX: i32 = 8192;
 
+/// Steepest slope of a floor or ceiling: rise per unit of run along x or along y (4 is about
+/// 76°). [`Plane`](crate::Plane)'s 8.24 gradients hold 8; the bound keeps a plane's height at the
+/// world origin (up to `HEIGHT_MAX + 4·2·WORLD_COORD_MAX` units) within 24.8's i32, and a
+/// sloped span's depth rule away from overflow.
+pub const SLOPE_GRADIENT_MAX: i32 = 4;
+
 /// Largest difference between two heights of the world, in particular between a floor or ceiling
 /// and the eye: `HEIGHT_MAX − HEIGHT_MIN`. The floor depth `2·d·Δh` in 24.8 bits must fit i32
 /// (`Δh ≤ 34_952`); this leaves a factor 2.1.

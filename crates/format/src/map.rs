@@ -87,7 +87,7 @@ impl Wall {
     }
 }
 
-/// A convex region of the map with a flat floor and a flat ceiling.
+/// A convex region of the map with a floor and a ceiling, each flat or sloped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C)]
 pub struct Sector {
@@ -96,9 +96,11 @@ pub struct Sector {
     /// Number of walls (at least 3). Consecutive walls may be collinear (a wall split where a
     /// neighbour's portal starts), never of zero length.
     pub wall_count: u16,
-    /// Floor height, world units; `floor_z < ceil_z`.
+    /// Floor height, world units; `floor_z < ceil_z`. A sloped floor's lowest height at the
+    /// sector's vertices, rounded down: the anchor of its lower strips' textures.
     pub floor_z: i32,
-    /// Ceiling height, world units.
+    /// Ceiling height, world units. A sloped ceiling's highest height at the sector's vertices,
+    /// rounded up: the anchor of its walls' and upper strips' textures.
     pub ceil_z: i32,
     /// Floor texture, index into the textures table (its row-major flat copy is present).
     pub floor_texture: u16,
@@ -108,6 +110,76 @@ pub struct Sector {
     /// as painted, 255 brightens them about twice. Select the colormap row with
     /// [`colormap_row`](crate::colormap_row).
     pub light: u8,
+    /// Index in [`MapTables::slopes`] of the sector's planes where its floor or ceiling is
+    /// sloped, else [`NO_SLOPE`]. The compiler keeps one entry per distinct pair of planes, so
+    /// two sectors have the same planes exactly when their indices are equal.
+    pub slope: u16,
+}
+
+/// [`Sector::slope`] of a sector whose floor and ceiling are both flat.
+pub const NO_SLOPE: u16 = u16::MAX;
+
+/// A plane of heights over the map: `z(x, y) = base + gradient_x·x + gradient_y·y`, the height
+/// at world point `(x, y)`. A flat floor or ceiling is the plane with both gradients 0.
+///
+/// The map compiler derives it from a map's heights at three or more vertices and stores it in
+/// fixed point: `base` in 24.8, the gradients in 8.24 (at most
+/// [`SLOPE_GRADIENT_MAX`](crate::limits::SLOPE_GRADIENT_MAX) units of rise per unit of run, so
+/// they fit with room for their products). Each is rounded to nearest, so within the map's
+/// limits ([`WORLD_COORD_MAX`](crate::limits::WORLD_COORD_MAX)) [`Plane::height_fx8_at`] is
+/// within [`PLANE_ERROR_BOUND_FX8`] (24.8 bits, under 1/100 unit) of the exact plane through
+/// the map's heights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(C)]
+pub struct Plane {
+    /// The height at the world origin, 24.8.
+    pub base_fx8: i32,
+    /// Rise per unit along +x, 8.24.
+    pub gradient_x_fx24: i32,
+    /// Rise per unit along +y, 8.24.
+    pub gradient_y_fx24: i32,
+}
+
+/// Largest difference, in 24.8 bits, between [`Plane::height_fx8_at`] and the exact plane
+/// through the map's heights, anywhere within the map's limits: the base's rounding (½ bit),
+/// each gradient's (2^-25 per unit of distance from the origin, at most 2^13 + 2^13 units of
+/// it over both axes: 1/8 bit) and the result's (½ bit), rounded up.
+pub const PLANE_ERROR_BOUND_FX8: i32 = 2;
+
+impl Plane {
+    /// The flat plane at height `z` (world units).
+    pub const fn flat(z: i32) -> Plane {
+        Plane {
+            base_fx8: z * 256,
+            gradient_x_fx24: 0,
+            gradient_y_fx24: 0,
+        }
+    }
+
+    /// Whether both gradients are 0.
+    pub const fn is_flat(&self) -> bool {
+        self.gradient_x_fx24 == 0 && self.gradient_y_fx24 == 0
+    }
+
+    /// The height at world point `(x_fx8, y_fx8)` (24.8), in 24.8, rounded to nearest (ties
+    /// up). Within the limits the products stay below 2^50 and the result within i32.
+    #[inline]
+    pub fn height_fx8_at(&self, x_fx8: i32, y_fx8: i32) -> i32 {
+        let rise = i64::from(self.gradient_x_fx24) * i64::from(x_fx8)
+            + i64::from(self.gradient_y_fx24) * i64::from(y_fx8);
+        self.base_fx8 + ((rise + (1 << 23)) >> 24) as i32
+    }
+}
+
+/// The floor and ceiling planes of a sector with a sloped floor or ceiling
+/// ([`Sector::slope`]); the flat one of the two is [`Plane::flat`] at its height.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(C)]
+pub struct SectorSlope {
+    /// The floor.
+    pub floor: Plane,
+    /// The ceiling.
+    pub ceiling: Plane,
 }
 
 /// Where and how the player enters the map.
@@ -338,6 +410,9 @@ pub struct MapTables<'a> {
     /// body crossing a portal need not search the next sector's walls. Empty in tables built
     /// by hand: [`MapTables::twin`] then searches.
     pub wall_twins: &'a [u16],
+    /// The planes of the sectors with a sloped floor or ceiling ([`Sector::slope`]), each
+    /// distinct pair once.
+    pub slopes: &'a [SectorSlope],
 }
 
 /// [`MapTables::wall_twins`] of a solid wall, or of a portal whose sector has no twin for it.
@@ -385,6 +460,33 @@ impl<'a> MapTables<'a> {
         match self.wall_twins.get(index) {
             Some(&NO_TWIN) | None => None,
             Some(&twin) => Some(usize::from(twin)),
+        }
+    }
+
+    /// The floor and ceiling planes of `sector`: its [`SectorSlope`], or flat planes at its
+    /// heights.
+    #[inline]
+    pub fn planes(&self, sector: &Sector) -> SectorSlope {
+        match self.slopes.get(usize::from(sector.slope)) {
+            Some(slope) => *slope,
+            None => SectorSlope {
+                floor: Plane::flat(sector.floor_z),
+                ceiling: Plane::flat(sector.ceil_z),
+            },
+        }
+    }
+
+    /// The floor and ceiling heights of `sector` at world point `(x_fx8, y_fx8)`, 24.8: its
+    /// heights where both are flat, its planes' ([`Plane::height_fx8_at`]) where one slopes.
+    /// `sector` may be a live copy whose heights moved: a sector that moves is never sloped.
+    #[inline]
+    pub fn heights_fx8_at(&self, sector: &Sector, x_fx8: i32, y_fx8: i32) -> (i32, i32) {
+        match self.slopes.get(usize::from(sector.slope)) {
+            None => (sector.floor_z * 256, sector.ceil_z * 256),
+            Some(slope) => (
+                slope.floor.height_fx8_at(x_fx8, y_fx8),
+                slope.ceiling.height_fx8_at(x_fx8, y_fx8),
+            ),
         }
     }
 

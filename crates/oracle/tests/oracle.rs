@@ -297,6 +297,7 @@ impl OwnedMap {
             triggers: &[],
             lights: &[],
             wall_twins: &[],
+            slopes: &[],
         }
     }
 }
@@ -329,6 +330,7 @@ fn sector(first_wall: u16, floor_z: i32, ceil_z: i32, ceil_texture: u16, light: 
         floor_texture: FLOOR_TEX,
         ceil_texture,
         light,
+        slope: portalcast_format::NO_SLOPE,
     }
 }
 

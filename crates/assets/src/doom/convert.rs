@@ -328,6 +328,8 @@ pub(crate) fn source(
                 label: format!("piece {index} (sector {})", piece.sector),
                 loc: Loc::START,
                 floor: at(i64::from(doom.floor)),
+                floor_slope: None,
+                ceil_slope: None,
                 // A door is drawn open (docs/MAP_FORMAT.md, "Movers") and starts shut; a lift
                 // is drawn raised, as Doom's is.
                 ceil: at(match mover.map(|mover| mover.motion) {
