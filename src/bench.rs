@@ -147,6 +147,7 @@ impl fmt::Display for SettingsLabel<'_> {
         write!(f, " prep={}", settings.preprocessing.label())?;
         write!(f, " floors={}", settings.floors.label())?;
         write!(f, " things={}", settings.things.label())?;
+        write!(f, " slopes={}", settings.slope_steps.label())?;
         Ok(())
     }
 }

@@ -51,24 +51,29 @@ pub const MAX_TOUR_DEPTH: usize = 64;
 /// Most 1/256 steps taken to move a pose off a wall line (a handful ever happen).
 const MAX_NUDGES: u32 = 1024;
 
-/// The eye height in `sector`: [`EYE_HEIGHT`] above its floor, lowered to leave [`HEAD_ROOM`]
-/// under a low ceiling, and half-way up where even that would be at or under the floor (the same
-/// rule as the oracle's sampled poses).
-pub fn eye_z(sector: &Sector) -> Fx24_8 {
-    let eye = (sector.floor_z + EYE_HEIGHT).min(sector.ceil_z - HEAD_ROOM);
-    if eye > sector.floor_z {
-        Fx24_8::from_int(eye)
+/// The eye height at `at` in `sector` of `map`: [`EYE_HEIGHT`] above its floor there, lowered
+/// to leave [`HEAD_ROOM`] under a low ceiling, and half-way up where even that would be at or
+/// under the floor (the same rule as the oracle's sampled poses). On a flat sector the point
+/// does not matter.
+pub fn eye_z(map: &MapTables, sector: &Sector, at: WorldPoint) -> Fx24_8 {
+    let (floor, ceil) = map.heights_fx8_at(sector, at.x.to_bits(), at.y.to_bits());
+    let eye = (floor + EYE_HEIGHT * 256).min(ceil - HEAD_ROOM * 256);
+    if eye > floor {
+        Fx24_8::from_bits(eye)
     } else {
-        Fx24_8::from_bits((sector.floor_z + sector.ceil_z) * 128)
+        Fx24_8::from_bits((floor + ceil) >> 1)
     }
 }
 
-/// Whether a walker passes from `from` to `to` through a portal between them: a floor step of at
-/// most [`MAX_STEP`] either way and an opening of at least [`MIN_OPENING`].
-pub fn passable(from: &Sector, to: &Sector) -> bool {
-    let step = (to.floor_z - from.floor_z).abs();
-    let opening = from.ceil_z.min(to.ceil_z) - from.floor_z.max(to.floor_z);
-    step <= MAX_STEP && opening >= MIN_OPENING
+/// Whether a walker passes from `from` to `to` through a portal between them at `at`: a floor
+/// step of at most [`MAX_STEP`] either way and an opening of at least [`MIN_OPENING`], with the
+/// heights there (a slope's vary along the portal).
+pub fn passable(map: &MapTables, from: &Sector, to: &Sector, at: WorldPoint) -> bool {
+    let heights = |sector: &Sector| map.heights_fx8_at(sector, at.x.to_bits(), at.y.to_bits());
+    let ((from_floor, from_ceil), (to_floor, to_ceil)) = (heights(from), heights(to));
+    let step = (to_floor - from_floor).abs();
+    let opening = from_ceil.min(to_ceil) - from_floor.max(to_floor);
+    step <= MAX_STEP * 256 && opening >= MIN_OPENING * 256
 }
 
 /// Whether `p` is strictly inside sector `index` of `map` (on a wall line is not inside).
@@ -294,7 +299,9 @@ impl Tour {
                         continue;
                     };
                     let neighbour = &map.sectors[usize::from(there)];
-                    if !self.is_open(there) || !passable(sector, neighbour) {
+                    if !self.is_open(there)
+                        || !passable(map, sector, neighbour, midpoint(map, wall))
+                    {
                         continue;
                     }
                     self.chain[self.depth - 1].1 = offset as u16 + 1;
@@ -414,7 +421,7 @@ impl<'m> Flight<'m> {
             map: *map,
             camera: Camera {
                 position,
-                eye_z: eye_z(sector),
+                eye_z: eye_z(map, sector, position),
                 angle: Angle::from_bits(start.angle),
                 sector: start.sector,
                 look_lines: 0,
@@ -516,7 +523,7 @@ impl<'m> Flight<'m> {
             if let Some(sector) = self.locate(&leg, p) {
                 self.camera.position = p;
                 self.camera.sector = sector;
-                self.camera.eye_z = eye_z(&self.map.sectors[usize::from(sector)]);
+                self.camera.eye_z = eye_z(&self.map, &self.map.sectors[usize::from(sector)], p);
                 break;
             }
             nudges += 1;

@@ -142,8 +142,10 @@ impl<'m> LiveFlight<'m> {
         }
         let live = world.map(&self.map);
         flight::passable(
+            &live,
             &live.sectors[usize::from(self.camera.sector)],
             &live.sectors[usize::from(next.sector)],
+            next.position,
         )
     }
 
@@ -167,6 +169,10 @@ impl<'m> LiveFlight<'m> {
     ) {
         world.show(&self.map, self.frame);
         let live = world.map(&self.map);
-        self.camera.eye_z = flight::eye_z(&live.sectors[usize::from(self.camera.sector)]);
+        self.camera.eye_z = flight::eye_z(
+            &live,
+            &live.sectors[usize::from(self.camera.sector)],
+            self.camera.position,
+        );
     }
 }

@@ -32,12 +32,13 @@ fn freedoom_maps_match_the_oracle_from_their_starts_and_sampled_poses() {
     for name in MAPS {
         let map = compiled.map(name).expect("the map was built");
         let start = map.player_start;
+        let position = WorldPoint::new(
+            Fx24_8::from_bits(start.x_fx8),
+            Fx24_8::from_bits(start.y_fx8),
+        );
         let mut cameras = vec![Camera {
-            position: WorldPoint::new(
-                Fx24_8::from_bits(start.x_fx8),
-                Fx24_8::from_bits(start.y_fx8),
-            ),
-            eye_z: eye_z(&map.sectors[usize::from(start.sector)]),
+            position,
+            eye_z: eye_z(&map, &map.sectors[usize::from(start.sector)], position),
             angle: Angle::from_bits(start.angle),
             sector: start.sector,
             look_lines: 0,

@@ -19,8 +19,7 @@ use std::sync::OnceLock;
 use common::demos::{PlayerLine, WorldLine};
 use common::rom_frames::{boot_rom_until_playing, play_frames};
 use common::{field, number, read_page};
-use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
-use portalcast::render::view::Settings;
+use portalcast::frame::PAGE_ROW_HALFWORDS;
 use portalcast::render::walk::Renderer;
 use portalcast_harness::Keys;
 use portalcast_oracle::compare_with_engine;
@@ -34,22 +33,6 @@ const SURFACE_MISMATCH_MAX_PERCENT: f64 = 0.5;
 fn freedoom_rom() -> &'static Path {
     static ROM: OnceLock<PathBuf> = OnceLock::new();
     ROM.get_or_init(|| freedoom::build_freedoom_rom().unwrap_or_else(|error| panic!("{error}")))
-}
-
-/// The settings a `render …` line names (its map is looked up by the caller).
-fn settings_of(render_line: &str) -> Settings {
-    use portalcast::render::demo::lighting_from_label;
-    use portalcast::render::view::{Floors, Preprocessing, TexturePlacement, ThingsShown};
-    let label =
-        |key| field(render_line, key).unwrap_or_else(|| panic!("no {key}= in {render_line}"));
-    Settings {
-        resolution: Resolution::from_label(label("res")).unwrap(),
-        lighting: lighting_from_label(label("lighting")).unwrap(),
-        textures: TexturePlacement::from_label(label("tex")).unwrap(),
-        preprocessing: Preprocessing::from_label(label("prep")).unwrap(),
-        floors: Floors::from_label(label("floors")).unwrap(),
-        things: ThingsShown::from_label(label("things")).unwrap(),
-    }
 }
 
 /// What a walk in the ROM showed: frames compared, the worst surface mismatch, the sectors
@@ -88,7 +71,7 @@ fn walk_matches_the_host_and_the_oracle(
             let name = field(render_line, "map").expect("a map= field");
             assert_eq!(name, map_name, "{render_line}");
             let map = compiled.map(name).expect("the ROM's map is the host's");
-            let settings = settings_of(render_line);
+            let settings = common::demos::line_settings(render_line);
             let mut live = Box::new(common::HostWorld::start(&map));
             if let Some(world) = world {
                 live.set_heights(&map, &world.heights);

@@ -103,6 +103,7 @@ impl Checker {
             preprocessing,
             floors,
             things,
+            slope_steps: _,
         } = settings;
         let camera = player.camera();
         let mut page = HostPage::new();

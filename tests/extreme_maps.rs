@@ -83,9 +83,10 @@ struct Pose {
 }
 
 fn camera(x_bits: i32, y_bits: i32, angle: u16, sector: u16, map: &MapTables) -> Camera {
+    let position = WorldPoint::new(Fx24_8::from_bits(x_bits), Fx24_8::from_bits(y_bits));
     Camera {
-        position: WorldPoint::new(Fx24_8::from_bits(x_bits), Fx24_8::from_bits(y_bits)),
-        eye_z: eye_z(&map.sectors[usize::from(sector)]),
+        position,
+        eye_z: eye_z(map, &map.sectors[usize::from(sector)], position),
         angle: Angle::from_bits(angle),
         sector,
         look_lines: 0,

@@ -172,7 +172,7 @@ fn a_middle_seen_from_near_its_wall_line_keeps_its_steps_in_the_kernel_s_bound()
     );
     let world = WorldLine::parse("world frame=22956 heights=0,128 thrown=0 lights=90,168,21,60");
     let line = "render map=bench frame=22956 res=120x80 lighting=depth tex=ewram prep=off \
-                floors=full things=on page=0x06000000 cycles=285819";
+                floors=full things=on slopes=16 page=0x06000000 cycles=285819";
     let (map, settings) = render_line_settings(line);
     let view = View::new(&player.camera(), &settings).at_tick(player.tick);
     let live = WorldLine::world_of(Some(&world), &map);
@@ -185,4 +185,48 @@ fn a_middle_seen_from_near_its_wall_line_keeps_its_steps_in_the_kernel_s_bound()
     );
     assert_eq!(stats.middles_drawn, 3, "the three windows: {stats:?}");
     assert!(canvas.0.writes.iter().all(|&writes| writes == 1));
+}
+
+#[test]
+fn host_render_pngs_show_the_slopes_map() {
+    let compiled = shipped_assets();
+    let host = HostAssets::of(compiled);
+    let assets = host.render();
+    let map = compiled.map("slopes").expect("the slopes map");
+    let mut renderer = Renderer::new();
+    // In the hall facing the ramp, on the ramp, on the landing facing the attic, in the hall
+    // facing the bank.
+    for (name, x, y, eye, angle) in [
+        ("ramp", 64, 128, 32, 0u16),
+        ("on-ramp", 380, 128, 32 + 32, 32768),
+        ("attic", 576, 64, 96, 16384),
+        ("bank", 128, 64, 32, 16384),
+    ] {
+        let sector = portalcast_oracle::find_sector(&map, f64::from(x), f64::from(y))
+            .expect("the pose is in a sector");
+        let camera = Camera {
+            position: WorldPoint::new(Fx24_8::from_int(x), Fx24_8::from_int(y)),
+            eye_z: Fx24_8::from_int(eye),
+            angle: Angle::from_bits(angle),
+            sector,
+            look_lines: 0,
+        };
+        let resolution = Resolution::R240x160;
+        let view = View::new(
+            &camera,
+            &Settings {
+                resolution,
+                ..Settings::DEFAULT
+            },
+        );
+        let mut canvas = RecordingCanvas::new(resolution);
+        renderer.render(&map, &assets, &view, &mut canvas);
+        let pixels = expected_frame_rgb5(&canvas.page, resolution, compiled.palette());
+        let image = image::RgbImage::from_fn(240, 160, |x, y| {
+            let [r, g, b] = pixels[(y * 240 + x) as usize];
+            image::Rgb([r << 3, g << 3, b << 3])
+        });
+        let path = screenshot_dir().join(format!("host-slopes-{name}.png"));
+        image.save(&path).expect("saving the PNG");
+    }
 }

@@ -2,7 +2,8 @@
 //! spans (`spans::make_spans`), each drawn across a flat with one packed texture step; sky
 //! windows are drawn as panorama columns instead.
 
-use portalcast_format::{Colormap, Sector, Texture};
+use portalcast_format::limits::EYE_DEPTH_MAX;
+use portalcast_format::{Colormap, Plane, Sector, SectorSlope, Texture};
 
 use super::light::Lighting;
 use super::light::{light_row, run_light};
@@ -11,7 +12,7 @@ use super::surface::Surface;
 use super::view::View;
 use super::walk::{is_sky, mip_level_of_ratio, mip_ratio, mip_ratios_of_level, FrameStats};
 use super::RenderAssets;
-use crate::math::{recip_small, Fx24_8};
+use crate::math::{recip_small, recip_u64_with_bit_length, Fx24_8};
 use crate::raster::column::ColumnTexture;
 use crate::raster::flat::{FlatTexture, PackedUv, FLAT_LOG2_SIDES};
 use crate::raster::plane_run::{PlaneConstants, PlaneRun, PlaneRunEnd};
@@ -39,6 +40,8 @@ pub struct PlaneJob<'r> {
     pub stats: &'r mut FrameStats,
     /// Map-angle offset of each screen column's ray from the view direction (binary angle).
     pub column_angles: &'r [i16],
+    /// The sector's planes where its floor or ceiling slopes.
+    pub slope: Option<SectorSlope>,
 }
 
 impl PlaneJob<'_> {
@@ -57,6 +60,7 @@ impl PlaneJob<'_> {
             span_start,
             stats,
             column_angles,
+            slope,
         } = self;
         let sky = is_sky(sector);
         if sky {
@@ -92,6 +96,18 @@ impl PlaneJob<'_> {
                 continue;
             }
             canvas.set_surface(*surface);
+            if let Some(slope) = &slope {
+                let plane = match surface {
+                    Surface::Ceiling(_) => &slope.ceiling,
+                    _ => &slope.floor,
+                };
+                if draw_sloped(
+                    view, assets, sector, plane, *texture, canvas, windows, first, span_start,
+                    stats,
+                ) {
+                    continue;
+                }
+            }
             let mut plane = PlaneSpans::new(view, assets, sector, *height, *texture);
             if !plane.draw_run(canvas, windows, first, span_start, stats) {
                 plane.draw_twin(canvas, windows, first, span_start, stats);
@@ -362,6 +378,212 @@ impl<'r> PlaneSpans<'r> {
             colormap,
         };
         canvas.flat(row, start, end - start, &flat);
+    }
+}
+
+/// Draws a plane of a sector with a slope, if it slopes (`false`: a flat plane, left to the
+/// flat spans). Out of line and in ROM, so the span making's code for sloped planes is not a
+/// second copy in IWRAM.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn draw_sloped(
+    view: &View,
+    assets: &RenderAssets,
+    sector: &Sector,
+    plane: &Plane,
+    texture: u16,
+    canvas: &mut impl Canvas,
+    windows: &[Window],
+    first: usize,
+    span_start: &mut [i16],
+    stats: &mut FrameStats,
+) -> bool {
+    if plane.is_flat() {
+        return false;
+    }
+    let mut spans = SlopedSpans::new(view, assets, sector, plane, texture);
+    make_spans(windows, first, span_start, |row, start, end| {
+        spans.span(canvas, stats, row, start, end);
+    });
+    true
+}
+
+/// A sloped floor or ceiling's spans ([`SlopeSteps`](super::view::SlopeSteps)). On row `y`
+/// the ray through column `x`'s pixel centre, `e + t·ray(x)` in the map at height
+/// `eye_z − k·t` (`k = (2(y − horizon) + 1)/(2·d_y)`), meets the plane `z = z_e + t·g(x)`
+/// (`z_e` its height under the eye, `g(x) = G·ray(x)` its rise along the ray) at the depth
+/// `t = (eye_z − z_e)/(k + g(x))`; its map point `e + t·ray(x)` gives the texel as a flat's
+/// ([`PlaneSpans::span_twin`]), and `t` the light and the mip level. `ray(x)` and `g(x)` are
+/// affine in `x`, so a span computes `t` (one reciprocal) at every `N`-th pixel and at its last,
+/// and steps the map point linearly between. Out of line and in ROM: only sloped planes come
+/// here.
+struct SlopedSpans<'r> {
+    constants: PlaneConstants,
+    /// `eye_z − z_e` in 24.8 bits: positive where the plane is below the eye there.
+    eye_above_plane: i64,
+    /// The plane's gradients, 8.24.
+    gradient: (i64, i64),
+    texture: Option<&'r Texture<'r>>,
+    smallest_kernel_level: u8,
+    light: u8,
+    lighting: Lighting,
+    colormap: &'r Colormap,
+    level: PlaneLevel<'r>,
+    step_log2: u32,
+}
+
+/// Nearest and farthest depths a sloped span takes, 24.8 bits: a pixel past the plane's
+/// horizon (a rounding at its edge) is drawn at the far limit.
+const SLOPE_DEPTH_BITS: (i64, i64) = (1, EYE_DEPTH_MAX as i64 * 256);
+
+impl<'r> SlopedSpans<'r> {
+    fn new(
+        view: &View,
+        assets: &'r RenderAssets<'r>,
+        sector: &Sector,
+        plane: &Plane,
+        texture: u16,
+    ) -> SlopedSpans<'r> {
+        let texture = assets.textures.get(usize::from(texture));
+        let largest = texture.map_or(0, |t| t.width_log2.min(t.height_log2));
+        let rays = view.plane_rays;
+        let eye = view.eye.position;
+        let under_eye = plane.height_fx8_at(eye.x.to_bits(), eye.y.to_bits());
+        SlopedSpans {
+            constants: PlaneConstants {
+                depth_numerator: 0,
+                horizon_y: view.viewport.horizon_y,
+                below_eye: false,
+                inverse_focal_y: recip_small(view.viewport.focal_y as u32).to_bits(),
+                centre_x: view.viewport.centre_x(),
+                rays: [rays.centre.0, rays.centre.1, rays.step.0, rays.step.1]
+                    .map(|factor| factor.to_bits()),
+                eye: (
+                    i64::from(eye.x.to_bits()) << 8,
+                    i64::from(eye.y.to_bits()) << 8,
+                ),
+            },
+            eye_above_plane: i64::from(view.eye_z.to_bits()) - i64::from(under_eye),
+            gradient: (
+                i64::from(plane.gradient_x_fx24),
+                i64::from(plane.gradient_y_fx24),
+            ),
+            texture,
+            smallest_kernel_level: largest.saturating_sub(*FLAT_LOG2_SIDES.end() as u8),
+            light: sector.light,
+            lighting: view.lighting,
+            colormap: assets.colormap,
+            level: PlaneLevel::NONE,
+            step_log2: u32::from(view.slope_steps.log2),
+        }
+    }
+
+    /// The depth (24.8 bits) and map point (16.16) of column `x`'s pixel on the row whose
+    /// `k` (2.30 bits) is `k`.
+    #[inline(always)]
+    fn exact(&self, k: i64, x: i32) -> (i64, i64, i64) {
+        let [centre_x, centre_y, step_x, step_y] = self.constants.rays.map(i64::from);
+        let columns = i64::from(x - self.constants.centre_x);
+        let (ray_x, ray_y) = (centre_x + columns * step_x, centre_y + columns * step_y);
+        // 8.24 × 2.30 → 2.30 after >> 24; each product below 2^57.
+        let rise = (self.gradient.0 * ray_x + self.gradient.1 * ray_y) >> 24;
+        let denominator = k + rise;
+        let depth = if denominator == 0 || (denominator > 0) != (self.eye_above_plane > 0) {
+            SLOPE_DEPTH_BITS.1
+        } else {
+            // t = |eye − z_e|·2^30/|k + g|, with 2^30/n = r/2^p.
+            let (reciprocal, bit_length) = recip_u64_with_bit_length(denominator.unsigned_abs());
+            ((self.eye_above_plane.abs() * i64::from(reciprocal)) >> bit_length)
+                .clamp(SLOPE_DEPTH_BITS.0, SLOPE_DEPTH_BITS.1)
+        };
+        let (eye_x, eye_y) = self.constants.eye;
+        // 24.8 × 2.30 → 16.16 after >> 22, as a flat's span.
+        (
+            depth,
+            eye_x + ((depth * ray_x) >> 22),
+            eye_y + ((depth * ray_y) >> 22),
+        )
+    }
+
+    /// Row `row`, columns `start..end`, in pieces of `N` pixels: each exact at its first pixel
+    /// and stepped to the next piece's first (or the span's last) pixel, lit and mip-mapped by
+    /// its first pixel's depth. Counts the span in `stats`.
+    #[inline(never)]
+    fn span(
+        &mut self,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        row: usize,
+        start: usize,
+        end: usize,
+    ) {
+        stats.span_pixels += (end - start) as u32;
+        stats.spans += 1;
+        let (Some(texture), false) = (self.texture, self.eye_above_plane == 0) else {
+            let blank = FlatTexture {
+                texels: &BLANK_FLAT,
+                log2_side: 3,
+                pos: PackedUv(0),
+                step: PackedUv(0),
+                colormap: None,
+            };
+            canvas.flat(row, start, end - start, &blank);
+            return;
+        };
+        let doubled_offset = 2 * (row as i64 - i64::from(self.constants.horizon_y)) + 1;
+        // k = (2(y − horizon) + 1)/(2·d_y) in 2.30, from 1/d_y's.
+        let k = (doubled_offset * i64::from(self.constants.inverse_focal_y)) >> 1;
+        let pieces = 1usize << self.step_log2;
+        let (end, mut x) = (end as i32, start as i32);
+        let mut here = self.exact(k, x);
+        while x < end {
+            let count = (end - x).min(pieces as i32);
+            // The next piece's first pixel, or the span's last: the step's far end.
+            let (next, steps) = if x + count < end {
+                (x + count, count)
+            } else {
+                (end - 1, count - 1)
+            };
+            let there = if steps > 0 { self.exact(k, next) } else { here };
+            let (depth, u, v) = here;
+            let ratio = mip_ratio(depth, i64::from(self.constants.inverse_focal_y));
+            if !(self.level.ratio_low..=self.level.ratio_high).contains(&ratio) {
+                self.level = PlaneLevel::of(texture, ratio, self.smallest_kernel_level);
+            }
+            let PlaneLevel {
+                level,
+                side_log2,
+                texels,
+                ..
+            } = self.level;
+            let per_pixel = |delta: i64| {
+                if steps == pieces as i32 {
+                    delta >> self.step_log2
+                } else if steps > 0 {
+                    (delta * i64::from(recip_small(steps as u32).to_bits())) >> 30
+                } else {
+                    0
+                }
+            };
+            // Texture coordinates wrap, so keeping the low 32 bits of each is exact.
+            let at_level = |value: i64| (value >> level) as i32;
+            let colormap = light_row(self.light, (depth >> 8) as i32, self.lighting)
+                .map(|row| &self.colormap[row]);
+            let flat = FlatTexture {
+                texels,
+                log2_side: side_log2,
+                pos: PackedUv::pack(at_level(u), at_level(v), side_log2),
+                step: PackedUv::pack(
+                    at_level(per_pixel(there.1 - u)),
+                    at_level(per_pixel(there.2 - v)),
+                    side_log2,
+                ),
+                colormap,
+            };
+            canvas.flat(row, x as usize, count as usize, &flat);
+            here = there;
+            x += count;
+        }
     }
 }
 

@@ -41,6 +41,8 @@ pub struct Settings {
     pub floors: Floors,
     /// Whether things are drawn.
     pub things: ThingsShown,
+    /// How often a sloped floor's or ceiling's texture position is exact along a span.
+    pub slope_steps: SlopeSteps,
 }
 
 /// The map offsets of a row's pixels per unit of depth, the same for every floor and ceiling of
@@ -198,6 +200,7 @@ impl Settings {
         preprocessing: Preprocessing::Off,
         floors: Floors::Full,
         things: ThingsShown::On,
+        slope_steps: SlopeSteps::DEFAULT,
     };
 }
 
@@ -256,6 +259,48 @@ impl Floors {
     }
 }
 
+/// The slope-mapping knob: a sloped floor or ceiling is texture-mapped in perspective, exact
+/// every `N` pixels along a span and affine between (Quake's and Build's trade). `N = 1` is exact
+/// at every pixel; a larger `N` takes one reciprocal per `N` pixels instead of per pixel, and
+/// its texels drift from the exact ones between. docs/BENCH.md measures each `N`: cycles, and
+/// texels off the exact mapping. Flat planes are exact per row whatever the knob.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SlopeSteps {
+    /// `log2(N)`.
+    pub log2: u8,
+}
+
+impl SlopeSteps {
+    /// Every value offered: `N` = 1, 4, 8, 16, 32.
+    pub const ALL: [SlopeSteps; 5] = [
+        SlopeSteps { log2: 0 },
+        SlopeSteps { log2: 2 },
+        SlopeSteps { log2: 3 },
+        SlopeSteps { log2: 4 },
+        SlopeSteps { log2: 5 },
+    ];
+    /// The default: `N = 16`.
+    pub const DEFAULT: SlopeSteps = SlopeSteps { log2: 4 };
+
+    /// The label the ROM prints and the benchmarks read: `N`.
+    pub const fn label(self) -> &'static str {
+        match self.log2 {
+            0 => "1",
+            2 => "4",
+            3 => "8",
+            4 => "16",
+            _ => "32",
+        }
+    }
+
+    /// Parses [`SlopeSteps::label`].
+    pub fn from_label(label: &str) -> Option<SlopeSteps> {
+        SlopeSteps::ALL
+            .into_iter()
+            .find(|steps| steps.label() == label)
+    }
+}
+
 /// Everything per frame that follows from the camera and the settings.
 #[derive(Clone, Copy, Debug)]
 pub struct View {
@@ -279,6 +324,8 @@ pub struct View {
     pub things: ThingsShown,
     /// The rays of the floor and ceiling spans, per unit of depth.
     pub plane_rays: PlaneRays,
+    /// The slope-mapping knob.
+    pub slope_steps: SlopeSteps,
 }
 
 impl View {
@@ -300,6 +347,7 @@ impl View {
             halved_floors: settings.floors == Floors::Half && Floors::offered_at(resolution),
             tick: 0,
             things: settings.things,
+            slope_steps: settings.slope_steps,
         }
     }
 

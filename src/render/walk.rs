@@ -6,7 +6,7 @@
 //! in the renderer's memory rather than on the call stack (`Renderer::walk`): no function calls
 //! itself.
 
-use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, NO_TEXTURE, SKY};
+use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, NO_SLOPE, NO_TEXTURE, SKY};
 
 use super::planes;
 use super::spans::Window;
@@ -15,7 +15,8 @@ use super::things::{PortalSeen, ThingView, Things};
 use super::view::{Preprocessing, ThingsShown, View};
 use super::visits::{VisitId, VisitPlan};
 use super::walls::{
-    owned_columns_in, SteppedWall, VertexSplit, WallProjector, WallRows, WallStepper, ROW_HEIGHTS,
+    owned_columns_in, SlopedHeights, SteppedWall, VertexSplit, WallProjector, WallRows,
+    WallStepper, ROW_HEIGHTS,
 };
 use super::RenderAssets;
 use crate::math::{recip_small, EyePoint, Fx24_8, Fx2_30, WorldPoint};
@@ -879,6 +880,15 @@ impl<W: WindowStore> Renderer<W> {
             }
             if !seen_through {
                 let projector = WallProjector::new(&scene.view.viewport, a, b);
+                if sector.slope != NO_SLOPE
+                    || wall.portal != NO_PORTAL
+                        && scene.map.sectors[usize::from(wall.portal)].slope != NO_SLOPE
+                {
+                    self.draw_sloped_wall(
+                        scene, canvas, stats, sector, wall, wall_index, projector, start, stop,
+                    );
+                    continue;
+                }
                 let mut job = WallJob::new(scene, sector, wall, wall_index);
                 let stepper = projector.stepper(start);
                 stats.wall_columns += (stop - start) as u32;
@@ -1069,6 +1079,48 @@ impl<W: WindowStore> Renderer<W> {
         }
     }
 
+    /// The columns `start..stop` of a wall whose sector or neighbour slopes: each column's
+    /// depth and position along the wall from the 64-bit stepper (with its clamps), then the
+    /// rows of the heights there ([`SlopedHeights::rows`]). Out of line and in ROM, like the
+    /// clamped loop: flat maps never come here, and their walls keep the ARM loop.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn draw_sloped_wall(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        sector: &Sector,
+        wall: &Wall,
+        wall_index: u16,
+        projector: WallProjector,
+        start: i32,
+        stop: i32,
+    ) {
+        let mut job = WallJob::new(scene, sector, wall, wall_index);
+        let sloped = job.take_slopes(scene, wall);
+        let job = &mut job;
+        let mut stepper = projector.stepper(start);
+        stats.wall_columns += (stop - start) as u32;
+        let viewport = &scene.view.viewport;
+        let kind = job.kind();
+        for column in start..stop {
+            let (depth, along) = stepper.texturing();
+            let rows = sloped.rows(viewport, &stepper, along);
+            self.wall_column(
+                scene,
+                canvas,
+                stats,
+                job,
+                kind,
+                || (depth, along),
+                rows,
+                column,
+            );
+            stepper.step();
+        }
+    }
+
     /// The columns `start..stop` of a [`SteppedWall`] (most walls): drawn by the canvas's own
     /// wall loop where it has one (the GBA's, `asm/wall.s`), which stops where a strip needs
     /// another mip level and is started again after the renderer looks it up; else, and for
@@ -1246,6 +1298,7 @@ impl<W: WindowStore> Renderer<W> {
             span_start: &mut windows.span_start,
             stats,
             column_angles: &windows.column_angles,
+            slope: (sector.slope != NO_SLOPE).then(|| scene.map.planes(sector)),
         }
     }
 
@@ -1781,6 +1834,45 @@ impl<'s> WallJob<'s> {
             floor_above_eye: above_eye(sector.floor_z),
             strips,
             portal,
+        }
+    }
+
+    /// The heights at both ends of `wall`, whose sector or neighbour slopes, which its columns
+    /// step instead of [`WallJob::heights`]; and which strips show somewhere along it (a strip
+    /// shows where the neighbour's ceiling is lower, or its floor higher, at either end; the
+    /// columns clip it where it is not). The rules of [`WallJob::new`] at each end.
+    fn take_slopes(&mut self, scene: &Scene, wall: &Wall) -> SlopedHeights {
+        let map = scene.map;
+        let eye_z = scene.view.eye_z.to_bits();
+        let sector = self.sector;
+        let sky_over_sky = |neighbour: &Sector| is_sky(sector) && is_sky(neighbour);
+        let heights_at = |index: u16| {
+            let end = map.vertices[usize::from(index)];
+            let (x, y) = (end.x * 256, end.y * 256);
+            let (floor, ceiling) = map.heights_fx8_at(sector, x, y);
+            let (neighbour_floor, neighbour_ceiling) = match wall.neighbour() {
+                Some(next) => map.heights_fx8_at(&map.sectors[usize::from(next)], x, y),
+                None => (floor, ceiling),
+            };
+            let ceiling = match wall.neighbour() {
+                Some(next) if sky_over_sky(&map.sectors[usize::from(next)]) => {
+                    ceiling.min(neighbour_ceiling).max(floor)
+                }
+                _ => ceiling,
+            };
+            [ceiling, floor, neighbour_ceiling, neighbour_floor]
+        };
+        let (start, end) = (heights_at(wall.start), heights_at(wall.end));
+        if let (Some(portal), Some(next)) = (&mut self.portal, wall.neighbour()) {
+            let neighbour = &map.sectors[usize::from(next)];
+            let own = |ends: &[i32; 4]| (ends[0], ends[1]);
+            portal.upper_drawn =
+                !sky_over_sky(neighbour) && [start, end].iter().any(|ends| ends[2] < own(ends).0);
+            portal.lower_drawn = [start, end].iter().any(|ends| ends[3] > own(ends).1);
+        }
+        SlopedHeights {
+            start: start.map(|height| Fx24_8::from_bits(height - eye_z)),
+            rise: core::array::from_fn(|index| end[index] - start[index]),
         }
     }
 }

@@ -586,6 +586,47 @@ impl SteppedWall {
     }
 }
 
+/// A wall's [`ROW_HEIGHTS`] heights where a sloped floor or ceiling makes them vary along it:
+/// each is affine in the position `t` along the wall (0 at its start, 1 at its end), since a
+/// plane's height is affine along any line. Doom's renderer has flat sectors only; Build steps
+/// the same straight edges.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SlopedHeights {
+    /// The heights above the eye at the wall's start, 24.8.
+    pub start: [Fx24_8; ROW_HEIGHTS],
+    /// Each height at the end less at the start, in 24.8 bits.
+    pub rise: [i32; ROW_HEIGHTS],
+}
+
+impl SlopedHeights {
+    /// The rows of the heights at the current column of `stepper`, whose texturing gave
+    /// `along`: each height at `along` (rounded down to 1/256), projected with the column's
+    /// clamped `1/z'` as [`WallRows::Exact`] projects a flat one. A height is affine in `t` and
+    /// `t/z'` affine in the column, so each row follows a straight screen line.
+    pub fn rows(
+        &self,
+        viewport: &Viewport,
+        stepper: &WallStepper,
+        along: Fx2_30,
+    ) -> [i32; ROW_HEIGHTS] {
+        let near_inverse_depth = stepper.inverse_depth.max(i64::from(SMALLEST_INVERSE_DEPTH));
+        let clamped = Fx2_30::from_bits(near_inverse_depth.min(1 << 30) as i32);
+        let along = i64::from(along.to_bits());
+        core::array::from_fn(|index| {
+            // |rise| ≤ 2^23 bits (HEIGHT_DIFF_MAX), along ≤ 2^30: the product fits i64.
+            let height = Fx24_8::from_bits(
+                self.start[index].to_bits() + ((i64::from(self.rise[index]) * along) >> 30) as i32,
+            );
+            let y = if near_inverse_depth <= 1 << 30 {
+                viewport.projected_y(height, clamped)
+            } else {
+                projected_y_closer_than_near(viewport, height, near_inverse_depth)
+            };
+            viewport.first_row_at_or_after(y)
+        })
+    }
+}
+
 /// Largest `1/z'` (units of 2^-30) [`projected_y_closer_than_near`] multiplies by: `z'` of
 /// 2^-12 unit. An eye a few 1/65536 of a unit from a wall's line sees `1/z'` far beyond it, and
 /// `h · d_y · 1/z'` would overflow i64 (`|h| ≤ 2^22` in 24.8 bits, `d_y < 2^7`). The cut

@@ -158,21 +158,28 @@ pub fn render_line_settings(
     portalcast_format::MapTables<'static>,
     portalcast::render::view::Settings,
 ) {
-    use portalcast::frame::Resolution;
     use portalcast::render::demo;
-    use portalcast::render::view::{
-        Floors, Preprocessing, Settings, TexturePlacement, ThingsShown,
-    };
     let map = demo::map_named(field(text, "map").unwrap()).expect("the ROM names a compiled map");
-    let settings = Settings {
-        resolution: Resolution::from_label(field(text, "res").unwrap()).unwrap(),
-        lighting: demo::lighting_from_label(field(text, "lighting").unwrap()).unwrap(),
-        textures: TexturePlacement::from_label(field(text, "tex").unwrap()).unwrap(),
-        preprocessing: Preprocessing::from_label(field(text, "prep").unwrap()).unwrap(),
-        floors: Floors::from_label(field(text, "floors").unwrap()).unwrap(),
-        things: ThingsShown::from_label(field(text, "things").unwrap()).unwrap(),
+    (map, line_settings(text))
+}
+
+/// The settings a ROM's `render` or `bench` line names ([`portalcast::bench::SettingsLabel`]).
+pub fn line_settings(text: &str) -> portalcast::render::view::Settings {
+    use portalcast::frame::Resolution;
+    use portalcast::render::demo::lighting_from_label;
+    use portalcast::render::view::{
+        Floors, Preprocessing, Settings, SlopeSteps, TexturePlacement, ThingsShown,
     };
-    (map, settings)
+    let label = |key| field(text, key).unwrap_or_else(|| panic!("no {key}= in {text}"));
+    Settings {
+        resolution: Resolution::from_label(label("res")).unwrap(),
+        lighting: lighting_from_label(label("lighting")).unwrap(),
+        textures: TexturePlacement::from_label(label("tex")).unwrap(),
+        preprocessing: Preprocessing::from_label(label("prep")).unwrap(),
+        floors: Floors::from_label(label("floors")).unwrap(),
+        things: ThingsShown::from_label(label("things")).unwrap(),
+        slope_steps: SlopeSteps::from_label(label("slopes")).unwrap(),
+    }
 }
 
 /// The ROM's `world …` lines of one frame, printed after its `player` line on a map with movers

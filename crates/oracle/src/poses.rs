@@ -16,10 +16,10 @@ const HEAD_ROOM: i32 = 16;
 ///
 /// Positions are uniform over the map's area (rejection sampling in the vertices' bounding
 /// box), each strictly inside a sector and at least 2 units from every wall of it (so from
-/// every wall of the map: the sector is convex). The eye is 32 above the floor, lowered to
-/// `ceil_z − 16` in low sectors, and at mid-height where even that would be at or under the
+/// every wall of the map: the sector is convex). The eye is 32 above the floor (a slope's height under the
+/// position), lowered to 16 under the ceiling in low sectors, and at mid-height where even that would be at or under the
 /// floor. Angles are uniform over the turn. Every value is exactly representable by the engine:
-/// positions are multiples of 1/256 (24.8), eye heights are integers or halves, angles are
+/// positions are multiples of 1/256 (24.8), eye heights are multiples of 1/256, angles are
 /// binary angles ([`Camera::angle_bits`] recovers them), so comparing with the engine measures
 /// its rendering, not its quantisation of the pose. `sector` is always `Some`.
 ///
@@ -57,11 +57,13 @@ pub fn sample_poses(map: &MapTables, count: usize, seed: u64) -> Vec<Camera> {
         if !clear {
             continue;
         }
-        let eye = (sector.floor_z + EYE_HEIGHT).min(sector.ceil_z - HEAD_ROOM);
-        let eye_z = if eye > sector.floor_z {
-            f64::from(eye)
+        // In 24.8 bits: a sloped floor's height is a multiple of 1/256, exactly the engine's.
+        let (floor, ceil) = map.heights_fx8_at(sector, (x * 256.0) as i32, (y * 256.0) as i32);
+        let eye = (floor + EYE_HEIGHT * 256).min(ceil - HEAD_ROOM * 256);
+        let eye_z = if eye > floor {
+            f64::from(eye) / 256.0
         } else {
-            (f64::from(sector.floor_z) + f64::from(sector.ceil_z)) / 2.0
+            f64::from((floor + ceil) >> 1) / 256.0
         };
         poses.push(Camera {
             x,

@@ -4,8 +4,8 @@ use portalcast::render::light::light_row;
 use portalcast::render::surface::{Surface, THING_DEPTH_MIN};
 use portalcast::render::walk::same_planes;
 use portalcast_format::{
-    MapTables, Sector, Sprite, Texture, Wall, NO_TEXTURE, SKY, THING_HANGING, THING_TRANSLUCENT,
-    TRANSPARENT, WALL_MIDDLE_TRANSLUCENT,
+    MapTables, Plane, Sector, Sprite, Texture, Wall, NO_SLOPE, NO_TEXTURE, SKY, THING_HANGING,
+    THING_TRANSLUCENT, TRANSPARENT, WALL_MIDDLE_TRANSLUCENT,
 };
 
 use crate::geometry::{exit_wall, find_sector, vertex, Vec2};
@@ -201,7 +201,7 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
         let sky_column = sky_column(assets, d);
         for row in 0..height {
             let k = (row as f64 + 0.5 + TIE_NUDGE - view.horizon_y) / view.focal_y;
-            let (hit, reached) = shade_ray(map, &path, camera.eye_z, k);
+            let (hit, reached) = shade_ray(map, &path, (eye, d), camera.eye_z, k);
             pixel_fronts(
                 map,
                 assets,
@@ -594,13 +594,124 @@ fn trace_column(
 /// What the ray of slope `k` (down per unit of depth) hits along the column's `path`, and how
 /// many of the path's segments it reaches: up to and including the one whose surface stopped it,
 /// all of them if none did.
-fn shade_ray(map: &MapTables, path: &[Segment], eye_z: f64, k: f64) -> (Hit, usize) {
+fn shade_ray(
+    map: &MapTables,
+    path: &[Segment],
+    ray: (Vec2, Vec2),
+    eye_z: f64,
+    k: f64,
+) -> (Hit, usize) {
     path.iter()
         .enumerate()
         .find_map(|(position, segment)| {
-            segment_hit(map, segment, eye_z, k).map(|hit| (hit, position + 1))
+            let sector = &map.sectors[usize::from(segment.sector)];
+            let neighbour = map.walls[usize::from(segment.wall)]
+                .neighbour()
+                .map(|next| &map.sectors[usize::from(next)]);
+            let hit = if sector.slope == NO_SLOPE && neighbour.is_none_or(|n| n.slope == NO_SLOPE) {
+                segment_hit(map, segment, eye_z, k)
+            } else {
+                sloped_segment_hit(map, segment, ray, eye_z, k)
+            };
+            hit.map(|hit| (hit, position + 1))
         })
         .unwrap_or((Hit::None, path.len()))
+}
+
+/// A plane's height at `p`, in f64 from its stored fixed point (the plane the engine draws).
+fn plane_height(plane: &Plane, p: Vec2) -> f64 {
+    f64::from(plane.base_fx8) / 256.0
+        + (f64::from(plane.gradient_x_fx24) * p.x + f64::from(plane.gradient_y_fx24) * p.y)
+            / f64::from(1 << 24)
+}
+
+/// [`segment_hit`] where the segment's sector or the one beyond its exit slopes: the ray
+/// `eye + t·d` at height `eye_z − k·t` passes a plane `z = z_e + t·g` (its height above the 2D
+/// ray, `z_e` under the eye, `g` its rise along `d`) where `eye_z − z_e = t·(k + g)`. Either
+/// plane may be met whatever the sign of `k`; the heights at the exit point decide, with the
+/// same ties as [`segment_hit`].
+fn sloped_segment_hit(
+    map: &MapTables,
+    segment: &Segment,
+    (eye, d): (Vec2, Vec2),
+    eye_z: f64,
+    k: f64,
+) -> Option<Hit> {
+    let sector = &map.sectors[usize::from(segment.sector)];
+    let planes = map.planes(sector);
+    let exit = Vec2::new(eye.x + segment.t_out * d.x, eye.y + segment.t_out * d.y);
+    let h_out = eye_z - k * segment.t_out;
+    let crossing = |plane: &Plane| {
+        let under_eye = plane_height(plane, eye);
+        let rise = (f64::from(plane.gradient_x_fx24) * d.x
+            + f64::from(plane.gradient_y_fx24) * d.y)
+            / f64::from(1 << 24);
+        (eye_z - under_eye) / (k + rise)
+    };
+    if h_out > plane_height(&planes.ceiling, exit) {
+        if sector.ceil_texture == SKY {
+            return Some(Hit::Sky);
+        }
+        return Some(Hit::Flat {
+            surface: Surface::Ceiling(segment.sector),
+            sector: segment.sector,
+            texture: sector.ceil_texture,
+            t: crossing(&planes.ceiling),
+        });
+    }
+    if h_out <= plane_height(&planes.floor, exit) {
+        return Some(Hit::Flat {
+            surface: Surface::Floor(segment.sector),
+            sector: segment.sector,
+            texture: sector.floor_texture,
+            t: crossing(&planes.floor),
+        });
+    }
+    let wall = &map.walls[usize::from(segment.wall)];
+    let u = segment.s * wall_length(map, wall) + f64::from(wall.x_offset);
+    let at = |surface, texture, anchor: i32| Hit::Wall {
+        surface,
+        sector: segment.sector,
+        texture,
+        t: segment.t_out,
+        u,
+        v: f64::from(anchor) - h_out + f64::from(wall.y_offset),
+    };
+    let Some(next) = wall.neighbour() else {
+        return Some(at(
+            Surface::Wall(segment.wall),
+            map.solid_texture(segment.wall, wall),
+            sector.ceil_z,
+        ));
+    };
+    let neighbour = &map.sectors[usize::from(next)];
+    let beyond = map.planes(neighbour);
+    let (ceiling, neighbour_ceiling) = (
+        plane_height(&planes.ceiling, exit),
+        plane_height(&beyond.ceiling, exit),
+    );
+    if neighbour_ceiling < ceiling && h_out > neighbour_ceiling {
+        if sector.ceil_texture == SKY && neighbour.ceil_texture == SKY {
+            return Some(Hit::Sky);
+        }
+        return Some(at(
+            Surface::Upper(segment.wall),
+            wall.upper_texture,
+            sector.ceil_z,
+        ));
+    }
+    let (floor, neighbour_floor) = (
+        plane_height(&planes.floor, exit),
+        plane_height(&beyond.floor, exit),
+    );
+    if neighbour_floor > floor && h_out <= neighbour_floor {
+        return Some(at(
+            Surface::Lower(segment.wall),
+            wall.lower_texture,
+            neighbour.floor_z,
+        ));
+    }
+    None
 }
 
 /// What the ray of slope `k` hits in `segment`'s sector, if it does not go on to the next.
