@@ -510,7 +510,8 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         } else {
             moved.ceil_z = height;
         }
-        let mut body = player.body(live.sectors);
+        let mut body = player.body(live.sectors, live.slopes);
+        let at = (player.position.x.to_bits(), player.position.y.to_bits());
         let carried = moves_floor(mover)
             && player.sector == index
             && !player.fly
@@ -518,7 +519,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         if carried {
             body.feet = Fx24_8::from_int(height);
         }
-        if !body.admits(&moved) {
+        if !body.admits(&moved, at) {
             return false;
         }
         if !carried {
@@ -531,7 +532,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
             .all(|wall| match wall.neighbour() {
                 Some(next) => {
                     let beyond = &live.sectors[usize::from(next)];
-                    !touches(&live, beyond, player.position, RADIUS) || body.admits(beyond)
+                    !touches(&live, beyond, player.position, RADIUS) || body.admits(beyond, at)
                 }
                 None => true,
             })

@@ -1,7 +1,7 @@
 //! The fly-through through the live world (`portalcast::live_flight`, issue 18): on every shipped
-//! map the camera's eye stays strictly between its sector's live floor and ceiling, the camera
-//! never gives up waiting, and the world it flies through is the game's (its movers within
-//! their ranges); on the bench map it opens the corridor's door and waits for it, and rides the
+//! map the camera's eye stays strictly between its sector's live floor and ceiling (a slope's
+//! under it), the camera never gives up waiting, and the world it flies through is the game's
+//! (its movers within their ranges, and moving where the map has any); on the bench map it opens the corridor's door and waits for it, and rides the
 //! lift down with its eye on the lift's floor.
 
 use portalcast::assets;
@@ -28,13 +28,17 @@ fn the_camera_stays_inside_the_live_heights_and_never_gives_up_waiting() {
             let live = world.map(map);
             let sector = &live.sectors[usize::from(camera.sector)];
             let eye = camera.eye_z.to_bits();
+            // The heights under the camera: a slope's there.
+            let (floor, ceil) = live.heights_fx8_at(
+                sector,
+                camera.position.x.to_bits(),
+                camera.position.y.to_bits(),
+            );
             assert!(
-                sector.floor_z * 256 < eye && eye < sector.ceil_z * 256,
-                "{} frame {frame}: eye {eye} outside sector {} ({}..{})",
+                floor < eye && eye < ceil,
+                "{} frame {frame}: eye {eye} outside sector {} ({floor}..{ceil}, 24.8)",
                 map.name,
                 camera.sector,
-                sector.floor_z,
-                sector.ceil_z
             );
             for (state, mover) in world.movers().iter().zip(map.movers) {
                 assert!((mover.low..=mover.high).contains(&state.height));
@@ -53,7 +57,11 @@ fn the_camera_stays_inside_the_live_heights_and_never_gives_up_waiting() {
             last = camera.position;
             flight.advance(&mut world);
         }
-        assert!(moved > 0, "{}: no mover moved in the fly-through", map.name);
+        assert!(
+            map.movers.is_empty() || moved > 0,
+            "{}: no mover moved in the fly-through",
+            map.name
+        );
     }
 }
 

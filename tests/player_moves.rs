@@ -600,3 +600,91 @@ fn the_maps_body_decides_the_step_and_the_headroom() {
     assert_eq!(player.sector, 0);
     assert_eq!(player.position.x.to_bits(), (256 - RADIUS) * 256);
 }
+
+fn slopes() -> MapTables<'static> {
+    demo::map_named("slopes").expect("the slopes map is shipped")
+}
+
+/// The floor under the player, in 24.8 bits.
+fn floor_under(map: &MapTables, player: &Player) -> i32 {
+    map.heights_fx8_at(
+        &map.sectors[usize::from(player.sector)],
+        player.position.x.to_bits(),
+        player.position.y.to_bits(),
+    )
+    .0
+}
+
+#[test]
+fn walking_up_and_down_the_ramp_stays_on_its_floor_every_tick() {
+    let map = slopes();
+    let hall = sector_index("slopes.map", "hall");
+    let ramp = sector_index("slopes.map", "ramp");
+    let landing = sector_index("slopes.map", "landing");
+    // From the hall east up the ramp (64 over 256 units) onto the landing: on the ground every
+    // tick, the feet on the floor under the centre, never lower than the tick before.
+    let mut player = at(&map, hall, 128.5, 128.5, EAST);
+    let mut sectors = Vec::new();
+    for _ in 0..200 {
+        let before = player.feet_z;
+        run(&mut player, &map, walk(1, 0, 0), 1);
+        assert!(player.on_ground, "walking up a ramp is not a jump");
+        assert_eq!(player.feet_z.to_bits(), floor_under(&map, &player));
+        assert!(player.feet_z >= before, "the feet only rise going up");
+        if sectors.last() != Some(&player.sector) {
+            sectors.push(player.sector);
+        }
+    }
+    assert_eq!(sectors, [hall, ramp, landing]);
+    assert_eq!(player.feet_z, Fx24_8::from_int(64));
+    // And back down: no fall, no jitter (the feet never rise), down to the hall's floor.
+    player.angle = portalcast::math::Angle::from_bits(WEST);
+    for _ in 0..200 {
+        let before = player.feet_z;
+        run(&mut player, &map, walk(1, 0, 0), 1);
+        assert!(player.on_ground, "walking down a ramp is not a fall");
+        assert_eq!(player.feet_z.to_bits(), floor_under(&map, &player));
+        assert!(player.feet_z <= before, "the feet only fall going down");
+    }
+    assert_eq!(player.sector, hall);
+    assert_eq!(player.feet_z, Fx24_8::ZERO);
+}
+
+/// A flat room beside a sloped one whose floor along their shared portal rises from 0 at the
+/// south end to 32 at the north end: the native body (step 16) crosses where the edge is low
+/// and is stopped where it is high.
+const SLOPED_STEP: &str = "
+vertex a 0 0
+vertex b 256 0
+vertex c 256 256
+vertex d 0 256
+vertex e 512 0
+vertex f 512 256
+sector flat floor=0 ceil=192 floor_tex=tiles ceil_tex=ceiling
+  wall a b tex=brick
+  wall b c portal=bank lower=step
+  wall c d tex=brick
+  wall d a tex=brick
+sector bank floor_slope=b:32,c:0,f:0 ceil=192 floor_tex=grass ceil_tex=ceiling
+  wall b e tex=brick
+  wall e f tex=brick
+  wall f c tex=brick
+  wall c b portal=flat
+player 128.5 128.5
+";
+
+#[test]
+fn a_sloped_step_is_climbed_where_it_is_at_most_16_and_blocks_where_higher() {
+    let compiled = compile_map("sloped_step.map", SLOPED_STEP);
+    let map = compiled.tables();
+    // Near the south end the edge is 4 high: walking east crosses onto the bank.
+    let mut low = at(&map, 0, 200.5, 224.5, EAST);
+    run(&mut low, &map, walk(1, 0, 0), 60);
+    assert_eq!(low.sector, 1, "the low end of the sloped step is climbed");
+    assert_eq!(low.feet_z.to_bits(), floor_under(&map, &low));
+    // Near the north end it is 28 high: walking east stops at the portal.
+    let mut high = at(&map, 0, 200.5, 32.5, EAST);
+    run(&mut high, &map, walk(1, 0, 0), 60);
+    assert_eq!(high.sector, 0, "the high end of the sloped step blocks");
+    assert_eq!(high.feet_z, Fx24_8::ZERO);
+}

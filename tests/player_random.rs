@@ -120,8 +120,13 @@ fn random_moves_keep_the_invariants_on(map: &MapTables, cases: u32) {
             world.tick(map, &player);
         }
         let live = world.map(map);
-        prop_assume!(player.body(live.sectors).admits_sector(player.sector));
-        player.feet_z = Fx24_8::from_int(live.sectors[usize::from(player.sector)].floor_z);
+        let at = (player.position.x.to_bits(), player.position.y.to_bits());
+        prop_assume!(player
+            .body(live.sectors, live.slopes)
+            .admits_sector(player.sector, at));
+        player.feet_z = Fx24_8::from_bits(
+            live.heights_fx8_at(&live.sectors[usize::from(player.sector)], at.0, at.1).0,
+        );
         for (index, step) in moves.iter().enumerate() {
             for tick in 0..step.ticks {
                 let before = player;
@@ -130,10 +135,15 @@ fn random_moves_keep_the_invariants_on(map: &MapTables, cases: u32) {
                 if let Err(problem) = check_tick(&live, &before, &player) {
                     prop_assert!(false, "move {index} tick {tick} ({:?}): {problem}", step.intent);
                 }
-                // Never crushed: a ceiling that came down keeps the headroom over the eye.
-                let ceiling = live.sectors[usize::from(player.sector)].ceil_z;
+                // Never crushed: a ceiling that came down keeps the headroom over the eye (a
+                // sloped one's, over the centre).
+                let (_, ceiling) = live.heights_fx8_at(
+                    &live.sectors[usize::from(player.sector)],
+                    player.position.x.to_bits(),
+                    player.position.y.to_bits(),
+                );
                 prop_assert!(
-                    player.eye_z().to_bits() + player.size.headroom() * 256 <= ceiling * 256,
+                    player.eye_z().to_bits() + player.size.headroom() * 256 <= ceiling,
                     "move {index} tick {tick}: the eye {} under the ceiling {ceiling}",
                     player.eye_z().to_bits()
                 );
@@ -158,6 +168,11 @@ fn random_moves_never_leave_the_tiny_map() {
 }
 
 #[test]
+fn random_moves_never_leave_the_slopes_map() {
+    random_moves_keep_the_invariants("slopes");
+}
+
+#[test]
 fn random_moves_never_enter_solid_things() {
     let compiled = common::player::compile_map("things.map", common::player::THINGS_MAP);
     // Small and quick: five times the shipped maps' cases.
@@ -175,7 +190,7 @@ fn every_shipped_map_is_covered() {
     let names: Vec<&str> = portalcast::assets::MAPS.iter().map(|m| m.name).collect();
     assert_eq!(
         names,
-        ["bench", "grid", "tiny"],
+        ["bench", "grid", "slopes", "tiny"],
         "add a test above for a new map"
     );
 }

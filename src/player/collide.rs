@@ -71,8 +71,8 @@
 //! refuses the step.
 
 use portalcast_format::{
-    MapTables, PlayerSize, Sector, Thing, Vertex, Wall, NO_PORTAL, NO_TEXTURE, THING_SOLID,
-    WALL_MIDDLE_BLOCKS,
+    MapTables, PlayerSize, Sector, SectorSlope, Thing, Vertex, Wall, NO_PORTAL, NO_SLOPE,
+    NO_TEXTURE, THING_SOLID, WALL_MIDDLE_BLOCKS,
 };
 
 use crate::math::{segment_contact, Fx24_8, SegmentContact, WorldPoint};
@@ -150,6 +150,33 @@ pub struct Body<'s> {
     /// map with movers (`crate::world`), the cartridge's otherwise. Only their heights are read
     /// here; the walls come from the map's own table.
     pub sectors: &'s [Sector],
+    /// The map's sloped planes ([`MapTables::slopes`]): a sloped sector's heights are those
+    /// under the body's centre.
+    pub slopes: &'s [SectorSlope],
+}
+
+/// The floor and ceiling of `sector` at the point `at` (24.8 bits), in 24.8 bits: its heights
+/// where it is flat, its planes' there where it slopes (`slopes`, the map's).
+#[inline(always)]
+pub fn heights_at(slopes: &[SectorSlope], sector: &Sector, at: (i32, i32)) -> (i32, i32) {
+    if sector.slope == NO_SLOPE {
+        (sector.floor_z * 256, sector.ceil_z * 256)
+    } else {
+        sloped_heights_at(slopes, sector, at)
+    }
+}
+
+/// [`heights_at`] of a sector with a slope: out of line and in ROM, so flat maps' ticks carry
+/// no copy of it in IWRAM.
+#[inline(never)]
+fn sloped_heights_at(slopes: &[SectorSlope], sector: &Sector, at: (i32, i32)) -> (i32, i32) {
+    match slopes.get(usize::from(sector.slope)) {
+        Some(slope) => (
+            slope.floor.height_fx8_at(at.0, at.1),
+            slope.ceiling.height_fx8_at(at.0, at.1),
+        ),
+        None => (sector.floor_z * 256, sector.ceil_z * 256),
+    }
 }
 
 impl Body<'_> {
@@ -206,16 +233,18 @@ impl Body<'_> {
     }
 
     /// [`Body::admits`] of sector `index` of [`Body::sectors`].
-    pub fn admits_sector(&self, index: u16) -> bool {
-        self.admits(&self.sectors[usize::from(index)])
+    pub fn admits_sector(&self, index: u16, at: (i32, i32)) -> bool {
+        self.admits(&self.sectors[usize::from(index)], at)
     }
 
-    /// Whether the body may move into `sector`: its floor at most the size's step above the
-    /// feet ([`STEP_UP_MAX`] on native maps), and its ceiling at least the size's headroom
-    /// ([`HEADROOM`]) above the eye once the feet stand at least on its floor.
-    pub fn admits(&self, sector: &Sector) -> bool {
-        let floor = sector.floor_z * 256;
-        let ceil = sector.ceil_z * 256;
+    /// Whether the body may move into `sector` with its centre at `at` (24.8 bits): its floor
+    /// there at most the size's step above the feet ([`STEP_UP_MAX`] on native maps), and its
+    /// ceiling there at least the size's headroom ([`HEADROOM`]) above the eye once the feet
+    /// stand at least on its floor. A flat sector's heights are the same everywhere; a sloped
+    /// one's are taken where the body would stand, so a ramp is entered at its foot and a
+    /// sloped step is climbed where it is low enough.
+    pub fn admits(&self, sector: &Sector, at: (i32, i32)) -> bool {
+        let (floor, ceil) = heights_at(self.slopes, sector, at);
         let feet = self.feet.to_bits();
         floor <= feet + self.size.step_up * 256
             && ceil >= feet.max(floor) + self.eye_height.to_bits() + self.size.headroom() * 256
@@ -528,7 +557,9 @@ fn track_through_portals(
         let Some(next) = wall.neighbour() else {
             return Track::Blocked;
         };
-        if wall.flags & WALL_MIDDLE_BLOCKS != 0 || (next != start && !body.admits_sector(next)) {
+        if wall.flags & WALL_MIDDLE_BLOCKS != 0
+            || (next != start && !body.admits_sector(next, point_bits(to)))
+        {
             return Track::Blocked;
         }
         let Some(twin) = map.twin(current, exit) else {
@@ -727,7 +758,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
                     // A portal whose middle blocks is a wall to the body.
                     Some(next)
                         if wall.flags & WALL_MIDDLE_BLOCKS == 0
-                            && (next == sector || body.admits_sector(next)) =>
+                            && (next == sector || body.admits_sector(next, target)) =>
                     {
                         if !sectors[..found].contains(&next) && found < MAX_NEARBY_SECTORS {
                             sectors[found] = next;
@@ -1446,6 +1477,7 @@ mod tests {
             eye_height: Fx24_8::from_int(32),
             size: PlayerSize::NATIVE,
             sectors,
+            slopes: &[],
         }
     }
 

@@ -31,7 +31,7 @@ pub mod collide;
 pub mod input;
 pub mod vertical;
 
-use portalcast_format::{MapTables, PlayerSize, Sector};
+use portalcast_format::{MapTables, PlayerSize, Sector, SectorSlope};
 
 use crate::math::{Angle, Fx24_8, WorldPoint};
 use crate::render::view::{Camera, MAX_LOOK_LINES};
@@ -125,13 +125,14 @@ impl Player {
     /// The player standing still at `position`, which must lie strictly inside `sector`, with
     /// the map's body.
     pub fn standing_at(map: &MapTables, sector: u16, position: WorldPoint, angle: Angle) -> Player {
-        let floor = map.sectors[usize::from(sector)].floor_z;
+        let at = (position.x.to_bits(), position.y.to_bits());
+        let (floor, _) = collide::heights_at(map.slopes, &map.sectors[usize::from(sector)], at);
         let size = map.player_start.size;
         Player {
             position,
             sector,
             angle,
-            feet_z: Fx24_8::from_int(floor),
+            feet_z: Fx24_8::from_bits(floor),
             eye_height: Fx24_8::from_int(size.eye_height),
             size,
             ..Player::NOWHERE
@@ -148,13 +149,15 @@ impl Player {
         self.eye_height < Fx24_8::from_int(self.size.eye_height)
     }
 
-    /// The body's vertical extent, for the collision rules, among `sectors` (their heights now).
-    pub fn body<'s>(&self, sectors: &'s [Sector]) -> Body<'s> {
+    /// The body's vertical extent, for the collision rules, among `sectors` (their heights now)
+    /// and the map's `slopes`.
+    pub fn body<'s>(&self, sectors: &'s [Sector], slopes: &'s [SectorSlope]) -> Body<'s> {
         Body {
             feet: self.feet_z,
             eye_height: self.eye_height,
             size: self.size,
             sectors,
+            slopes,
         }
     }
 
@@ -212,7 +215,7 @@ impl Player {
                 x: self.velocity.0,
                 y: self.velocity.1,
             },
-            &self.body(sectors),
+            &self.body(sectors, map.slopes),
         );
         self.velocity = (
             position.x.to_bits() - self.position.x.to_bits(),
@@ -221,7 +224,9 @@ impl Player {
         self.position = position;
         self.sector = sector;
 
-        vertical::tick(self, intent, &sectors[usize::from(sector)]);
+        let at = (position.x.to_bits(), position.y.to_bits());
+        let heights = collide::heights_at(map.slopes, &sectors[usize::from(sector)], at);
+        vertical::tick(self, intent, heights);
     }
 
     fn turn(&mut self, direction: i8) {

@@ -30,7 +30,7 @@
 //! the ceiling and the feet stay on or above the floor, so the eye is at least the eye height
 //! above the floor. Leaving fly mode in the air starts a fall.
 
-use portalcast_format::{PlayerSize, Sector};
+use portalcast_format::PlayerSize;
 
 use super::input::Intent;
 use super::Player;
@@ -67,10 +67,10 @@ const _: () = {
     assert!(JUMP_SPEED - GRAVITY * JUMP_TICKS < 0);
 };
 
-/// The vertical part of one tick, after the horizontal move put the player in `sector`.
-pub fn tick(player: &mut Player, intent: &Intent, sector: &Sector) {
-    let floor = sector.floor_z * 256;
-    let ceil = sector.ceil_z * 256;
+/// The vertical part of one tick, after the horizontal move put the player where its sector's
+/// floor and ceiling are `(floor, ceil)` (24.8 bits: a slope's under the player). Walking down
+/// a slope is following the floor down, as a step down is: no fall, no jitter.
+pub fn tick(player: &mut Player, intent: &Intent, (floor, ceil): (i32, i32)) {
     let mut feet = player.feet_z.to_bits();
     let stand_eye = player.size.eye_height * 256;
     let headroom = player.size.headroom() * 256;

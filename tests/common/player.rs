@@ -158,7 +158,9 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             eye_height: before.eye_height,
             size: before.size,
             sectors: map.sectors,
+            slopes: map.slopes,
         };
+        let at = (after.position.x.to_bits(), after.position.y.to_bits());
         for wall in map.walls {
             let Some(next) = wall.neighbour() else {
                 continue;
@@ -174,7 +176,7 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             let crosses =
                 segment_contact(before.position, after.position, a, b) == SegmentContact::Crossing;
             let into = portalcast::math::cross(a, b, after.position) < 0;
-            if crosses && into && !body.admits(&map.sectors[usize::from(next)]) {
+            if crosses && into && !body.admits(&map.sectors[usize::from(next)], at) {
                 return Err(format!(
                     "path {:?} -> {:?} crossed into sector {next}, which the body {body:?} may not enter",
                     before.position, after.position
@@ -182,18 +184,21 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             }
         }
     }
-    let sector = &map.sectors[usize::from(after.sector)];
+    // The floor and ceiling under the centre (a slope's there).
+    let (floor, ceil) = map.heights_fx8_at(
+        &map.sectors[usize::from(after.sector)],
+        after.position.x.to_bits(),
+        after.position.y.to_bits(),
+    );
     let eye = after.eye_z().to_bits();
-    if eye < (sector.floor_z + CROUCH_EYE) * 256 {
+    if eye < floor + CROUCH_EYE * 256 {
         return Err(format!(
             "eye {eye} less than 16 above the floor of {}",
             after.sector
         ));
     }
     let headroom = after.size.headroom();
-    if sector.ceil_z - sector.floor_z >= CROUCH_EYE + headroom
-        && eye > (sector.ceil_z - headroom) * 256
-    {
+    if ceil - floor >= (CROUCH_EYE + headroom) * 256 && eye > ceil - headroom * 256 {
         return Err(format!(
             "eye {eye} less than {headroom} below the ceiling of {}",
             after.sector
