@@ -16,7 +16,9 @@ use crate::assets;
 use crate::frame::Resolution;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
-use crate::render::view::{Floors, Preprocessing, Settings, TexturePlacement, ThingsShown};
+use crate::render::view::{
+    Floors, Preprocessing, Settings, SlopeSteps, TexturePlacement, ThingsShown,
+};
 use crate::render::walk::FrameStats;
 
 /// Frames measured per setting along a map's [`crate::flight`] path, flown through its live
@@ -104,8 +106,33 @@ pub fn guard_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Settin
         .map(|resolution| (bench_map(), default_settings(resolution)))
 }
 
+/// The slope-mapping knob's other values at every resolution, on each shipped map with a slope
+/// (the bench map has none: the knob changes nothing there).
+pub fn slope_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Settings)> {
+    assets::MAPS
+        .iter()
+        .filter(|map| !map.slopes.is_empty())
+        .flat_map(|map| {
+            Resolution::ALL.into_iter().flat_map(move |resolution| {
+                SlopeSteps::ALL
+                    .into_iter()
+                    .filter(|steps| *steps != SlopeSteps::DEFAULT)
+                    .map(move |slope_steps| {
+                        (
+                            map,
+                            Settings {
+                                slope_steps,
+                                ..default_settings(resolution)
+                            },
+                        )
+                    })
+            })
+        })
+}
+
 /// The rest of the bench scene, after the guard's runs: every other knob value on the bench map
-/// at every resolution, then every other shipped map at the default settings.
+/// at every resolution, then every other shipped map at the default settings, then the slope
+/// knob on the maps with slopes ([`slope_runs`]).
 pub fn report_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Settings)> {
     let knobs = Resolution::ALL
         .into_iter()
@@ -119,7 +146,7 @@ pub fn report_runs() -> impl Iterator<Item = (&'static MapTables<'static>, Setti
                 .into_iter()
                 .map(move |resolution| (map, default_settings(resolution)))
         });
-    knobs.chain(other_maps)
+    knobs.chain(other_maps).chain(slope_runs())
 }
 
 /// The set-up runs, last in the bench scene: the guard's runs again, drawn on a canvas that

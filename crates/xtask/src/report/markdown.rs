@@ -242,6 +242,7 @@ pub fn write(measurements: &Measurements) -> String {
     method(&mut doc, measurements);
     knobs(&mut doc, measurements);
     maps(&mut doc, measurements);
+    slope_knob(&mut doc, measurements);
     generated_maps(&mut doc, measurements);
     // The section brings its own heading (`report::freedoom`).
     doc.push_str(&measurements.freedoom_section);
@@ -633,6 +634,44 @@ fn maps(doc: &mut String, measurements: &Measurements) {
         );
     }
     doc.push('\n');
+}
+
+/// The slope-mapping knob on each map whose runs vary it, at every resolution: the map's
+/// default run and the other values of `slopes=`.
+fn slope_knob(doc: &mut String, measurements: &Measurements) {
+    let bases: Vec<&Run> = measurements
+        .runs
+        .iter()
+        .filter(|run| {
+            default_run(measurements, run).is_some_and(|base| differences(base, run).is_empty())
+                && measurements.runs.iter().any(|other| {
+                    other.map == run.map
+                        && other.setting("res") == run.setting("res")
+                        && differences(run, other).len() == 1
+                        && differences(run, other)[0].starts_with("slopes=")
+                })
+        })
+        .collect();
+    if bases.is_empty() {
+        return;
+    }
+    let _ = write!(
+        doc,
+        "## Knob: slope mapping
+
+         Sloped floors and ceilings are texture-mapped in perspective, exact every `N` pixels          along a span and affine between (`slopes=N`, `src/render/planes.rs`; the default is          16). Flat planes are exact per row whatever `N`, so the knob is measured on the maps          with slopes, along their own fly-throughs. The texel column is the share of pixels          whose palette index differs from the f64 oracle's, which maps every pixel exactly:          `slopes=1`'s figure is what the rest of the frame (walls, flat planes, rounding)          leaves, and each larger `N` adds its affine drift to it.
+
+"
+    );
+    for base in bases {
+        let _ = write!(
+            doc,
+            "### {}, {}\n\n",
+            base.map,
+            resolution_name(base.setting("res").unwrap_or("?"))
+        );
+        knob_table(doc, measurements, base);
+    }
 }
 
 /// The soak's bound on one frame (`tests/emulator_soak.rs`, `tests/emulator_generated.rs`).
