@@ -502,6 +502,21 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         ) {
             return true;
         }
+        self.allows_touching(map, mover, height, player)
+    }
+
+    /// [`World::allows`] where the body's disc touches the moving sector: out of line and in
+    /// ROM, since most ticks of a moving mover have the body elsewhere (VRAM has no room for
+    /// it).
+    #[inline(never)]
+    fn allows_touching(
+        &self,
+        map: &MapTables,
+        mover: &Mover,
+        height: i32,
+        player: &Player,
+    ) -> bool {
+        let index = mover.sector;
         let live = self.map(map);
         let sector = &live.sectors[usize::from(index)];
         let mut moved = *sector;

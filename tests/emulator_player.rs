@@ -565,3 +565,93 @@ fn the_demo_through_the_door_and_on_the_lift_draws_the_host_s_frames() {
         "door mid-way in {door_moving} frames, lift in {lift_moving}, the body on it in {on_lift}"
     );
 }
+
+/// Through the Start menu to the slopes map (two maps on from the bench map: the cursor starts
+/// on the resolution, the map is two entries down), then east from the hall up the ramp onto
+/// the landing, a right-angle turn south into the attic under its sloped ceiling, a half turn
+/// and back north.
+const SLOPES_WALK: &str = "
+10-12: START
+20-22: DOWN
+30-32: DOWN
+40-42: RIGHT
+50-52: RIGHT
+60-62: START
+80-340: UP
+350-385: RIGHT
+390-520: UP
+530-601: RIGHT
+610-700: UP
+";
+
+#[test]
+fn a_walk_up_the_ramp_and_under_the_sloped_ceiling_is_the_host_s_every_tick() {
+    let run = play(SLOPES_WALK, 720);
+    let (hall, ramp, landing, attic) = (
+        sector_index("slopes.map", "hall"),
+        sector_index("slopes.map", "ramp"),
+        sector_index("slopes.map", "landing"),
+        sector_index("slopes.map", "attic"),
+    );
+    // The host's ticks (every one the ROM's, `play`): on the slopes map, through the hall, the
+    // ramp, the landing and the attic in that order, on the ground every tick of the walk, the
+    // feet rising all the way up the ramp.
+    let mut visited: Vec<u16> = Vec::new();
+    let mut feet_on_ramp = Vec::new();
+    for game in run.host_ticks() {
+        if game.map().name != "slopes" {
+            continue;
+        }
+        let player = &game.player;
+        assert!(player.on_ground, "tick on the slopes map off the ground");
+        if visited.last() != Some(&player.sector) {
+            visited.push(player.sector);
+        }
+        if player.sector == ramp {
+            feet_on_ramp.push(player.feet_z.to_bits());
+        }
+    }
+    assert_eq!(visited[..4], [hall, ramp, landing, attic], "{visited:?}");
+    assert!(
+        feet_on_ramp.len() > 20,
+        "{} ticks on the ramp",
+        feet_on_ramp.len()
+    );
+    assert!(
+        feet_on_ramp.windows(2).all(|pair| pair[0] <= pair[1]),
+        "the feet rise all the way up the ramp"
+    );
+    let last = run.last();
+    assert_eq!(last.sector, attic, "{}", last.text);
+}
+
+#[test]
+fn the_walk_up_the_ramp_draws_the_host_s_frames() {
+    // Every frame the ROM draws on the way, its VRAM page identical to the host's render of its
+    // logged pose: sloped walls, the ramp's and the bank's sloped floors, the attic's sloped
+    // ceiling.
+    let script = KeyScript::parse(SLOPES_WALK).unwrap_or_else(|error| panic!("{error}"));
+    let mut emulator = boot_until_playing();
+    let mut renderer = Renderer::new();
+    let keys: Vec<Keys> = (0..720).map(|frame| script.keys_at(frame)).collect();
+    let ramp = sector_index("slopes.map", "ramp");
+    let attic = sector_index("slopes.map", "attic");
+    let (mut compared, mut on_ramp, mut in_attic) = (0, 0, 0);
+    play_frames(
+        &mut emulator,
+        &keys,
+        |emulator, (player, world), render_line| {
+            if field(render_line, "map") != Some("slopes") {
+                return;
+            }
+            host_frame_matching(emulator, &mut renderer, (player, world), render_line);
+            compared += 1;
+            on_ramp += usize::from(player.sector == ramp);
+            in_attic += usize::from(player.sector == attic);
+        },
+    );
+    assert!(
+        compared > 300 && on_ramp > 20 && in_attic > 20,
+        "{compared} frames compared, {on_ramp} on the ramp, {in_attic} in the attic"
+    );
+}

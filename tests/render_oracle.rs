@@ -125,11 +125,12 @@ fn thesis_failure_poses_match_the_oracle() {
             ) else {
                 continue;
             };
-            let floor = map.sectors[usize::from(sector)].floor_z;
-            let ceiling = map.sectors[usize::from(sector)].ceil_z;
+            // The heights under the pose (a slope's there), in 24.8 bits.
+            let (floor, ceiling) =
+                map.heights_fx8_at(&map.sectors[usize::from(sector)], x_bits, y_bits);
             let camera = Camera {
                 position: WorldPoint::new(Fx24_8::from_bits(x_bits), Fx24_8::from_bits(y_bits)),
-                eye_z: Fx24_8::from_int((floor + 32).min((floor + ceiling) / 2)),
+                eye_z: Fx24_8::from_bits((floor + 32 * 256).min((floor + ceiling) / 2)),
                 angle: Angle::from_bits(angle_bits),
                 sector,
                 look_lines: 0,

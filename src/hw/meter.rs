@@ -21,11 +21,12 @@ pub fn start() {
 }
 
 /// The current count. The high half is read on both sides of the low half so a carry between
-/// the two reads cannot produce a value 65,536 cycles off. In the VRAM Mode 4 leaves free: the
-/// renderer reads it three times a sector visit, through a function pointer, and IWRAM holds
-/// the 240-wide blending sprite runs instead (asm/sprite.s).
+/// the two reads cannot produce a value 65,536 cycles off. In IWRAM: the renderer reads it three
+/// times a sector visit, through a function pointer. (It sat in the VRAM Mode 4 leaves free
+/// while IWRAM was full; the slopes' code took that room's last bytes, and moving the sloped
+/// paths out of the hot functions left IWRAM room for these 48 bytes.)
 #[inline(never)]
-#[cfg_attr(target_os = "none", link_section = ".vram.meter_now")]
+#[cfg_attr(target_os = "none", link_section = ".iwram.meter_now")]
 pub fn now() -> u32 {
     loop {
         let high = TIMER3_COUNT.read();

@@ -579,13 +579,14 @@ fn examples_in_the_format_doc_compile() {
     let doc = std::fs::read_to_string(doc_path).expect("docs/MAP_FORMAT.md");
     let catalog = portalcast_assets::Catalog::new(
         [
-            "brick", "ceiling", "grass", "metal", "step", "stone", "tiles", "trim", "wood",
+            "brick", "ceiling", "grass", "marble", "metal", "step", "stone", "tiles", "trim",
+            "wood",
         ],
         ["torch"],
         true,
     )
     .with_sprite_size("torch", 16, 48);
-    let (mut examples, mut movers, mut triggers) = (0, 0, 0);
+    let (mut examples, mut movers, mut triggers, mut slopes) = (0, 0, 0, 0);
     let mut lights = Vec::new();
     for section in doc.split("### Example").skip(1) {
         let block = section
@@ -601,6 +602,7 @@ fn examples_in_the_format_doc_compile() {
             Ok(map) => {
                 movers += map.movers.len();
                 triggers += map.triggers.len();
+                slopes += map.slopes.len();
                 lights.extend(map.lights.iter().map(|l| (l.kind, l.low, l.period, l.tag)));
             }
             Err(errors) => {
@@ -609,7 +611,9 @@ fn examples_in_the_format_doc_compile() {
         }
         examples += 1;
     }
-    assert_eq!(examples, 3);
+    assert_eq!(examples, 4);
+    // The slopes' example: the ramp, the attic and the bank.
+    assert_eq!(slopes, 3);
     // The movers' example: a door and a lift, a switch and a walk-over line; the grid's door.
     assert_eq!((movers, triggers), (3, 2));
     // The movers' example's light effects: the hall's glow, the corridor's flicker (its default

@@ -33,6 +33,14 @@
 //!   goes on in `N` from `t_in = t_out`;
 //! - after `sectors + 8` sectors without a hit (a broken map), [`Surface::None`].
 //!
+//! Where `S` or `N` slopes, every height above is the plane's at the exit point
+//! `P + t_out·D` (from its stored fixed-point coefficients, in f64: the plane the engine
+//! draws), and a sloped plane may be met whatever the sign of `k`: the ceiling if
+//! `h > ceil(P + t_out·D)`, at the depth `t = (eye_z − z_e)/(k + g)` where the ray meets it
+//! (`z_e` the plane's height under the eye, `g` its rise per unit of `t` along `D`); the
+//! floor likewise with `h ≤ floor(…)`; then the strips with the two sectors' heights at the
+//! exit point.
+//!
 //! # Things
 //!
 //! A pixel's ray *reaches* the sectors of its path up to and including the one whose surface
