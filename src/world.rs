@@ -502,21 +502,6 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         ) {
             return true;
         }
-        self.allows_touching(map, mover, height, player)
-    }
-
-    /// [`World::allows`] where the body's disc touches the moving sector: out of line and in
-    /// ROM, since most ticks of a moving mover have the body elsewhere (VRAM has no room for
-    /// it).
-    #[inline(never)]
-    fn allows_touching(
-        &self,
-        map: &MapTables,
-        mover: &Mover,
-        height: i32,
-        player: &Player,
-    ) -> bool {
-        let index = mover.sector;
         let live = self.map(map);
         let sector = &live.sectors[usize::from(index)];
         let mut moved = *sector;
@@ -525,7 +510,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         } else {
             moved.ceil_z = height;
         }
-        let mut body = player.body(live.sectors, live.slopes);
+        let mut body = player.body(live.sectors);
         let at = (player.position.x.to_bits(), player.position.y.to_bits());
         let carried = moves_floor(mover)
             && player.sector == index
@@ -534,7 +519,7 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
         if carried {
             body.feet = Fx24_8::from_int(height);
         }
-        if !body.admits(&moved, at) {
+        if !body.admits(live.slopes, &moved, at) {
             return false;
         }
         if !carried {
@@ -547,7 +532,8 @@ impl<const SECTORS: usize, const MOVERS: usize, const TRIGGERS: usize>
             .all(|wall| match wall.neighbour() {
                 Some(next) => {
                     let beyond = &live.sectors[usize::from(next)];
-                    !touches(&live, beyond, player.position, RADIUS) || body.admits(beyond, at)
+                    !touches(&live, beyond, player.position, RADIUS)
+                        || body.admits(live.slopes, beyond, at)
                 }
                 None => true,
             })

@@ -10,7 +10,6 @@ mod common;
 
 use common::*;
 use portalcast::frame::Resolution;
-use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::light::Lighting;
 use portalcast::render::view::{Camera, Settings, SlopeSteps, View};
 use portalcast::render::walk::Renderer;

@@ -150,16 +150,15 @@ pub struct Body<'s> {
     /// map with movers (`crate::world`), the cartridge's otherwise. Only their heights are read
     /// here; the walls come from the map's own table.
     pub sectors: &'s [Sector],
-    /// The map's sloped planes ([`MapTables::slopes`]): a sloped sector's heights are those
-    /// under the body's centre.
-    pub slopes: &'s [SectorSlope],
 }
 
 /// The floor and ceiling of `sector` at the point `at` (24.8 bits), in 24.8 bits: its heights
 /// where it is flat, its planes' there where it slopes (`slopes`, the map's).
 #[inline(always)]
 pub fn heights_at(slopes: &[SectorSlope], sector: &Sector, at: (i32, i32)) -> (i32, i32) {
-    if sector.slope == NO_SLOPE {
+    // A map without slopes asks its slice's length (in a register or on the stack), not each
+    // sector's slope index (in the cartridge): the tick admits several sectors.
+    if slopes.is_empty() || sector.slope == NO_SLOPE {
         (sector.floor_z * 256, sector.ceil_z * 256)
     } else {
         sloped_heights_at(slopes, sector, at)
@@ -233,18 +232,19 @@ impl Body<'_> {
     }
 
     /// [`Body::admits`] of sector `index` of [`Body::sectors`].
-    pub fn admits_sector(&self, index: u16, at: (i32, i32)) -> bool {
-        self.admits(&self.sectors[usize::from(index)], at)
+    pub fn admits_sector(&self, slopes: &[SectorSlope], index: u16, at: (i32, i32)) -> bool {
+        self.admits(slopes, &self.sectors[usize::from(index)], at)
     }
 
-    /// Whether the body may move into `sector` with its centre at `at` (24.8 bits): its floor
+    /// Whether the body may move into `sector` (of a map whose sloped planes are `slopes`,
+    /// [`MapTables::slopes`]) with its centre at `at` (24.8 bits): its floor
     /// there at most the size's step above the feet ([`STEP_UP_MAX`] on native maps), and its
     /// ceiling there at least the size's headroom ([`HEADROOM`]) above the eye once the feet
     /// stand at least on its floor. A flat sector's heights are the same everywhere; a sloped
     /// one's are taken where the body would stand, so a ramp is entered at its foot and a
     /// sloped step is climbed where it is low enough.
-    pub fn admits(&self, sector: &Sector, at: (i32, i32)) -> bool {
-        let (floor, ceil) = heights_at(self.slopes, sector, at);
+    pub fn admits(&self, slopes: &[SectorSlope], sector: &Sector, at: (i32, i32)) -> bool {
+        let (floor, ceil) = heights_at(slopes, sector, at);
         let feet = self.feet.to_bits();
         floor <= feet + self.size.step_up * 256
             && ceil >= feet.max(floor) + self.eye_height.to_bits() + self.size.headroom() * 256
@@ -558,7 +558,7 @@ fn track_through_portals(
             return Track::Blocked;
         };
         if wall.flags & WALL_MIDDLE_BLOCKS != 0
-            || (next != start && !body.admits_sector(next, point_bits(to)))
+            || (next != start && !body.admits_sector(map.slopes, next, point_bits(to)))
         {
             return Track::Blocked;
         }
@@ -758,7 +758,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
                     // A portal whose middle blocks is a wall to the body.
                     Some(next)
                         if wall.flags & WALL_MIDDLE_BLOCKS == 0
-                            && (next == sector || body.admits_sector(next, target)) =>
+                            && (next == sector || body.admits_sector(map.slopes, next, target)) =>
                     {
                         if !sectors[..found].contains(&next) && found < MAX_NEARBY_SECTORS {
                             sectors[found] = next;
@@ -1477,7 +1477,6 @@ mod tests {
             eye_height: Fx24_8::from_int(32),
             size: PlayerSize::NATIVE,
             sectors,
-            slopes: &[],
         }
     }
 

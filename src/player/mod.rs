@@ -31,7 +31,7 @@ pub mod collide;
 pub mod input;
 pub mod vertical;
 
-use portalcast_format::{MapTables, PlayerSize, Sector, SectorSlope};
+use portalcast_format::{MapTables, PlayerSize, Sector, NO_SLOPE};
 
 use crate::math::{Angle, Fx24_8, WorldPoint};
 use crate::render::view::{Camera, MAX_LOOK_LINES};
@@ -149,15 +149,13 @@ impl Player {
         self.eye_height < Fx24_8::from_int(self.size.eye_height)
     }
 
-    /// The body's vertical extent, for the collision rules, among `sectors` (their heights now)
-    /// and the map's `slopes`.
-    pub fn body<'s>(&self, sectors: &'s [Sector], slopes: &'s [SectorSlope]) -> Body<'s> {
+    /// The body's vertical extent, for the collision rules, among `sectors` (their heights now).
+    pub fn body<'s>(&self, sectors: &'s [Sector]) -> Body<'s> {
         Body {
             feet: self.feet_z,
             eye_height: self.eye_height,
             size: self.size,
             sectors,
-            slopes,
         }
     }
 
@@ -215,7 +213,7 @@ impl Player {
                 x: self.velocity.0,
                 y: self.velocity.1,
             },
-            &self.body(sectors, map.slopes),
+            &self.body(sectors),
         );
         self.velocity = (
             position.x.to_bits() - self.position.x.to_bits(),
@@ -224,8 +222,18 @@ impl Player {
         self.position = position;
         self.sector = sector;
 
-        let at = (position.x.to_bits(), position.y.to_bits());
-        let heights = collide::heights_at(map.slopes, &sectors[usize::from(sector)], at);
+        let here = &sectors[usize::from(sector)];
+        // The sector's slope index before the map's table: `map` need not be kept for a flat
+        // sector.
+        let heights = if here.slope == NO_SLOPE {
+            (here.floor_z * 256, here.ceil_z * 256)
+        } else {
+            collide::heights_at(
+                map.slopes,
+                here,
+                (position.x.to_bits(), position.y.to_bits()),
+            )
+        };
         vertical::tick(self, intent, heights);
     }
 

@@ -40,11 +40,72 @@ pub struct PlaneJob<'r> {
     pub stats: &'r mut FrameStats,
     /// Map-angle offset of each screen column's ray from the view direction (binary angle).
     pub column_angles: &'r [i16],
-    /// The sector's planes where its floor or ceiling slopes.
-    pub slope: Option<SectorSlope>,
 }
 
 impl PlaneJob<'_> {
+    /// [`PlaneJob::draw`] for a sector whose floor or ceiling slopes, with its `planes`: a
+    /// sloped plane's spans through [`SlopedSpans`], a flat one's through the renderer's own
+    /// span loop (the twin of the canvas's, pixel for pixel), the sky as always. Out of line and
+    /// in ROM, so that the flat sectors' `draw` in IWRAM is what it was.
+    #[inline(never)]
+    pub fn draw_with_slopes(self, canvas: &mut impl Canvas, planes: SectorSlope) {
+        let PlaneJob {
+            view,
+            assets,
+            sector,
+            sector_index,
+            first,
+            ceiling,
+            floor,
+            span_start,
+            stats,
+            column_angles,
+        } = self;
+        let sky = is_sky(sector);
+        if sky {
+            canvas.set_surface(Surface::Sky);
+            for (offset, window) in ceiling.iter().enumerate() {
+                if !window.is_empty() {
+                    stats.column_pixels += (window.bottom - window.top) as u32;
+                    stats.sky_pixels += (window.bottom - window.top) as u32;
+                    sky_column(view, assets, column_angles, canvas, first + offset, *window);
+                }
+            }
+        }
+        let surfaces = [
+            (
+                Surface::Ceiling(sector_index),
+                ceiling,
+                planes.ceiling,
+                sector.ceil_texture,
+            ),
+            (
+                Surface::Floor(sector_index),
+                floor,
+                planes.floor,
+                sector.floor_texture,
+            ),
+        ];
+        canvas.set_halved_flats(view.halved_floors);
+        for (surface, windows, plane, texture) in &surfaces[usize::from(sky)..] {
+            if windows.is_empty() {
+                continue;
+            }
+            canvas.set_surface(*surface);
+            if plane.is_flat() {
+                let height = plane.base_fx8 >> 8;
+                PlaneSpans::new(view, assets, sector, height, *texture)
+                    .draw_twin(canvas, windows, first, span_start, stats);
+            } else {
+                let mut spans = SlopedSpans::new(view, assets, sector, plane, *texture);
+                make_spans(windows, first, span_start, |row, start, end| {
+                    spans.span(canvas, stats, row, start, end);
+                });
+            }
+        }
+        canvas.set_halved_flats(false);
+    }
+
     /// Draws the visit's ceiling (or sky) and floor.
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".iwram.render_planes_draw")]
@@ -60,7 +121,6 @@ impl PlaneJob<'_> {
             span_start,
             stats,
             column_angles,
-            slope,
         } = self;
         let sky = is_sky(sector);
         if sky {
@@ -96,18 +156,6 @@ impl PlaneJob<'_> {
                 continue;
             }
             canvas.set_surface(*surface);
-            if let Some(slope) = &slope {
-                let plane = match surface {
-                    Surface::Ceiling(_) => &slope.ceiling,
-                    _ => &slope.floor,
-                };
-                if draw_sloped(
-                    view, assets, sector, plane, *texture, canvas, windows, first, span_start,
-                    stats,
-                ) {
-                    continue;
-                }
-            }
             let mut plane = PlaneSpans::new(view, assets, sector, *height, *texture);
             if !plane.draw_run(canvas, windows, first, span_start, stats) {
                 plane.draw_twin(canvas, windows, first, span_start, stats);
@@ -381,33 +429,6 @@ impl<'r> PlaneSpans<'r> {
     }
 }
 
-/// Draws a plane of a sector with a slope, if it slopes (`false`: a flat plane, left to the
-/// flat spans). Out of line and in ROM, so the span making's code for sloped planes is not a
-/// second copy in IWRAM.
-#[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn draw_sloped(
-    view: &View,
-    assets: &RenderAssets,
-    sector: &Sector,
-    plane: &Plane,
-    texture: u16,
-    canvas: &mut impl Canvas,
-    windows: &[Window],
-    first: usize,
-    span_start: &mut [i16],
-    stats: &mut FrameStats,
-) -> bool {
-    if plane.is_flat() {
-        return false;
-    }
-    let mut spans = SlopedSpans::new(view, assets, sector, plane, texture);
-    make_spans(windows, first, span_start, |row, start, end| {
-        spans.span(canvas, stats, row, start, end);
-    });
-    true
-}
-
 /// A sloped floor or ceiling's spans ([`SlopeSteps`](super::view::SlopeSteps)). On row `y`
 /// the ray through column `x`'s pixel centre, `e + t·ray(x)` in the map at height
 /// `eye_z − k·t` (`k = (2(y − horizon) + 1)/(2·d_y)`), meets the plane `z = z_e + t·g(x)`
@@ -508,7 +529,6 @@ impl<'r> SlopedSpans<'r> {
     /// Row `row`, columns `start..end`, in pieces of `N` pixels: each exact at its first pixel
     /// and stepped to the next piece's first (or the span's last) pixel, lit and mip-mapped by
     /// its first pixel's depth. Counts the span in `stats`.
-    #[inline(never)]
     fn span(
         &mut self,
         canvas: &mut impl Canvas,

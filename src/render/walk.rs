@@ -841,8 +841,12 @@ impl<W: WindowStore> Renderer<W> {
         );
         let planes_started = (self.clock)();
         stats.wall_ticks += planes_started.wrapping_sub(walls_started);
-        self.plane_job(scene, stats, sector, sector_index, first, end)
-            .draw(canvas);
+        let job = self.plane_job(scene, stats, sector, sector_index, first, end);
+        if sector.slope == NO_SLOPE {
+            job.draw(canvas);
+        } else {
+            job.draw_with_slopes(canvas, scene.map.planes(sector));
+        }
         stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
     }
 
@@ -880,18 +884,22 @@ impl<W: WindowStore> Renderer<W> {
             }
             if !seen_through {
                 let projector = WallProjector::new(&scene.view.viewport, a, b);
-                if sector.slope != NO_SLOPE
-                    || wall.portal != NO_PORTAL
-                        && scene.map.sectors[usize::from(wall.portal)].slope != NO_SLOPE
-                {
-                    self.draw_sloped_wall(
-                        scene, canvas, stats, sector, wall, wall_index, projector, start, stop,
-                    );
-                    continue;
-                }
+                // One caller, so inlined here in IWRAM (with a second, in ROM, it was not).
                 let mut job = WallJob::new(scene, sector, wall, wall_index);
                 let stepper = projector.stepper(start);
                 stats.wall_columns += (stop - start) as u32;
+                // A map without slopes asks its table's length once a visit (hoisted), not each
+                // wall's sectors.
+                if !scene.map.slopes.is_empty()
+                    && (sector.slope != NO_SLOPE
+                        || wall.portal != NO_PORTAL
+                            && scene.map.sectors[usize::from(wall.portal)].slope != NO_SLOPE)
+                {
+                    self.draw_sloped_wall(
+                        scene, canvas, stats, &mut job, wall, stepper, start, stop,
+                    );
+                    continue;
+                }
                 let viewport = &scene.view.viewport;
                 let heights = job.heights();
                 let columns = stop - start;
@@ -1090,18 +1098,13 @@ impl<W: WindowStore> Renderer<W> {
         scene: &Scene,
         canvas: &mut impl Canvas,
         stats: &mut FrameStats,
-        sector: &Sector,
+        job: &mut WallJob,
         wall: &Wall,
-        wall_index: u16,
-        projector: WallProjector,
+        mut stepper: WallStepper,
         start: i32,
         stop: i32,
     ) {
-        let mut job = WallJob::new(scene, sector, wall, wall_index);
         let sloped = job.take_slopes(scene, wall);
-        let job = &mut job;
-        let mut stepper = projector.stepper(start);
-        stats.wall_columns += (stop - start) as u32;
         let viewport = &scene.view.viewport;
         let kind = job.kind();
         for column in start..stop {
@@ -1298,7 +1301,6 @@ impl<W: WindowStore> Renderer<W> {
             span_start: &mut windows.span_start,
             stats,
             column_angles: &windows.column_angles,
-            slope: (sector.slope != NO_SLOPE).then(|| scene.map.planes(sector)),
         }
     }
 

@@ -158,7 +158,6 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             eye_height: before.eye_height,
             size: before.size,
             sectors: map.sectors,
-            slopes: map.slopes,
         };
         let at = (after.position.x.to_bits(), after.position.y.to_bits());
         for wall in map.walls {
@@ -176,7 +175,7 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             let crosses =
                 segment_contact(before.position, after.position, a, b) == SegmentContact::Crossing;
             let into = portalcast::math::cross(a, b, after.position) < 0;
-            if crosses && into && !body.admits(&map.sectors[usize::from(next)], at) {
+            if crosses && into && !body.admits(map.slopes, &map.sectors[usize::from(next)], at) {
                 return Err(format!(
                     "path {:?} -> {:?} crossed into sector {next}, which the body {body:?} may not enter",
                     before.position, after.position

@@ -657,11 +657,14 @@ fn slope_knob(doc: &mut String, measurements: &Measurements) {
     }
     let _ = write!(
         doc,
-        "## Knob: slope mapping
-
-         Sloped floors and ceilings are texture-mapped in perspective, exact every `N` pixels          along a span and affine between (`slopes=N`, `src/render/planes.rs`; the default is          16). Flat planes are exact per row whatever `N`, so the knob is measured on the maps          with slopes, along their own fly-throughs. The texel column is the share of pixels          whose palette index differs from the f64 oracle's, which maps every pixel exactly:          `slopes=1`'s figure is what the rest of the frame (walls, flat planes, rounding)          leaves, and each larger `N` adds its affine drift to it.
-
-"
+        "## Knob: slope mapping\n\n\
+         Sloped floors and ceilings are texture-mapped in perspective, exact every `N` pixels \
+         along a span and affine between (`slopes=N`, `src/render/planes.rs`; the default is \
+         16). Flat planes are exact per row whatever `N`, so the knob is measured on the maps \
+         with slopes, along their own fly-throughs. The texel column is the share of pixels \
+         whose palette index differs from the f64 oracle's, which maps every pixel exactly: \
+         `slopes=1`'s figure is what the rest of the frame (walls, flat planes, rounding) \
+         leaves, and each larger `N` adds its affine drift to it.\n\n"
     );
     for base in bases {
         let _ = write!(
