@@ -963,6 +963,9 @@ impl Canvas for VramCanvas {
         }
     }
 
+    /// Inlined where the wall loop calls it (in IWRAM): with the sloped maps' copy of that loop
+    /// as a second caller it was otherwise left out of line, in the cartridge.
+    #[inline(always)]
     fn wall_run(&mut self, run: &mut WallRun) -> Option<WallRunEnd> {
         // The run's own checks (`WallRun::new`, `set_strip`) hold its windows and texels; these
         // keep its columns and rows inside this page.

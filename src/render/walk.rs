@@ -818,7 +818,18 @@ impl<W: WindowStore> Renderer<W> {
                     &self.windows.windows().clip,
                 );
             }
-            self.draw_walls(scene, canvas, stats, inner_sector, inner_first, inner_end);
+            if scene.map.slopes.is_empty() {
+                self.draw_walls(scene, canvas, stats, inner_sector, inner_first, inner_end);
+            } else {
+                self.draw_walls_with_slopes(
+                    scene,
+                    canvas,
+                    stats,
+                    inner_sector,
+                    inner_first,
+                    inner_end,
+                );
+            }
             if scene.view.things == ThingsShown::On && self.has_middles(inner) {
                 self.collect_middles(
                     scene,
@@ -841,21 +852,52 @@ impl<W: WindowStore> Renderer<W> {
         );
         let planes_started = (self.clock)();
         stats.wall_ticks += planes_started.wrapping_sub(walls_started);
-        let job = self.plane_job(scene, stats, sector, sector_index, first, end);
         if sector.slope == NO_SLOPE {
-            job.draw(canvas);
+            self.plane_job(scene, stats, sector, sector_index, first, end)
+                .draw(canvas);
         } else {
-            job.draw_with_slopes(canvas, scene.map.planes(sector));
+            self.draw_sloped_planes(scene, canvas, stats, sector_index, first, end);
         }
         stats.plane_ticks += (self.clock)().wrapping_sub(planes_started);
     }
 
-    /// The walls and strips of a visit's columns `[first, end)`. Not inlined: its per-wall
-    /// state stays off the stack frame of [`draw_sector`](Self::draw_sector), its caller for
-    /// every visit.
+    /// The walls and strips of a visit's columns `[first, end)` on a map without slopes. Not
+    /// inlined: its per-wall state stays off the stack frame of
+    /// [`draw_sector`](Self::draw_sector), its caller for every visit.
     #[inline(never)]
     #[cfg_attr(target_os = "none", link_section = ".iwram_render.draw_walls")]
     fn draw_walls(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        sector: &Sector,
+        first: i32,
+        end: i32,
+    ) {
+        self.walls_of::<false>(scene, canvas, stats, sector, first, end);
+    }
+
+    /// [`Renderer::draw_walls`] on a map with slopes: a wall whose sector or neighbour slopes
+    /// goes to [`Renderer::draw_sloped_wall`]. Out of line and in ROM: a test and a call in
+    /// the loop cost the IWRAM copy 400 bytes, which flat maps would carry for nothing.
+    #[inline(never)]
+    fn draw_walls_with_slopes(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        sector: &Sector,
+        first: i32,
+        end: i32,
+    ) {
+        self.walls_of::<true>(scene, canvas, stats, sector, first, end);
+    }
+
+    /// The loop of [`Renderer::draw_walls`] and [`Renderer::draw_walls_with_slopes`]; `SLOPES`
+    /// says whether the map has any.
+    #[inline(always)]
+    fn walls_of<const SLOPES: bool>(
         &mut self,
         scene: &Scene,
         canvas: &mut impl Canvas,
@@ -883,23 +925,26 @@ impl<W: WindowStore> Renderer<W> {
                 }
             }
             if !seen_through {
-                let projector = WallProjector::new(&scene.view.viewport, a, b);
-                // One caller, so inlined here in IWRAM (with a second, in ROM, it was not).
-                let mut job = WallJob::new(scene, sector, wall, wall_index);
-                let stepper = projector.stepper(start);
-                stats.wall_columns += (stop - start) as u32;
-                // A map without slopes asks its table's length once a visit (hoisted), not each
-                // wall's sectors.
-                if !scene.map.slopes.is_empty()
+                if SLOPES
                     && (sector.slope != NO_SLOPE
                         || wall.portal != NO_PORTAL
                             && scene.map.sectors[usize::from(wall.portal)].slope != NO_SLOPE)
                 {
                     self.draw_sloped_wall(
-                        scene, canvas, stats, &mut job, wall, stepper, start, stop,
+                        scene,
+                        canvas,
+                        stats,
+                        (sector, wall, wall_index),
+                        (a, b),
+                        start,
+                        stop,
                     );
                     continue;
                 }
+                let projector = WallProjector::new(&scene.view.viewport, a, b);
+                let mut job = WallJob::new(scene, sector, wall, wall_index);
+                let stepper = projector.stepper(start);
+                stats.wall_columns += (stop - start) as u32;
                 let viewport = &scene.view.viewport;
                 let heights = job.heights();
                 let columns = stop - start;
@@ -1098,12 +1143,15 @@ impl<W: WindowStore> Renderer<W> {
         scene: &Scene,
         canvas: &mut impl Canvas,
         stats: &mut FrameStats,
-        job: &mut WallJob,
-        wall: &Wall,
-        mut stepper: WallStepper,
+        (sector, wall, wall_index): (&Sector, &Wall, u16),
+        (a, b): (EyePoint, EyePoint),
         start: i32,
         stop: i32,
     ) {
+        let mut job = WallJob::new(scene, sector, wall, wall_index);
+        let job = &mut job;
+        let mut stepper = WallProjector::new(&scene.view.viewport, a, b).stepper(start);
+        stats.wall_columns += (stop - start) as u32;
         let sloped = job.take_slopes(scene, wall);
         let viewport = &scene.view.viewport;
         let kind = job.kind();
@@ -1269,6 +1317,24 @@ impl<W: WindowStore> Renderer<W> {
             );
             wall.step();
         }
+    }
+
+    /// The planes of a visit of a sector with a slope ([`planes::PlaneJob::draw_with_slopes`]):
+    /// out of line and in ROM, so the flat sectors' visit in IWRAM is what it was.
+    #[inline(never)]
+    fn draw_sloped_planes(
+        &mut self,
+        scene: &Scene,
+        canvas: &mut impl Canvas,
+        stats: &mut FrameStats,
+        sector_index: u16,
+        first: i32,
+        end: i32,
+    ) {
+        let sector = &scene.map.sectors[usize::from(sector_index)];
+        let planes = scene.map.planes(sector);
+        self.plane_job(scene, stats, sector, sector_index, first, end)
+            .draw_with_slopes(canvas, planes);
     }
 
     fn plane_job<'r>(
@@ -1774,6 +1840,9 @@ impl<'s> WallJob<'s> {
         }
     }
 
+    /// Inlined into both callers: the wall loop's copy stays in IWRAM (with two callers and no
+    /// hint it went to the cartridge, called for every wall).
+    #[inline(always)]
     fn new(scene: &Scene<'s, 's>, sector: &'s Sector, wall: &'s Wall, wall_index: u16) -> Self {
         let view = scene.view;
         let above_eye = |height: i32| Fx24_8::from_int(height) - view.eye_z;
