@@ -44,7 +44,7 @@ pub struct PlaneJob<'r> {
 
 impl PlaneJob<'_> {
     /// [`PlaneJob::draw`] for a sector whose floor or ceiling slopes, with its `planes`: a
-    /// sloped plane's spans through [`SlopedSpans`], a flat one's through the renderer's own
+    /// sloped plane's spans through `SlopedSpans`, a flat one's through the renderer's own
     /// span loop (the twin of the canvas's, pixel for pixel), the sky as always. Out of line and
     /// in ROM, so that the flat sectors' `draw` in IWRAM is what it was.
     #[inline(never)]
