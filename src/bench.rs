@@ -174,7 +174,7 @@ impl fmt::Display for SettingsLabel<'_> {
         write!(f, " prep={}", settings.preprocessing.label())?;
         write!(f, " floors={}", settings.floors.label())?;
         write!(f, " things={}", settings.things.label())?;
-        write!(f, " slopes={}", settings.slope_steps.label())?;
+        write!(f, " slp={}", settings.slope_steps.label())?;
         Ok(())
     }
 }
@@ -277,7 +277,7 @@ mod tests {
         assert_eq!(distinct.len(), labels.len(), "{labels:?}");
         assert_eq!(
             labels[0],
-            "map=bench res=120x80 lighting=depth tex=ewram prep=off floors=full things=on"
+            "map=bench res=120x80 lighting=depth tex=ewram prep=off floors=full things=on slp=16"
         );
         assert_eq!(guard_runs().count(), Resolution::ALL.len());
     }

@@ -172,7 +172,7 @@ fn a_middle_seen_from_near_its_wall_line_keeps_its_steps_in_the_kernel_s_bound()
     );
     let world = WorldLine::parse("world frame=22956 heights=0,128 thrown=0 lights=90,168,21,60");
     let line = "render map=bench frame=22956 res=120x80 lighting=depth tex=ewram prep=off \
-                floors=full things=on slopes=16 page=0x06000000 cycles=285819";
+                floors=full things=on slp=16 page=0x06000000 cycles=285819";
     let (map, settings) = render_line_settings(line);
     let view = View::new(&player.camera(), &settings).at_tick(player.tick);
     let live = WorldLine::world_of(Some(&world), &map);

@@ -178,7 +178,7 @@ pub fn line_settings(text: &str) -> portalcast::render::view::Settings {
         preprocessing: Preprocessing::from_label(label("prep")).unwrap(),
         floors: Floors::from_label(label("floors")).unwrap(),
         things: ThingsShown::from_label(label("things")).unwrap(),
-        slope_steps: SlopeSteps::from_label(label("slopes")).unwrap(),
+        slope_steps: SlopeSteps::from_label(label("slp")).unwrap(),
     }
 }
 

@@ -637,7 +637,7 @@ fn maps(doc: &mut String, measurements: &Measurements) {
 }
 
 /// The slope-mapping knob on each map whose runs vary it, at every resolution: the map's
-/// default run and the other values of `slopes=`.
+/// default run and the other values of `slp=`.
 fn slope_knob(doc: &mut String, measurements: &Measurements) {
     let bases: Vec<&Run> = measurements
         .runs
@@ -648,7 +648,7 @@ fn slope_knob(doc: &mut String, measurements: &Measurements) {
                     other.map == run.map
                         && other.setting("res") == run.setting("res")
                         && differences(run, other).len() == 1
-                        && differences(run, other)[0].starts_with("slopes=")
+                        && differences(run, other)[0].starts_with("slp=")
                 })
         })
         .collect();
@@ -659,13 +659,38 @@ fn slope_knob(doc: &mut String, measurements: &Measurements) {
         doc,
         "## Knob: slope mapping\n\n\
          Sloped floors and ceilings are texture-mapped in perspective, exact every `N` pixels \
-         along a span and affine between (`slopes=N`, `src/render/planes.rs`; the default is \
+         along a span and affine between (`slp=N`, `src/render/planes.rs`; the default is \
          16). Flat planes are exact per row whatever `N`, so the knob is measured on the maps \
          with slopes, along their own fly-throughs. The texel column is the share of pixels \
          whose palette index differs from the f64 oracle's, which maps every pixel exactly: \
-         `slopes=1`'s figure is what the rest of the frame (walls, flat planes, rounding) \
+         `slp=1`'s figure is what the rest of the frame (walls, flat planes, rounding) \
          leaves, and each larger `N` adds its affine drift to it.\n\n"
     );
+    // The headline's targets, for the maps with slopes at their defaults.
+    let _ = writeln!(
+        doc,
+        "At the defaults, against the headline's targets:\n\n\
+         | map | resolution | mean | max | target | gap (mean / max) |\n\
+         |---|---|---|---|---|---|"
+    );
+    for base in &bases {
+        let resolution = base.setting("res").unwrap_or("?");
+        let Some((fps, cycles)) = target(resolution) else {
+            continue;
+        };
+        let summary = base.summary();
+        let _ = writeln!(
+            doc,
+            "| {} | {} | {} | {} | every frame ≤ {} ({fps} fps) | {} |",
+            base.map,
+            resolution_name(resolution),
+            group_digits(summary.mean),
+            group_digits(summary.max),
+            group_digits(cycles),
+            gap(&summary, cycles)
+        );
+    }
+    doc.push('\n');
     for base in bases {
         let _ = write!(
             doc,
