@@ -194,12 +194,13 @@ fn things_are_drawn_hidden_and_cut_as_the_host_draws_them() {
     let mut total = Seen::default();
     let mut compared = 0;
     // To the tiny map through the Start menu (the cursor starts on the resolution, the map is
-    // two rows down; bench, grid, tiny), then strafe left along the room, walk to its east wall
+    // two rows down; bench, grid, slopes, tiny), then strafe left along the room, walk to its east wall
     // and turn: the yard's things pass the portal's edges.
     let mut keys = presses(&[
         Keys::START,
         Keys::DOWN,
         Keys::DOWN,
+        Keys::RIGHT,
         Keys::RIGHT,
         Keys::RIGHT,
         Keys::START,
