@@ -141,17 +141,18 @@ fn check_invariants(map: &MapTables<'_>, texture_count: usize, compiled: &Compil
                         );
                     }
                     let both_sky = sector.ceil_texture == SKY && there.ceil_texture == SKY;
-                    // Sloped pairs compare their heights along the wall (the compiler's rule,
-                    // `bad/slope_missing_lower.map`), not their whole-sector bounds.
-                    let flat = sector.slope == portalcast_format::NO_SLOPE
-                        && there.slope == portalcast_format::NO_SLOPE;
-                    if !flat {
-                        continue;
-                    }
-                    if there.ceil_z < sector.ceil_z && !both_sky {
+                    // The heights at both ends of the wall (a slope's there; a flat sector's
+                    // everywhere): a strip shows where the neighbour's ceiling is lower, or its
+                    // floor higher, at either end (the compiler's rule).
+                    let ends = [wall.start, wall.end].map(|vertex| {
+                        let v = map.vertices[usize::from(vertex)];
+                        let at = |s| map.heights_fx8_at(s, v.x * 256, v.y * 256);
+                        (at(sector), at(there))
+                    });
+                    if !both_sky && ends.iter().any(|((_, here), (_, other))| other < here) {
                         assert!(usize::from(wall.upper_texture) < texture_count);
                     }
-                    if there.floor_z > sector.floor_z {
+                    if ends.iter().any(|((here, _), (other, _))| other > here) {
                         assert!(usize::from(wall.lower_texture) < texture_count);
                     }
                 }
