@@ -169,13 +169,7 @@ pub fn heights_at(slopes: &[SectorSlope], sector: &Sector, at: (i32, i32)) -> (i
 /// no copy of it in IWRAM.
 #[inline(never)]
 fn sloped_heights_at(slopes: &[SectorSlope], sector: &Sector, at: (i32, i32)) -> (i32, i32) {
-    match slopes.get(usize::from(sector.slope)) {
-        Some(slope) => (
-            slope.floor.height_fx8_at(at.0, at.1),
-            slope.ceiling.height_fx8_at(at.0, at.1),
-        ),
-        None => (sector.floor_z * 256, sector.ceil_z * 256),
-    }
+    portalcast_format::sector_heights_fx8_at(slopes, sector, at.0, at.1)
 }
 
 impl Body<'_> {

@@ -171,6 +171,24 @@ impl Plane {
     }
 }
 
+/// [`MapTables::heights_fx8_at`] with the map's [`MapTables::slopes`] alone, for code that
+/// holds the slopes and a (live) sector but not the map.
+#[inline]
+pub fn sector_heights_fx8_at(
+    slopes: &[SectorSlope],
+    sector: &Sector,
+    x_fx8: i32,
+    y_fx8: i32,
+) -> (i32, i32) {
+    match slopes.get(usize::from(sector.slope)) {
+        None => (sector.floor_z * 256, sector.ceil_z * 256),
+        Some(slope) => (
+            slope.floor.height_fx8_at(x_fx8, y_fx8),
+            slope.ceiling.height_fx8_at(x_fx8, y_fx8),
+        ),
+    }
+}
+
 /// The floor and ceiling planes of a sector with a sloped floor or ceiling
 /// ([`Sector::slope`]); the flat one of the two is [`Plane::flat`] at its height.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -481,13 +499,7 @@ impl<'a> MapTables<'a> {
     /// `sector` may be a live copy whose heights moved: a sector that moves is never sloped.
     #[inline]
     pub fn heights_fx8_at(&self, sector: &Sector, x_fx8: i32, y_fx8: i32) -> (i32, i32) {
-        match self.slopes.get(usize::from(sector.slope)) {
-            None => (sector.floor_z * 256, sector.ceil_z * 256),
-            Some(slope) => (
-                slope.floor.height_fx8_at(x_fx8, y_fx8),
-                slope.ceiling.height_fx8_at(x_fx8, y_fx8),
-            ),
-        }
+        sector_heights_fx8_at(self.slopes, sector, x_fx8, y_fx8)
     }
 
     /// The walls of `sector`, in clockwise order.
