@@ -97,6 +97,7 @@ const NO_SECTOR: Sector = Sector {
     floor_texture: 0,
     ceil_texture: 0,
     light: 0,
+    links: 0,
     slope: portalcast_format::NO_SLOPE,
 };
 

@@ -225,9 +225,22 @@ impl Body<'_> {
         try_moves(map, sector, from, step, body, &obstacles, None)
     }
 
-    /// [`Body::admits`] of sector `index` of [`Body::sectors`].
-    pub fn admits_sector(&self, slopes: &[SectorSlope], index: u16, at: (i32, i32)) -> bool {
-        self.admits(slopes, &self.sectors[usize::from(index)], at)
+    /// [`Body::admits`] of sector `index` of [`Body::sectors`], on `map`: a sector with a
+    /// floor or ceiling portal admits it by the heights of the space it opens into
+    /// ([`MapTables::open_heights_fx8_at`]), as its own tick moves it.
+    pub fn admits_sector(&self, map: &MapTables, index: u16, at: (i32, i32)) -> bool {
+        let sector = &self.sectors[usize::from(index)];
+        if sector.links != 0 {
+            return self.admits_open(map, index, at);
+        }
+        self.admits(map.slopes, sector, at)
+    }
+
+    /// [`Body::admits_sector`] of a sector with a floor or ceiling portal: out of line and in
+    /// ROM, as only such sectors come here.
+    #[inline(never)]
+    fn admits_open(&self, map: &MapTables, index: u16, at: (i32, i32)) -> bool {
+        self.fits(map.open_heights_fx8_at(index, at.0, at.1))
     }
 
     /// Whether the body may move into `sector` (of a map whose sloped planes are `slopes`,
@@ -238,7 +251,13 @@ impl Body<'_> {
     /// one's are taken where the body would stand, so a ramp is entered at its foot and a
     /// sloped step is climbed where it is low enough.
     pub fn admits(&self, slopes: &[SectorSlope], sector: &Sector, at: (i32, i32)) -> bool {
-        let (floor, ceil) = heights_at(slopes, sector, at);
+        self.fits(heights_at(slopes, sector, at))
+    }
+
+    /// Whether the body may stand between `floor` and `ceil` (24.8): the rule of
+    /// [`Body::admits`].
+    #[inline(always)]
+    fn fits(&self, (floor, ceil): (i32, i32)) -> bool {
         let feet = self.feet.to_bits();
         floor <= feet + self.size.step_up * 256
             && ceil >= feet.max(floor) + self.eye_height.to_bits() + self.size.headroom() * 256
@@ -552,7 +571,7 @@ fn track_through_portals(
             return Track::Blocked;
         };
         if wall.flags & WALL_MIDDLE_BLOCKS != 0
-            || (next != start && !body.admits_sector(map.slopes, next, point_bits(to)))
+            || (next != start && !body.admits_sector(map, next, point_bits(to)))
         {
             return Track::Blocked;
         }
@@ -752,7 +771,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
                     // A portal whose middle blocks is a wall to the body.
                     Some(next)
                         if wall.flags & WALL_MIDDLE_BLOCKS == 0
-                            && (next == sector || body.admits_sector(map.slopes, next, target)) =>
+                            && (next == sector || body.admits_sector(map, next, target)) =>
                     {
                         if !sectors[..found].contains(&next) && found < MAX_NEARBY_SECTORS {
                             sectors[found] = next;
@@ -1432,6 +1451,7 @@ mod tests {
             floor_texture: 0,
             ceil_texture: 0,
             light: 255,
+            links: 0,
             slope: portalcast_format::NO_SLOPE,
         }];
         (vertices, walls, sectors)
@@ -1461,6 +1481,7 @@ mod tests {
             lights: &[],
             wall_twins: &[],
             slopes: &[],
+            layer_links: &[],
         }
     }
 

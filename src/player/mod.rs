@@ -63,8 +63,12 @@ pub const LOOK_SPEED: i32 = 2;
 pub struct Player {
     /// Centre of the body on the map plane.
     pub position: WorldPoint,
-    /// The sector strictly containing [`Player::position`].
+    /// The sector strictly containing [`Player::position`] that holds the feet: on a map with
+    /// room over room, the one of the stack there whose heights the feet are within.
     pub sector: u16,
+    /// The sector holding the eye, which the view is drawn from: [`Player::sector`], or where
+    /// the body reaches through a floor or ceiling portal, the sector above it.
+    pub eye_sector: u16,
     /// Horizontal velocity, 24.8 bits per tick (x, y).
     pub velocity: (i32, i32),
     /// View direction.
@@ -95,6 +99,7 @@ impl Player {
     pub const NOWHERE: Player = Player {
         position: WorldPoint::new(Fx24_8::ZERO, Fx24_8::ZERO),
         sector: 0,
+        eye_sector: 0,
         velocity: (0, 0),
         angle: Angle::from_bits(0),
         feet_z: Fx24_8::ZERO,
@@ -131,6 +136,7 @@ impl Player {
         Player {
             position,
             sector,
+            eye_sector: map.sector_at_height(sector, floor + size.eye_height * 256),
             angle,
             feet_z: Fx24_8::from_bits(floor),
             eye_height: Fx24_8::from_int(size.eye_height),
@@ -165,7 +171,7 @@ impl Player {
             position: self.position,
             eye_z: self.eye_z(),
             angle: self.angle,
-            sector: self.sector,
+            sector: self.eye_sector,
             look_lines: self.look_lines,
         }
     }
@@ -225,16 +231,28 @@ impl Player {
         let here = &sectors[usize::from(sector)];
         // The sector's slope index before the map's table: `map` need not be kept for a flat
         // sector.
-        let heights = if here.slope == NO_SLOPE {
+        let at = (position.x.to_bits(), position.y.to_bits());
+        let heights = if here.links != 0 {
+            map.open_heights_fx8_at(sector, at.0, at.1)
+        } else if here.slope == NO_SLOPE {
             (here.floor_z * 256, here.ceil_z * 256)
         } else {
-            collide::heights_at(
-                map.slopes,
-                here,
-                (position.x.to_bits(), position.y.to_bits()),
-            )
+            collide::heights_at(map.slopes, here, at)
         };
         vertical::tick(self, intent, heights);
+        self.eye_sector = sector;
+        if here.links != 0 {
+            self.change_layers(map);
+        }
+    }
+
+    /// After a tick in a sector with a floor or ceiling portal: the sector of the stack that
+    /// holds the feet now, and the one that holds the eye. Out of line and in ROM: only such
+    /// sectors come here.
+    #[inline(never)]
+    fn change_layers(&mut self, map: &MapTables) {
+        self.sector = map.sector_at_height(self.sector, self.feet_z.to_bits());
+        self.eye_sector = map.sector_at_height(self.sector, self.eye_z().to_bits());
     }
 
     fn turn(&mut self, direction: i8) {

@@ -6,7 +6,10 @@
 //! in the renderer's memory rather than on the call stack (`Renderer::walk`): no function calls
 //! itself.
 
-use portalcast_format::{MapTables, Sector, Texture, Wall, NO_PORTAL, NO_SLOPE, NO_TEXTURE, SKY};
+use portalcast_format::{
+    MapTables, Sector, Texture, Wall, LINK_CEILING, LINK_FLOOR, NO_PORTAL, NO_SLOPE, NO_TEXTURE,
+    SKY,
+};
 
 use super::planes;
 use super::spans::Window;
@@ -44,6 +47,28 @@ const PORTALS_RECORDED: usize = 256;
 /// leave open at once for the visit to draw the neighbour's walls as its own
 /// ([`Renderer::see_through`]); more are drawn as plain portals.
 const SEE_THROUGH_MAX: usize = 16;
+
+/// Plane windows the walk keeps at once for the floor and ceiling portals it has yet to enter
+/// ([`Renderer::layer_windows`]): a sector's portals to other layers are entered once its own
+/// portals' walks are done, so one waits while the sectors in front of it are drawn. Four
+/// full-width planes; a fifth waiting at once is counted in [`FrameStats::layer_overflows`]
+/// and its plane drawn as solid.
+const LAYER_WINDOWS: usize = 4 * MAX_COLUMNS;
+
+/// Floor and ceiling portals waiting at once ([`Renderer::layers`]).
+const LAYERS_WAITING: usize = 8;
+
+/// A floor or ceiling portal a visit found showing rows, waiting for the visit's other
+/// portals to be walked: the sector beyond, the columns, where its windows are kept, and the
+/// walk level of the visit that found it.
+#[derive(Clone, Copy)]
+struct WaitingLayer {
+    sector: u16,
+    first: i16,
+    end: i16,
+    windows_from: u16,
+    depth: u16,
+}
 
 /// What the wall pass did with a portal ([`Renderer::note_portal`]).
 enum PortalNoted {
@@ -108,6 +133,11 @@ pub struct FrameStats {
     pub middles_drawn: u32,
     /// Of the things and middles drawn, the translucent ones.
     pub translucent_drawn: u32,
+    /// Visits through a floor or ceiling portal into another layer (room over room).
+    pub layer_visits: u32,
+    /// Floor or ceiling portals left undrawn for want of room ([`LAYER_WINDOWS`],
+    /// [`LAYERS_WAITING`]): their plane is drawn as solid.
+    pub layer_overflows: u32,
 }
 
 /// The renderer's per-column and per-row working memory: the clip and plane windows every wall
@@ -226,6 +256,15 @@ pub struct Renderer<W: WindowStore = ColumnWindows> {
     /// Whether the map may have a middle image: [`Renderer::middle_sectors`] marks a sector, or
     /// some sectors are past the tracked ones.
     any_middles: bool,
+    /// The plane windows of the floor and ceiling portals waiting in [`Renderer::layers`], a
+    /// stack: each visit's above those of the visits on the walk's path before it.
+    layer_windows: [Window; LAYER_WINDOWS],
+    /// Floor and ceiling portals found, not yet entered (a stack, as the walk's levels).
+    layers: [WaitingLayer; LAYERS_WAITING],
+    /// Entries of [`Renderer::layers`] in use.
+    layers_used: u16,
+    /// The walk level of the visit being drawn, for the floor and ceiling portals it finds.
+    walk_depth: u16,
 }
 
 /// Vertices (by index) whose eye-space position a frame keeps once computed; higher ones are
@@ -446,6 +485,16 @@ impl<W: WindowStore> Renderer<W> {
             middle_sectors: [0; VISITS_TRACKED / 32],
             middles_of: 0,
             any_middles: false,
+            layer_windows: [Window::EMPTY; LAYER_WINDOWS],
+            layers: [WaitingLayer {
+                sector: 0,
+                first: 0,
+                end: 0,
+                windows_from: 0,
+                depth: 0,
+            }; LAYERS_WAITING],
+            layers_used: 0,
+            walk_depth: 0,
         }
     }
 
@@ -488,7 +537,10 @@ impl<W: WindowStore> Renderer<W> {
         if self.middles_of != map.walls.as_ptr() as usize {
             self.find_middle_sectors(map);
         }
+        // The preprocessing's plan orders visits by the portals between sectors; a map with
+        // floor and ceiling portals is drawn by the plain walk.
         let planned = view.preprocessing == Preprocessing::On
+            && map.layer_links.is_empty()
             && self.plan_visits(&scene, &mut stats, view.sector, 0, width as i32);
         if planned {
             self.draw_plan(&scene, canvas, &mut stats);
@@ -737,6 +789,8 @@ impl<W: WindowStore> Renderer<W> {
         ) -> Result<Option<VisitId>, E>,
     ) -> Result<(), E> {
         self.portals_used = 0;
+        self.layers_used = 0;
+        self.walk_depth = 0;
         let mut root = WalkLevel::new(sector_index, first, end);
         root.visit = self.enter_recording(stats, &mut root, None, &mut enter)?;
         self.levels[0] = root;
@@ -744,8 +798,13 @@ impl<W: WindowStore> Renderer<W> {
         loop {
             // A copy in registers while its walls are tested; the levels live in EWRAM.
             let mut level = self.levels[depth];
-            let seen = level.next_portal(scene, &self.vertices, &self.portals);
+            let mut seen = level.next_portal(scene, &self.vertices, &self.portals);
             self.levels[depth] = level;
+            if seen.is_none() && self.layers_used != 0 {
+                // The visit's own portals are walked: its floor and ceiling portals next.
+                seen = self.next_waiting_layer(stats, depth);
+            }
+            self.walk_depth = depth as u16 + 1;
             match seen {
                 Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
                 // A sector seen through no row of its portal draws nothing, nor does any
@@ -768,6 +827,101 @@ impl<W: WindowStore> Renderer<W> {
                     depth -= 1;
                 }
             }
+        }
+    }
+
+    /// The floor or ceiling portal the visit at walk level `depth` found and is the last to
+    /// wait, if any: the sector beyond and its columns, whose clip windows are now the plane's
+    /// windows the visit left there. Out of line and in ROM: only maps with floor and ceiling
+    /// portals come here.
+    #[inline(never)]
+    fn next_waiting_layer(
+        &mut self,
+        stats: &mut FrameStats,
+        depth: usize,
+    ) -> Option<(u16, i32, i32)> {
+        let top = *self.layers[..usize::from(self.layers_used)].last()?;
+        if usize::from(top.depth) != depth {
+            return None;
+        }
+        self.layers_used -= 1;
+        let (first, end) = (usize::from(top.first as u16), usize::from(top.end as u16));
+        let from = usize::from(top.windows_from);
+        self.windows.windows().clip[first..end]
+            .copy_from_slice(&self.layer_windows[from..from + (end - first)]);
+        stats.layer_visits += 1;
+        Some((top.sector, first as i32, end as i32))
+    }
+
+    /// After the walls of a visit of `sector` (sector `sector_index`, columns `first..end`)
+    /// with a floor or ceiling portal: the portal's plane is not drawn, and where the eye is on
+    /// its open side and it shows rows, its windows wait for the walk to enter the sector
+    /// beyond through them ([`Renderer::next_waiting_layer`]). Out of line and in ROM: only
+    /// such sectors come here.
+    #[inline(never)]
+    fn open_layers(
+        &mut self,
+        scene: &Scene,
+        stats: &mut FrameStats,
+        (sector, sector_index): (&Sector, u16),
+        first: i32,
+        end: i32,
+    ) {
+        let eye_z = scene.view.eye_z.to_bits();
+        let (first, end) = (first as usize, end as usize);
+        // The floor's first, so the ceiling's is the one on top: entered first, as any order
+        // would do (their rows never meet).
+        let planes = [
+            (
+                LINK_FLOOR,
+                FLOOR_SEEN,
+                scene.map.sector_below(sector_index),
+                eye_z >= sector.floor_z * 256,
+            ),
+            (
+                LINK_CEILING,
+                CEILING_SEEN,
+                scene.map.sector_above(sector_index),
+                eye_z < sector.ceil_z * 256,
+            ),
+        ];
+        for (link, seen, beyond, eye_on_open_side) in planes {
+            if sector.links & link == 0 {
+                continue;
+            }
+            let shows_rows = self.planes_seen & seen != 0;
+            // The portal's plane is never drawn: from the far side its rows are none.
+            self.planes_seen &= !seen;
+            let Some(beyond) = beyond.filter(|_| eye_on_open_side && shows_rows) else {
+                continue;
+            };
+            let used = usize::from(self.layers_used);
+            let from = match used.checked_sub(1) {
+                Some(last) => {
+                    let last = self.layers[last];
+                    usize::from(last.windows_from) + usize::from((last.end - last.first) as u16)
+                }
+                None => 0,
+            };
+            let windows = if seen == CEILING_SEEN {
+                &self.windows.windows().ceiling[first..end]
+            } else {
+                &self.windows.windows().floor[first..end]
+            };
+            if used == LAYERS_WAITING || from + windows.len() > LAYER_WINDOWS {
+                stats.layer_overflows += 1;
+                self.planes_seen |= seen;
+                continue;
+            }
+            self.layer_windows[from..from + windows.len()].copy_from_slice(windows);
+            self.layers[used] = WaitingLayer {
+                sector: beyond,
+                first: first as i16,
+                end: end as i16,
+                windows_from: from as u16,
+                depth: self.walk_depth,
+            };
+            self.layers_used += 1;
         }
     }
 
@@ -850,6 +1004,9 @@ impl<W: WindowStore> Renderer<W> {
                 && !self.windows.windows().floor[range].contains(&UNSET),
             "a column of sector {sector_index} owned by none of its walls"
         );
+        if sector.links != 0 {
+            self.open_layers(scene, stats, (sector, sector_index), first, end);
+        }
         let planes_started = (self.clock)();
         stats.wall_ticks += planes_started.wrapping_sub(walls_started);
         if sector.slope == NO_SLOPE {
@@ -1971,19 +2128,21 @@ fn vertex(map: &MapTables, index: u16) -> WorldPoint {
 /// portal between two such (without a middle image) shows nothing of itself: no strip, and the
 /// planes on either side meet in one (Doom's `R_AddLine` leaves such a line out).
 pub fn same_planes(a: &Sector, b: &Sector) -> bool {
-    (
-        a.floor_z,
-        a.ceil_z,
-        a.floor_texture,
-        a.ceil_texture,
-        a.light,
-    ) == (
-        b.floor_z,
-        b.ceil_z,
-        b.floor_texture,
-        b.ceil_texture,
-        b.light,
-    )
+    // A floor or ceiling portal is entered from its own sector's windows: never merged.
+    (a.links | b.links) == 0
+        && (
+            a.floor_z,
+            a.ceil_z,
+            a.floor_texture,
+            a.ceil_texture,
+            a.light,
+        ) == (
+            b.floor_z,
+            b.ceil_z,
+            b.floor_texture,
+            b.ceil_texture,
+            b.light,
+        )
 }
 
 /// A wall's length in 24.8: the map compiler's ([`Wall::length_fx8`]).

@@ -303,7 +303,8 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
              size: {FORMAT}::PlayerSize {{ eye_height: {}, height: {}, step_up: {} }} }}, \
              things: &MAP_{index}_THINGS, sector_things: &MAP_{index}_SECTOR_THINGS, \
              movers: &MAP_{index}_MOVERS, triggers: &MAP_{index}_TRIGGERS, lights: &MAP_{index}_LIGHTS, \
-             wall_twins: &MAP_{index}_WALL_TWINS, slopes: &MAP_{index}_SLOPES }},",
+             wall_twins: &MAP_{index}_WALL_TWINS, slopes: &MAP_{index}_SLOPES, \
+             layer_links: &MAP_{index}_LAYER_LINKS }},",
             map.name,
             p.x_fx8,
             p.y_fx8,
@@ -350,8 +351,8 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
     for c in &map.sectors {
         let _ = writeln!(
             s,
-            "    {FORMAT}::Sector {{ first_wall: {}, wall_count: {}, floor_z: {}, ceil_z: {}, floor_texture: {}, ceil_texture: {}, light: {}, slope: {} }},",
-            c.first_wall, c.wall_count, c.floor_z, c.ceil_z, c.floor_texture, c.ceil_texture, c.light, c.slope
+            "    {FORMAT}::Sector {{ first_wall: {}, wall_count: {}, floor_z: {}, ceil_z: {}, floor_texture: {}, ceil_texture: {}, light: {}, links: {}, slope: {} }},",
+            c.first_wall, c.wall_count, c.floor_z, c.ceil_z, c.floor_texture, c.ceil_texture, c.light, c.links, c.slope
         );
     }
     let _ = writeln!(s, "];");
@@ -372,6 +373,19 @@ fn map_source(s: &mut String, index: usize, map: &CompiledMap) {
             "    {FORMAT}::SectorSlope {{ floor: {}, ceiling: {} }},",
             plane(&slope.floor),
             plane(&slope.ceiling)
+        );
+    }
+    let _ = writeln!(s, "];");
+    let _ = writeln!(
+        s,
+        "static MAP_{index}_LAYER_LINKS: [{FORMAT}::LayerLink; {}] = [",
+        map.layer_links.len()
+    );
+    for link in &map.layer_links {
+        let _ = writeln!(
+            s,
+            "    {FORMAT}::LayerLink {{ above: {}, below: {} }},",
+            link.above, link.below
         );
     }
     let _ = writeln!(s, "];");

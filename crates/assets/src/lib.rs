@@ -17,6 +17,7 @@ pub mod doom;
 mod emit;
 mod geometry;
 mod images;
+mod layers;
 mod lex;
 mod map_build;
 mod map_grid;

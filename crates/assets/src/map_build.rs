@@ -12,11 +12,11 @@ use portalcast_format::limits::{
     THINGS_MAX, TRIGGERS_MAX, WORLD_COORD_MAX,
 };
 use portalcast_format::{
-    find_twin, Light, MapTables, Mover, Plane, PlayerStart, Sector, SectorSlope, Thing, Trigger,
-    Vertex, Wall, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
-    MOVER_PLATFORM, NO_PORTAL, NO_SLOPE, NO_TEXTURE, NO_TWIN, SKY, THING_HANGING, THING_SOLID,
-    THING_TRANSLUCENT, TRIGGER_LINE, TRIGGER_SWITCH, WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT,
-    WALL_SWITCH,
+    find_twin, LayerLink, Light, MapTables, Mover, Plane, PlayerStart, Sector, SectorSlope, Thing,
+    Trigger, Vertex, Wall, LINK_CEILING, LINK_FLOOR, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT,
+    MOVER_ON_TOUCH, MOVER_ON_USE, MOVER_PLATFORM, NO_LINK, NO_PORTAL, NO_SLOPE, NO_TEXTURE,
+    NO_TWIN, SKY, THING_HANGING, THING_SOLID, THING_TRANSLUCENT, TRIGGER_LINE, TRIGGER_SWITCH,
+    WALL_MIDDLE_BLOCKS, WALL_MIDDLE_TRANSLUCENT, WALL_SWITCH,
 };
 
 use crate::diag::{Loc, Located};
@@ -189,6 +189,8 @@ pub struct CompiledMap {
     pub wall_twins: Vec<u16>,
     /// [`MapTables::slopes`].
     pub slopes: Vec<SectorSlope>,
+    /// [`MapTables::layer_links`].
+    pub layer_links: Vec<LayerLink>,
     /// Player start.
     pub player_start: PlayerStart,
 }
@@ -209,6 +211,7 @@ impl CompiledMap {
             lights: &self.lights,
             wall_twins: &self.wall_twins,
             slopes: &self.slopes,
+            layer_links: &self.layer_links,
         }
     }
 }
@@ -333,6 +336,17 @@ pub(crate) fn build(
     if errors.is_empty() {
         check_overlaps(source, &outlines, &mut errors);
     }
+    let layer_links = if errors.is_empty() {
+        let corners: Vec<Vec<Point>> = outlines.iter().map(|o| corners_of(source, o)).collect();
+        let sloped: Vec<(bool, bool)> = source
+            .sectors
+            .iter()
+            .map(|s| (s.floor_slope.is_some(), s.ceil_slope.is_some()))
+            .collect();
+        crate::layers::check_links(source, &corners, &sloped, &mut errors)
+    } else {
+        Vec::new()
+    };
     let middles = if errors.is_empty() {
         pair_middles(source, &outlines, &mut errors)
     } else {
@@ -357,7 +371,13 @@ pub(crate) fn build(
             &mut errors,
         );
         check_start_clearance(source, &outlines, &source.player, &mut errors);
-        check_portal_depth(source, &outlines, usize::from(player_sector), &mut errors);
+        check_portal_depth(
+            source,
+            &outlines,
+            &layer_links,
+            usize::from(player_sector),
+            &mut errors,
+        );
     }
     let thing_sectors: Vec<u16> = source
         .things
@@ -368,6 +388,15 @@ pub(crate) fn build(
             if sector != NO_PORTAL {
                 let sector = usize::from(sector);
                 check_not_in_closing_sector(source, sector, &thing.place, &what, &mut errors);
+                if layer_links.get(sector).is_some_and(|link| link.below != NO_LINK) {
+                    errors.push((
+                        thing.place.loc,
+                        format!(
+                            "{what} stands in {}, whose floor is a portal to the layer below; put it in a sector with a solid floor",
+                            source.sectors[sector].label
+                        ),
+                    ));
+                }
                 if slopes[sector].is_some() {
                     errors.push((
                         thing.place.loc,
@@ -400,6 +429,7 @@ pub(crate) fn build(
         &thing_sectors,
         fits,
         &slopes,
+        layer_links,
     );
     Ok((map, flat_uses(source, catalog), fits))
 }
@@ -833,6 +863,15 @@ fn flat_uses(source: &SourceMap, catalog: &Catalog) -> Vec<FlatUse> {
 fn point(source: &SourceMap, vertex: usize) -> Point {
     let v = &source.vertices[vertex];
     (v.x.value, v.y.value)
+}
+
+/// The corners of `outline`, clockwise.
+fn corners_of(source: &SourceMap, outline: &Outline<'_>) -> Vec<Point> {
+    outline
+        .walls
+        .iter()
+        .map(|wall| point(source, wall.start))
+        .collect()
 }
 
 fn check_values(source: &SourceMap, catalog: &Catalog, errors: &mut Vec<Located>) {
@@ -1375,10 +1414,13 @@ fn check_portals(
     errors: &mut Vec<Located>,
 ) {
     let label = |vertex: usize| source.vertices[vertex].label.as_str();
-    let mut edges: HashMap<(usize, usize), (usize, &OrientedWall<'_>)> = HashMap::new();
+    // Sectors on different layers may share walls (room over room).
+    let mut edges: HashMap<(i64, usize, usize), (usize, &OrientedWall<'_>)> = HashMap::new();
     for (sector_index, outline) in outlines.iter().enumerate() {
         for wall in &outline.walls {
-            if let Some((other, first)) = edges.insert((wall.start, wall.end), (sector_index, wall))
+            let layer = source.sectors[sector_index].layer.value;
+            if let Some((other, first)) =
+                edges.insert((layer, wall.start, wall.end), (sector_index, wall))
             {
                 errors.push((
                     wall.source.loc,
@@ -1400,7 +1442,7 @@ fn check_portals(
                 continue;
             };
             let there = &source.sectors[portal.value];
-            match edges.get(&(wall.end, wall.start)) {
+            match edges.get(&(there.layer.value, wall.end, wall.start)) {
                 None => errors.push((
                     portal.loc,
                     format!(
@@ -1631,7 +1673,7 @@ fn check_strips(
 /// stand in either. Exact: two convex outlines have disjoint insides if and only if the line
 /// through some wall of one has the whole other outline on its outer side or on it (the
 /// separating axis theorem; every outline is convex by now). A box test skips most pairs.
-/// Sectors on different layers, when room over room lands, will be allowed to.
+/// Sectors on different layers (`layer=`) may overlap: room over room.
 fn check_overlaps(source: &SourceMap, outlines: &[Outline<'_>], errors: &mut Vec<Located>) {
     let corners: Vec<Vec<Point>> = outlines
         .iter()
@@ -1670,6 +1712,7 @@ fn check_overlaps(source: &SourceMap, outlines: &[Outline<'_>], errors: &mut Vec
                 && low_a.1 < high_b.1
                 && low_b.1 < high_a.1;
             if !boxes_overlap
+                || source.sectors[earlier].layer.value != source.sectors[later].layer.value
                 || separated_by_a_wall_of(&corners[earlier], &corners[later])
                 || separated_by_a_wall_of(&corners[later], &corners[earlier])
             {
@@ -1831,10 +1874,17 @@ fn angle_order(a: &Direction, b: &Direction) -> std::cmp::Ordering {
 fn check_portal_depth(
     source: &SourceMap,
     outlines: &[Outline<'_>],
+    layer_links: &[LayerLink],
     start: usize,
     errors: &mut Vec<Located>,
 ) {
-    let limit = PORTAL_DEPTH_MAX as usize;
+    // The walk also goes a level deeper through each floor or ceiling portal it passes, which
+    // the runs below do not count: each link may take two levels (up and back down) off them.
+    let crossings = layer_links
+        .iter()
+        .filter(|link| link.above != NO_LINK)
+        .count();
+    let limit = (PORTAL_DEPTH_MAX as usize).saturating_sub(2 * crossings);
     // Each portal as seen from its sector: (from, to, wall vector, the wall).
     let mut portals: Vec<Vec<(usize, Direction, &OrientedWall<'_>)>> =
         vec![Vec::new(); outlines.len()];
@@ -1850,7 +1900,13 @@ fn check_portal_depth(
     let mut stack = vec![start];
     reachable[start] = true;
     while let Some(sector) = stack.pop() {
-        for &(to, _, _) in &portals[sector] {
+        let linked = layer_links.get(sector).into_iter().flat_map(|link| {
+            [link.above, link.below]
+                .into_iter()
+                .filter(|&to| to != NO_LINK)
+                .map(usize::from)
+        });
+        for to in portals[sector].iter().map(|&(to, _, _)| to).chain(linked) {
             if !reachable[to] {
                 reachable[to] = true;
                 stack.push(to);
@@ -2014,6 +2070,29 @@ fn locate(
             on_line.push(index);
         }
     }
+    // Where sectors of several layers hold the place, the line's `layer=` (0 unless given)
+    // picks among them.
+    let layer_of = |index: &usize| source.sectors[*index].layer.value;
+    let layers: Vec<i64> = inside.iter().chain(&on_line).map(layer_of).collect();
+    if let Some(wanted) = place
+        .layer
+        .as_ref()
+        .map(|layer| layer.value)
+        .or_else(|| layers.iter().any(|&l| l != layers[0]).then_some(0))
+    {
+        inside.retain(|index| layer_of(index) == wanted);
+        on_line.retain(|index| layer_of(index) == wanted);
+        if inside.is_empty() && on_line.is_empty() && !layers.is_empty() {
+            errors.push((
+                place.layer.as_ref().map_or(place.loc, |layer| layer.loc),
+                format!(
+                    "{what} is in no sector of layer {wanted} here; give layer= one of the layers of the sectors that hold it ({})",
+                    layers.iter().map(i64::to_string).collect::<Vec<_>>().join(", ")
+                ),
+            ));
+            return NO_PORTAL;
+        }
+    }
     let at = format!("({}, {})", fx8(p.0), fx8(p.1));
     let off_the_line = if what == "player start" {
         format!("move it at least {START_CLEARANCE} from every solid wall")
@@ -2057,6 +2136,7 @@ fn tables(
     thing_sectors: &[u16],
     fits: Vec<ThingFit>,
     sector_slopes: &[Option<SectorSlope>],
+    layer_links: Vec<LayerLink>,
 ) -> (CompiledMap, Vec<ThingFit>) {
     // Each distinct pair of planes once, so equal indices mean equal planes.
     let mut slopes: Vec<SectorSlope> = Vec::new();
@@ -2159,6 +2239,10 @@ fn tables(
                 CeilingSource::Texture(name) => texture(&Some(name.clone())),
             },
             light: sector.light,
+            links: layer_links.get(sectors.len()).map_or(0, |link| {
+                u8::from(link.above != NO_LINK) * LINK_CEILING
+                    | u8::from(link.below != NO_LINK) * LINK_FLOOR
+            }),
             slope: slope_index[sectors.len()],
         });
         if let Some(mover) = mover(sector, (sectors.len() - 1) as u16) {
@@ -2219,6 +2303,7 @@ fn tables(
         lights,
         wall_twins,
         slopes,
+        layer_links,
         player_start: PlayerStart {
             x_fx8,
             y_fx8,

@@ -455,6 +455,9 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             light: kind.light,
             mover: kind.mover.clone(),
             light_effect: None,
+            layer: Spanned::new(0, loc),
+            above: None,
+            below: None,
             walls,
         });
     }
@@ -480,6 +483,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
             x_fx8: Spanned::new(centre(column), loc),
             y_fx8: Spanned::new(centre(row), loc),
             angle: marker.angle,
+            layer: None,
         }
     };
     let mut player = None;

@@ -13,6 +13,9 @@ use crate::source::{
     SourceWall, Spanned,
 };
 
+/// Highest `layer=`.
+const LAYER_MAX: i64 = 15;
+
 /// Light level of a sector that does not set `light=`: textures shown as painted.
 const DEFAULT_LIGHT: u8 = portalcast_format::LIGHT_NEUTRAL;
 
@@ -35,12 +38,15 @@ const SECTOR_KEYS: &[&str] = &[
     "flicker",
     "switched",
     "period",
+    "layer",
+    "ceil_portal",
+    "floor_portal",
 ];
 const WALL_KEYS: &[&str] = &[
     "tex", "portal", "upper", "lower", "mid", "switch", "tag", "trigger", "xoff", "yoff",
 ];
-const PLAYER_KEYS: &[&str] = &["angle", "eye", "height", "step"];
-const THING_KEYS: &[&str] = &["angle", "z", "radius", "anim"];
+const PLAYER_KEYS: &[&str] = &["angle", "eye", "height", "step", "layer"];
+const THING_KEYS: &[&str] = &["angle", "z", "radius", "anim", "layer"];
 
 /// A wall as written: vertex and sector names not yet resolved.
 struct WrittenWall<'t> {
@@ -66,6 +72,8 @@ struct WrittenSector<'t> {
     walls: Vec<WrittenWall<'t>>,
     /// `floor_slope=` and `ceil_slope=` as written: vertex names not yet resolved.
     slopes: [Option<WrittenSlope<'t>>; 2],
+    /// `ceil_portal=` and `floor_portal=` as written: sector names not yet resolved.
+    links: [Option<Token<'t>>; 2],
 }
 
 /// A slope's value as written: `NAME:HEIGHT` pairs, vertex names not yet resolved.
@@ -139,7 +147,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                 });
             }
             "sector" => {
-                let (name, parsed, slopes) =
+                let (name, parsed, slopes, links) =
                     parse_sector(directive, &positional, &flags, &mut keys, &mut errors);
                 keys.report_unknown("sector", SECTOR_KEYS, &mut errors);
                 if let Some(name) = name {
@@ -161,6 +169,7 @@ pub(crate) fn parse(text: &str) -> Result<SourceMap, Vec<Located>> {
                     sector: parsed.unwrap_or_else(|| placeholder_sector(directive.loc)),
                     walls: Vec::new(),
                     slopes,
+                    links,
                 });
             }
             "wall" => {
@@ -282,6 +291,9 @@ fn placeholder_sector(loc: Loc) -> SourceSector {
         light: DEFAULT_LIGHT,
         mover: None,
         light_effect: None,
+        layer: Spanned::new(0, loc),
+        above: None,
+        below: None,
         walls: Vec::new(),
     }
 }
@@ -302,17 +314,27 @@ fn parse_sector<'t>(
     Option<String>,
     Option<SourceSector>,
     [Option<WrittenSlope<'t>>; 2],
+    [Option<Token<'t>>; 2],
 ) {
     let name = expect_words(directive, positional, ["NAME"], errors)
         .and_then(|[name]| record(lex::name(name, "sector name"), errors));
+    let links = [keys.take("ceil_portal"), keys.take("floor_portal")];
     let slopes = [
         keys.take("floor_slope")
             .and_then(|t| parse_slope(t, "floor", errors)),
         keys.take("ceil_slope")
             .and_then(|t| parse_slope(t, "ceiling", errors)),
     ];
-    let sector = parse_sector_values(directive, name.as_deref(), flags, keys, &slopes, errors);
-    (name, sector, slopes)
+    let linked = [links[0].is_some(), links[1].is_some()];
+    let sector = parse_sector_values(
+        directive,
+        name.as_deref(),
+        flags,
+        keys,
+        (&slopes, linked),
+        errors,
+    );
+    (name, sector, slopes, links)
 }
 
 /// A `floor_slope=` or `ceil_slope=` value: `NAME:HEIGHT` pairs separated by commas, each
@@ -366,7 +388,7 @@ fn parse_sector_values(
     name: Option<&str>,
     flags: &[Token<'_>],
     keys: &mut KeyValues<'_>,
-    slopes: &[Option<WrittenSlope<'_>>; 2],
+    (slopes, [ceiling_linked, floor_linked]): (&[Option<WrittenSlope<'_>>; 2], [bool; 2]),
     errors: &mut Vec<Located>,
 ) -> Option<SourceSector> {
     let mut missing = |key: &str, example: &str| {
@@ -406,12 +428,25 @@ fn parse_sector_values(
             Spanned::new(low, s.loc)
         })
     };
-    if floor_tex.is_none() {
+    // A floor or ceiling that is a portal to another layer is never drawn: its texture may be
+    // left out (the other plane's then stands in, as the tables want one).
+    if floor_tex.is_none() && !(floor_linked && ceil_tex.is_some_and(|t| t.text != "sky")) {
         missing("floor_tex", "stone");
     }
-    if ceil_tex.is_none() {
+    if ceil_tex.is_none() && !(ceiling_linked && floor_tex.is_some()) {
         missing("ceil_tex", "sky");
     }
+    if let Some(t) = ceil_tex.filter(|t| ceiling_linked && t.text == "sky") {
+        errors.push((
+            t.loc,
+            "a ceiling that is a portal to the sector above (ceil_portal=) shows no sky; remove ceil_tex=sky or the portal".to_string(),
+        ));
+    }
+    let layer = match keys.take("layer") {
+        Some(t) => record(lex::integer_in(t, "layer", 0, LAYER_MAX), errors)
+            .map(|v| Spanned::new(v, t.loc)),
+        None => Some(Spanned::new(0, directive.loc)),
+    };
     errors.append(&mut both_given);
     // A slope's heights stand in until the slope is resolved against the sector's outline
     // (`crate::slopes`), which sets the lowest floor and highest ceiling at its vertices.
@@ -430,6 +465,8 @@ fn parse_sector_values(
             Spanned::new(high, s.loc)
         }),
     };
+    let floor_tex = floor_tex.or(ceil_tex.filter(|_| floor_linked));
+    let ceil_tex = ceil_tex.or(floor_tex.filter(|_| ceiling_linked));
     let floor_texture = match floor_tex {
         Some(t) if t.text == "sky" => {
             errors.push((
@@ -470,6 +507,9 @@ fn parse_sector_values(
         light: light?,
         mover: mover?,
         light_effect: light_effect?,
+        layer: layer?,
+        above: None,
+        below: None,
         walls: Vec::new(),
     })
 }
@@ -536,6 +576,11 @@ fn parse_place(
         Some(t) => record(lex::angle_degrees(t), errors),
         None => Some(0),
     };
+    let layer = match keys.take("layer") {
+        Some(t) => record(lex::integer_in(t, "layer", 0, LAYER_MAX), errors)
+            .map(|v| Some(Spanned::new(v, t.loc))),
+        None => Some(None),
+    };
     let x_fx8 = record(lex::position_fx8(x, "x"), errors);
     let y_fx8 = record(lex::position_fx8(y, "y"), errors);
     Some(SourcePlace {
@@ -543,6 +588,7 @@ fn parse_place(
         x_fx8: Spanned::new(x_fx8?, x.loc),
         y_fx8: Spanned::new(y_fx8?, y.loc),
         angle: angle?,
+        layer: layer?,
     })
 }
 
@@ -624,8 +670,24 @@ fn resolve_walls(
         mut sector,
         walls,
         slopes,
+        links,
     } in sectors
     {
+        let [above, below] = links.map(|token| {
+            let token = token?;
+            match sector_names.get(token.text) {
+                Some(&index) => Some(Spanned::new(index, token.loc)),
+                None => {
+                    errors.push((
+                        token.loc,
+                        format!("unknown sector '{}'; a floor or ceiling portal must name a sector declared in this file", token.text),
+                    ));
+                    None
+                }
+            }
+        });
+        sector.above = above;
+        sector.below = below;
         let [floor_slope, ceil_slope] = slopes.map(|slope| {
             let slope = slope?;
             let points: Vec<_> = slope

@@ -65,6 +65,13 @@ pub(crate) struct SourceSector {
     /// The sector's light effect, if its light changes (`glow=`, `strobe=`, `flicker=`,
     /// `switched=`).
     pub light_effect: Option<SourceLight>,
+    /// `layer=`: sectors on different layers may overlap (room over room); 0 unless given.
+    pub layer: Spanned<i64>,
+    /// `ceil_portal=`: the sector above, into which the ceiling opens (index into
+    /// [`SourceMap::sectors`]).
+    pub above: Option<Spanned<usize>>,
+    /// `floor_portal=`: the sector below, into which the floor opens.
+    pub below: Option<Spanned<usize>>,
     pub walls: Vec<SourceWall>,
 }
 
@@ -214,6 +221,9 @@ pub(crate) struct SourcePlace {
     pub x_fx8: Spanned<i64>,
     pub y_fx8: Spanned<i64>,
     pub angle: u16,
+    /// `layer=`: which of the overlapping sectors of several layers holds the place (0 unless
+    /// given).
+    pub layer: Option<Spanned<i64>>,
 }
 
 #[derive(Clone, Debug)]

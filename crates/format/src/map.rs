@@ -110,6 +110,10 @@ pub struct Sector {
     /// as painted, 255 brightens them about twice. Select the colormap row with
     /// [`colormap_row`](crate::colormap_row).
     pub light: u8,
+    /// [`LINK_CEILING`] and [`LINK_FLOOR`]: which of the sector's ceiling and floor are
+    /// portals to a sector of another layer (room over room), found in
+    /// [`MapTables::layer_links`]. 0 for most sectors.
+    pub links: u8,
     /// Index in [`MapTables::slopes`] of the sector's planes where its floor or ceiling is
     /// sloped, else [`NO_SLOPE`]. The compiler keeps one entry per distinct pair of planes, so
     /// two sectors have the same planes exactly when their indices are equal.
@@ -118,6 +122,26 @@ pub struct Sector {
 
 /// [`Sector::slope`] of a sector whose floor and ceiling are both flat.
 pub const NO_SLOPE: u16 = u16::MAX;
+
+/// [`Sector::links`]: the ceiling is a portal to the sector above ([`LayerLink::above`]).
+pub const LINK_CEILING: u8 = 1;
+/// [`Sector::links`]: the floor is a portal to the sector below ([`LayerLink::below`]).
+pub const LINK_FLOOR: u8 = 2;
+/// [`LayerLink::above`] or [`LayerLink::below`] where that plane is solid.
+pub const NO_LINK: u16 = u16::MAX;
+
+/// Room over room: the sectors a sector's ceiling and floor open into. Linked sectors have the
+/// same outline (the same corners, on different layers) and meet at one flat height: the lower
+/// one's ceiling is the upper one's floor. A ray or a body crossing that height passes from one
+/// to the other; the plane itself is never drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(C)]
+pub struct LayerLink {
+    /// The sector whose floor is this one's ceiling, or [`NO_LINK`].
+    pub above: u16,
+    /// The sector whose ceiling is this one's floor, or [`NO_LINK`].
+    pub below: u16,
+}
 
 /// A plane of heights over the map: `z(x, y) = base + gradient_x·x + gradient_y·y`, the height
 /// at world point `(x, y)`. A flat floor or ceiling is the plane with both gradients 0.
@@ -431,6 +455,9 @@ pub struct MapTables<'a> {
     /// The planes of the sectors with a sloped floor or ceiling ([`Sector::slope`]), each
     /// distinct pair once.
     pub slopes: &'a [SectorSlope],
+    /// Room over room: each sector's [`LayerLink`], indexed by sector, or empty when no sector
+    /// has a floor or ceiling portal ([`Sector::links`]).
+    pub layer_links: &'a [LayerLink],
 }
 
 /// [`MapTables::wall_twins`] of a solid wall, or of a portal whose sector has no twin for it.
@@ -500,6 +527,65 @@ impl<'a> MapTables<'a> {
     #[inline]
     pub fn heights_fx8_at(&self, sector: &Sector, x_fx8: i32, y_fx8: i32) -> (i32, i32) {
         sector_heights_fx8_at(self.slopes, sector, x_fx8, y_fx8)
+    }
+
+    /// The sector above sector `index`, into which its ceiling opens ([`LayerLink::above`]).
+    #[inline]
+    pub fn sector_above(&self, index: u16) -> Option<u16> {
+        match self.layer_links.get(usize::from(index)) {
+            Some(link) if link.above != NO_LINK => Some(link.above),
+            _ => None,
+        }
+    }
+
+    /// The sector below sector `index`, into which its floor opens ([`LayerLink::below`]).
+    #[inline]
+    pub fn sector_below(&self, index: u16) -> Option<u16> {
+        match self.layer_links.get(usize::from(index)) {
+            Some(link) if link.below != NO_LINK => Some(link.below),
+            _ => None,
+        }
+    }
+
+    /// The sector of the stack through sector `index` (linked by floor and ceiling portals)
+    /// that holds height `z_fx8` (24.8): up through open ceilings while `z` is at or above the
+    /// ceiling, down through open floors while it is below the floor. A height at a link
+    /// belongs to the sector above it.
+    pub fn sector_at_height(&self, mut index: u16, z_fx8: i32) -> u16 {
+        if self.layer_links.is_empty() {
+            return index;
+        }
+        // Each step goes strictly up or strictly down a stack of distinct heights: it ends.
+        loop {
+            let sector = &self.sectors[usize::from(index)];
+            match (self.sector_above(index), self.sector_below(index)) {
+                (Some(above), _) if z_fx8 >= sector.ceil_z * 256 => index = above,
+                (_, Some(below)) if z_fx8 < sector.floor_z * 256 => index = below,
+                _ => return index,
+            }
+        }
+    }
+
+    /// The floor and ceiling of the space the body in sector `index` may use, 24.8, at
+    /// `(x_fx8, y_fx8)`: the sector's own heights, with an open floor taken down to the floor
+    /// of the sectors below it and an open ceiling up to the ceiling of those above.
+    pub fn open_heights_fx8_at(&self, index: u16, x_fx8: i32, y_fx8: i32) -> (i32, i32) {
+        let sector = &self.sectors[usize::from(index)];
+        let (mut floor, mut ceil) = self.heights_fx8_at(sector, x_fx8, y_fx8);
+        let (mut down, mut up) = (index, index);
+        while let Some(below) = self.sector_below(down) {
+            down = below;
+            floor = self
+                .heights_fx8_at(&self.sectors[usize::from(down)], x_fx8, y_fx8)
+                .0;
+        }
+        while let Some(above) = self.sector_above(up) {
+            up = above;
+            ceil = self
+                .heights_fx8_at(&self.sectors[usize::from(up)], x_fx8, y_fx8)
+                .1;
+        }
+        (floor, ceil)
     }
 
     /// The walls of `sector`, in clockwise order.

@@ -46,6 +46,15 @@ pub fn find_sector(map: &MapTables, x: f64, y: f64) -> Option<u16> {
         .map(|i| i as u16)
 }
 
+/// Every sector whose interior strictly contains `(x, y)`: one, or on a map with room over
+/// room, one a layer.
+pub fn find_sectors(map: &MapTables, x: f64, y: f64) -> Vec<u16> {
+    let p = Vec2::new(x, y);
+    (0..map.sectors.len() as u16)
+        .filter(|&i| strictly_inside(map, &map.sectors[usize::from(i)], p))
+        .collect()
+}
+
 fn strictly_inside(map: &MapTables, sector: &Sector, p: Vec2) -> bool {
     let walls = map.sector_walls(sector);
     !walls.is_empty()

@@ -97,7 +97,7 @@ pub use compare::{
 pub use engine::{
     bench_run_accuracy, compare_with_engine, EngineComparison, RecordingCanvas, RunAccuracy,
 };
-pub use geometry::find_sector;
+pub use geometry::{find_sector, find_sectors};
 pub use portalcast::render::light::Lighting;
 pub use portalcast::render::surface::Surface;
 pub use poses::{sample_poses, Rng};

@@ -3,7 +3,7 @@
 use portalcast_format::MapTables;
 
 use crate::geometry::{distance_to_segment, vertex, Vec2};
-use crate::{angle_from_bits, find_sector, Camera};
+use crate::{angle_from_bits, find_sectors, Camera};
 
 /// Closest a sampled eye comes to a wall, in world units.
 const WALL_CLEARANCE: f64 = 2.0;
@@ -46,7 +46,10 @@ pub fn sample_poses(map: &MapTables, count: usize, seed: u64) -> Vec<Camera> {
         let x = on_fx8_grid(f64::from(min_x) + rng.unit() * f64::from(max_x - min_x));
         let y = on_fx8_grid(f64::from(min_y) + rng.unit() * f64::from(max_y - min_y));
         let angle = angle_from_bits(rng.next_u64() as u16);
-        let Some(sector_index) = find_sector(map, x, y) else {
+        // Where layers overlap, any of the sectors holding the point.
+        let holding = find_sectors(map, x, y);
+        let Some(&sector_index) = holding.get(rng.below(holding.len().max(1) as u64) as usize)
+        else {
             continue;
         };
         let sector = &map.sectors[usize::from(sector_index)];

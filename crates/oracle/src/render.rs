@@ -178,10 +178,10 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
         thing_sectors: thing_sectors(map),
         plane_groups: plane_groups(map),
     };
-    let Some(start) = camera
-        .sector
-        .or_else(|| find_sector(map, camera.x, camera.y))
-    else {
+    let Some(start) = camera.sector.or_else(|| {
+        find_sector(map, camera.x, camera.y)
+            .map(|found| map.sector_at_height(found, (camera.eye_z * 256.0).floor() as i32))
+    }) else {
         return frame;
     };
     let eye = Vec2::new(camera.x, camera.y);
@@ -192,6 +192,10 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
     let mut candidates = Vec::new();
     let mut middles = Vec::new();
     let mut fronts = Vec::new();
+    // A row whose ray passes a floor or ceiling portal: its path from there, and what stands
+    // in front along it.
+    let (mut layered, mut layered_candidates, mut layered_middles) =
+        (Vec::new(), Vec::new(), Vec::new());
     for column in 0..width {
         let m = (column as f64 - width as f64 / 2.0 + 0.5 + COLUMN_TIE_NUDGE) / view.focal_x;
         let d = Vec2::new(cos - m * sin, sin + m * cos);
@@ -201,13 +205,36 @@ pub fn render(map: &MapTables, assets: &Assets, camera: &Camera, view: &View) ->
         let sky_column = sky_column(assets, d);
         for row in 0..height {
             let k = (row as f64 + 0.5 + TIE_NUDGE - view.horizon_y) / view.focal_y;
-            let (hit, reached) = shade_ray(map, &path, (eye, d), camera.eye_z, k);
+            let (mut hit, mut reached) = shade_ray(map, &path, (eye, d), camera.eye_z, k);
+            let mut on_layers = false;
+            while let Some(beyond) = layer_beyond(map, &hit) {
+                // Through the plane into the sector beyond, whose outline is the same: the
+                // path so far, then onwards from there.
+                let kept = reached - 1;
+                if on_layers {
+                    layered.truncate(kept);
+                } else {
+                    layered.clear();
+                    layered.extend_from_slice(&path[..kept]);
+                    on_layers = true;
+                }
+                let t_in = layered.last().map_or(0.0, |segment| segment.t_out);
+                trace_onwards(map, (beyond, t_in), eye, d, max_steps, &mut layered);
+                (hit, reached) = shade_ray(map, &layered, (eye, d), camera.eye_z, k);
+            }
+            let (candidates, middles) = if on_layers {
+                column_candidates(&things, &layered, column, m, &mut layered_candidates);
+                column_middles(map, assets, &layered, &mut layered_middles);
+                (&layered_candidates, &layered_middles)
+            } else {
+                (&candidates, &middles)
+            };
             pixel_fronts(
                 map,
                 assets,
                 view,
-                &candidates,
-                &middles,
+                candidates,
+                middles,
                 reached,
                 camera.eye_z,
                 k,
@@ -567,13 +594,39 @@ fn trace_column(
     path: &mut Vec<Segment>,
 ) {
     path.clear();
-    let mut sector = start;
-    let mut t_in = 0.0;
+    trace_onwards(map, (start, 0.0), eye, d, max_steps, path);
+}
+
+/// The sector a floor or ceiling portal leads into, where `hit` is one (room over room).
+fn layer_beyond(map: &MapTables, hit: &Hit) -> Option<u16> {
+    match *hit {
+        Hit::Flat {
+            surface: Surface::Ceiling(sector),
+            ..
+        } => map.sector_above(sector),
+        Hit::Flat {
+            surface: Surface::Floor(sector),
+            ..
+        } => map.sector_below(sector),
+        _ => None,
+    }
+}
+
+/// Appends to `path` the sectors the 2D ray `eye + t·d` crosses from sector `start`, which it
+/// is in from depth `t_in`, up to its solid wall or `max_steps` sectors in all.
+fn trace_onwards(
+    map: &MapTables,
+    (start, t_in): (u16, f64),
+    eye: Vec2,
+    d: Vec2,
+    max_steps: usize,
+    path: &mut Vec<Segment>,
+) {
+    let (mut sector, mut t_in) = (start, t_in);
     while path.len() < max_steps {
         let Some(exit) = exit_wall(map, &map.sectors[usize::from(sector)], eye, d) else {
             return;
         };
-        // Rounding may put the exit an ulp before the entry; depth never runs backwards.
         let t_out = exit.t.max(t_in);
         path.push(Segment {
             sector,

@@ -298,6 +298,7 @@ impl OwnedMap {
             lights: &[],
             wall_twins: &[],
             slopes: &[],
+            layer_links: &[],
         }
     }
 }
@@ -330,6 +331,7 @@ fn sector(first_wall: u16, floor_z: i32, ceil_z: i32, ceil_texture: u16, light: 
         floor_texture: FLOOR_TEX,
         ceil_texture,
         light,
+        links: 0,
         slope: portalcast_format::NO_SLOPE,
     }
 }

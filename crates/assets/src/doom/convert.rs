@@ -361,6 +361,9 @@ pub(crate) fn source(
                     lights_left = lights_left.saturating_sub(1);
                     room
                 }),
+                layer: at(0),
+                above: None,
+                below: None,
                 walls,
             }
         })
@@ -385,6 +388,7 @@ pub(crate) fn source(
         x_fx8: at(x_fx8),
         y_fx8: at(-y_fx8),
         angle: portalcast_angle(start.angle),
+        layer: None,
     };
     let things = thing_places(level, pieces, &movers, (shift_x, shift_y))
         .into_iter()
@@ -402,6 +406,7 @@ pub(crate) fn source(
                     x_fx8: at(x_fx8),
                     y_fx8: at(-y_fx8),
                     angle: portalcast_angle(thing.angle),
+                    layer: None,
                 },
                 options: ThingOptions {
                     hanging: kind.hanging,
