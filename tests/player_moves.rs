@@ -625,7 +625,9 @@ fn walking_up_and_down_the_ramp_stays_on_its_floor_every_tick() {
     // tick, the feet on the floor under the centre, never lower than the tick before.
     let mut player = at(&map, hall, 128.5, 128.5, EAST);
     let mut sectors = Vec::new();
-    for _ in 0..200 {
+    // Until well onto the landing (the bridge lies beyond it).
+    while player.position.x < Fx24_8::from_int(560) {
+        assert!(sectors.len() <= 3);
         let before = player.feet_z;
         run(&mut player, &map, walk(1, 0, 0), 1);
         assert!(player.on_ground, "walking up a ramp is not a jump");
@@ -687,4 +689,139 @@ fn a_sloped_step_is_climbed_where_it_is_at_most_16_and_blocks_where_higher() {
     run(&mut high, &map, walk(1, 0, 0), 60);
     assert_eq!(high.sector, 0, "the high end of the sloped step blocks");
     assert_eq!(high.feet_z, Fx24_8::ZERO);
+}
+
+/// Runs `intent` until the player's sector is `target` or `ticks` pass, checking every tick
+/// and noting each sector entered, in order.
+fn run_until(
+    player: &mut Player,
+    map: &MapTables,
+    intent: Intent,
+    target: u16,
+    ticks: u32,
+    sectors: &mut Vec<u16>,
+) {
+    for _ in 0..ticks {
+        run(player, map, intent, 1);
+        if sectors.last() != Some(&player.sector) {
+            sectors.push(player.sector);
+        }
+        if player.sector == target {
+            return;
+        }
+    }
+    panic!("never reached sector {target}: went through {sectors:?}");
+}
+
+#[test]
+fn crossing_the_bridge_then_walking_down_and_under_it_tracks_both_layers() {
+    let map = slopes();
+    let name = |name: &str| sector_index("slopes.map", name);
+    let (landing, deck, east_ledge) = (name("landing"), name("deck"), name("east_ledge"));
+    let (step8, tunnel, south_pit) = (name("step8"), name("tunnel"), name("south_pit"));
+    let (walkway, north_pit) = (name("walkway"), name("north_pit"));
+    // Over the bridge: from the landing east across the deck (layer 1) onto the east ledge,
+    // on the ground at the deck's height every tick (the pit's open ceiling under the deck's
+    // sides is never fallen through).
+    let mut player = at(&map, landing, 600.5, 128.5, EAST);
+    let mut sectors = vec![landing];
+    while player.sector != east_ledge {
+        assert!(sectors.len() <= 3 && player.position.x < Fx24_8::from_int(900));
+        run(&mut player, &map, walk(1, 0, 0), 1);
+        assert!(player.on_ground);
+        assert_eq!(
+            player.feet_z,
+            Fx24_8::from_int(64),
+            "the deck holds the body"
+        );
+        if sectors.last() != Some(&player.sector) {
+            sectors.push(player.sector);
+        }
+    }
+    assert_eq!(sectors, [landing, deck, east_ledge]);
+    run(&mut player, &map, walk(1, 0, 0), 8);
+    // Down the stairs south to the wide bottom step, then west into the tunnel.
+    player.angle = portalcast::math::Angle::from_bits(SOUTH);
+    player.velocity = (0, 0);
+    run_until(&mut player, &map, walk(1, 0, 0), step8, 400, &mut sectors);
+    assert_eq!(player.feet_z, Fx24_8::from_int(-64));
+    run(&mut player, &map, walk(1, 0, 0), 40);
+    player.angle = portalcast::math::Angle::from_bits(WEST);
+    run_until(&mut player, &map, walk(1, 0, 0), tunnel, 400, &mut sectors);
+    // North along the canyon's floor, under the deck and out the other side.
+    run(&mut player, &map, walk(1, 0, 0), 24);
+    player.angle = portalcast::math::Angle::from_bits(NORTH);
+    player.velocity = (0, 0);
+    run_until(&mut player, &map, walk(1, 0, 0), walkway, 400, &mut sectors);
+    // Under the bridge: the deck's outline holds the body too, a layer up.
+    let deck_outline = sector_polygon(&map, deck);
+    assert_eq!(
+        portalcast::math::point_in_convex_polygon(&deck_outline, player.position),
+        portalcast::math::Containment::Inside
+    );
+    assert_eq!((player.sector, player.eye_sector), (walkway, walkway));
+    assert_eq!(player.feet_z, Fx24_8::from_int(-64));
+    run_until(
+        &mut player,
+        &map,
+        walk(1, 0, 0),
+        north_pit,
+        200,
+        &mut sectors,
+    );
+    assert!(sectors.contains(&south_pit));
+    assert!(sectors.ends_with(&[tunnel, south_pit, walkway, north_pit]));
+}
+
+#[test]
+fn walking_off_the_landing_falls_through_the_open_floor_and_flying_rises_through_the_ceiling() {
+    let map = slopes();
+    let name = |name: &str| sector_index("slopes.map", name);
+    let (landing, north_air, north_pit) = (name("landing"), name("north_air"), name("north_pit"));
+    // East off the landing into the air over the pit: the air's floor is open, so the body
+    // falls; its sector is the pit once the feet pass the link at 64, the air before.
+    let mut player = at(&map, landing, 600.5, 48.5, EAST);
+    let mut sectors = vec![landing];
+    let mut fell = false;
+    for _ in 0..120 {
+        run(&mut player, &map, walk(1, 0, 0), 1);
+        let expected = if player.position.x.to_bits() < 640 * 256 {
+            landing
+        } else if player.feet_z >= Fx24_8::from_int(64) {
+            north_air
+        } else {
+            north_pit
+        };
+        assert_eq!(player.sector, expected, "{player:?}");
+        fell |= !player.on_ground;
+        if sectors.last() != Some(&player.sector) {
+            sectors.push(player.sector);
+        }
+    }
+    assert!(fell, "stepping into the open air is a fall");
+    assert_eq!(sectors, [landing, north_air, north_pit]);
+    assert!(player.on_ground);
+    assert_eq!(player.feet_z, Fx24_8::from_int(-64), "on the pit's floor");
+    assert_eq!(player.eye_sector, north_pit);
+    // Flying straight up: the eye passes the link first, then the feet.
+    player.toggle_fly();
+    let rise = Intent {
+        jump: true,
+        ..Intent::default()
+    };
+    let mut eye_crossed_first = false;
+    for _ in 0..200 {
+        run(&mut player, &map, rise, 1);
+        let eye_above = player.eye_z() >= Fx24_8::from_int(64);
+        let feet_above = player.feet_z >= Fx24_8::from_int(64);
+        assert_eq!(player.eye_sector == north_air, eye_above, "{player:?}");
+        assert_eq!(player.sector == north_air, feet_above, "{player:?}");
+        eye_crossed_first |= eye_above && !feet_above;
+    }
+    assert!(eye_crossed_first);
+    assert_eq!(
+        player.sector, north_air,
+        "flown up through the open ceiling"
+    );
+    assert!(player.feet_z > Fx24_8::from_int(64));
 }

@@ -136,9 +136,9 @@ fn random_moves_keep_the_invariants_on(map: &MapTables, cases: u32) {
                     prop_assert!(false, "move {index} tick {tick} ({:?}): {problem}", step.intent);
                 }
                 // Never crushed: a ceiling that came down keeps the headroom over the eye (a
-                // sloped one's, over the centre).
-                let (_, ceiling) = live.heights_fx8_at(
-                    &live.sectors[usize::from(player.sector)],
+                // sloped one's, over the centre; an open one's, the ceiling above it).
+                let (_, ceiling) = live.open_heights_fx8_at(
+                    player.sector,
                     player.position.x.to_bits(),
                     player.position.y.to_bits(),
                 );

@@ -103,10 +103,41 @@ pub fn solid_walls(map: &MapTables) -> Vec<(WorldPoint, WorldPoint)> {
         .collect()
 }
 
+/// The solid walls that can stop a body with its feet at `feet` (24.8): on a map with room
+/// over room, those of the sectors whose heights meet the body's (a pit's walls do not stop a
+/// body in the air over it); on any other map, all of them.
+pub fn solid_walls_at(map: &MapTables, feet: i32, height: i32) -> Vec<(WorldPoint, WorldPoint)> {
+    if map.layer_links.is_empty() {
+        return solid_walls(map);
+    }
+    let top = feet + height * 256;
+    map.sectors
+        .iter()
+        .filter(|sector| sector.floor_z * 256 < top && feet < sector.ceil_z * 256)
+        .flat_map(|sector| map.sector_walls(sector))
+        .filter(|wall| wall.neighbour().is_none())
+        .map(|wall| {
+            let (a, b) = (
+                map.vertices[usize::from(wall.start)],
+                map.vertices[usize::from(wall.end)],
+            );
+            (
+                WorldPoint::from_int(a.x, a.y),
+                WorldPoint::from_int(b.x, b.y),
+            )
+        })
+        .collect()
+}
+
 /// How far the disc overlaps the nearest solid wall, in world units (0 if clear).
 pub fn solid_overlap(map: &MapTables, p: WorldPoint) -> f64 {
+    overlap_of(&solid_walls(map), p)
+}
+
+/// How far the disc at `p` overlaps the nearest of `walls`, in world units (0 if clear).
+fn overlap_of(walls: &[(WorldPoint, WorldPoint)], p: WorldPoint) -> f64 {
     let p = point_f64(p);
-    solid_walls(map)
+    walls
         .iter()
         .map(|&(a, b)| f64::from(RADIUS) - distance_to_segment(p, point_f64(a), point_f64(b)))
         .fold(0.0, f64::max)
@@ -144,8 +175,9 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             after.position, after.sector
         ));
     }
+    let walls = solid_walls_at(map, before.feet_z.to_bits(), before.size.height);
     if before.position != after.position {
-        for (a, b) in solid_walls(map) {
+        for &(a, b) in &walls {
             if segment_contact(before.position, after.position, a, b) != SegmentContact::Disjoint {
                 return Err(format!(
                     "path {:?} -> {:?} meets the solid wall {a:?}-{b:?}",
@@ -160,7 +192,19 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             sectors: map.sectors,
         };
         let at = (after.position.x.to_bits(), after.position.y.to_bits());
-        for wall in map.walls {
+        // On a map with room over room, the portals of the sectors whose heights meet the
+        // body's (the deck's edges do not stop a body on the pit's floor under them).
+        let top = before.feet_z.to_bits() + before.size.height * 256;
+        let meets = |sector: &portalcast_format::Sector| {
+            map.layer_links.is_empty()
+                || sector.floor_z * 256 < top && before.feet_z.to_bits() < sector.ceil_z * 256
+        };
+        let portals = map
+            .sectors
+            .iter()
+            .filter(|sector| meets(sector))
+            .flat_map(|sector| map.sector_walls(sector));
+        for wall in portals {
             let Some(next) = wall.neighbour() else {
                 continue;
             };
@@ -175,7 +219,7 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             let crosses =
                 segment_contact(before.position, after.position, a, b) == SegmentContact::Crossing;
             let into = portalcast::math::cross(a, b, after.position) < 0;
-            if crosses && into && !body.admits(map.slopes, &map.sectors[usize::from(next)], at) {
+            if crosses && into && !body.admits_sector(map, next, at) {
                 return Err(format!(
                     "path {:?} -> {:?} crossed into sector {next}, which the body {body:?} may not enter",
                     before.position, after.position
@@ -183,9 +227,10 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             }
         }
     }
-    // The floor and ceiling under the centre (a slope's there).
-    let (floor, ceil) = map.heights_fx8_at(
-        &map.sectors[usize::from(after.sector)],
+    // The floor and ceiling under the centre (a slope's there; an open floor's or ceiling's
+    // beyond it).
+    let (floor, ceil) = map.open_heights_fx8_at(
+        after.sector,
         after.position.x.to_bits(),
         after.position.y.to_bits(),
     );
@@ -203,12 +248,12 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             after.sector
         ));
     }
-    let overlap = solid_overlap(map, after.position);
-    if overlap > 1.0 / 16.0 && overlap > solid_overlap(map, before.position) + 1e-9 {
+    let overlap = overlap_of(&walls, after.position);
+    if overlap > 1.0 / 16.0 && overlap > overlap_of(&walls, before.position) + 1e-9 {
         return Err(format!(
             "disc at {:?} overlaps a solid wall by {overlap} (before: {})",
             after.position,
-            solid_overlap(map, before.position)
+            overlap_of(&walls, before.position)
         ));
     }
     let depth = solid_thing_depth(map, after.position);

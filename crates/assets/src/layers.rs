@@ -38,6 +38,8 @@ pub(crate) fn check_links(
         sectors.len()
     ];
     let before = errors.len();
+    // Where each sector's ceiling portal is written (the first place naming the link).
+    let mut written = vec![None; sectors.len()];
     // Each link as (lower, upper, where it is written), from either end.
     let mut pairs = Vec::new();
     for (index, sector) in sectors.iter().enumerate() {
@@ -84,6 +86,37 @@ pub(crate) fn check_links(
         }
         links[lower].above = upper as u16;
         links[upper].below = lower as u16;
+        written[lower] = Some(loc);
+    }
+    // Ceilings that open, followed upwards, must end: a loop is no stack of rooms.
+    let mut in_loop = vec![false; sectors.len()];
+    for start in 0..sectors.len() {
+        let mut at = start;
+        for _ in 0..sectors.len() {
+            match links[at].above {
+                NO_LINK => break,
+                above => at = usize::from(above),
+            }
+            if at == start {
+                in_loop[start] = true;
+                break;
+            }
+        }
+        if in_loop[start] && !in_loop[..start].iter().any(|&seen| seen) {
+            errors.push((
+                written[start].unwrap_or(sectors[start].loc),
+                format!(
+                    "the floor and ceiling portals from {} lead round in a loop back to it; layers stack one above another, so remove one of the portals",
+                    sectors[start].label
+                ),
+            ));
+        }
+    }
+    for &(lower, upper, loc) in &pairs {
+        if in_loop[lower] || written[lower] != Some(loc) {
+            continue;
+        }
+        let (low, high) = (&sectors[lower], &sectors[upper]);
         if low.layer.value == high.layer.value {
             errors.push((
                 loc,

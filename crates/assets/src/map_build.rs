@@ -1416,22 +1416,35 @@ fn check_portals(
     let label = |vertex: usize| source.vertices[vertex].label.as_str();
     // Sectors on different layers may share walls (room over room).
     let mut edges: HashMap<(i64, usize, usize), (usize, &OrientedWall<'_>)> = HashMap::new();
+    let mut linked_pairs_reported = std::collections::HashSet::new();
     for (sector_index, outline) in outlines.iter().enumerate() {
         for wall in &outline.walls {
             let layer = source.sectors[sector_index].layer.value;
             if let Some((other, first)) =
                 edges.insert((layer, wall.start, wall.end), (sector_index, wall))
             {
-                errors.push((
-                    wall.source.loc,
+                let pair = (sector_index.min(other), sector_index.max(other));
+                let is_linked = linked(source, sector_index, other);
+                if is_linked && !linked_pairs_reported.insert(pair) {
+                    continue;
+                }
+                let message = if is_linked {
                     format!(
-                        "the wall from {} to {} is also a wall of {} (line {}) in the same direction; those sectors overlap, fix their outlines",
+                        "{} and {} (line {}) are linked through a floor or ceiling but both on layer {layer}; give one of them another layer=",
+                        source.sectors[sector_index].label,
+                        source.sectors[other].label,
+                        source.sectors[other].loc.line
+                    )
+                } else {
+                    format!(
+                        "the wall from {} to {} is also a wall of {} (line {}) in the same direction; those sectors overlap, fix their outlines (or put them on different layers with layer=, for room over room)",
                         label(wall.start),
                         label(wall.end),
                         source.sectors[other].label,
                         first.source.loc.line
-                    ),
-                ));
+                    )
+                };
+                errors.push((wall.source.loc, message));
             }
         }
     }
@@ -1668,6 +1681,17 @@ fn check_strips(
     }
 }
 
+/// Whether sectors `a` and `b` name each other in a floor or ceiling portal.
+fn linked(source: &SourceMap, a: usize, b: usize) -> bool {
+    let names = |from: usize, to: usize| {
+        let sector = &source.sectors[from];
+        [&sector.above, &sector.below]
+            .into_iter()
+            .any(|link| link.as_ref().is_some_and(|link| link.value == to))
+    };
+    names(a, b) || names(b, a)
+}
+
 /// Refuses two sectors whose insides overlap (issue 16): sectors may touch along walls and at
 /// corners, but one piece of ground in two sectors would be drawn by both and the player could
 /// stand in either. Exact: two convex outlines have disjoint insides if and only if the line
@@ -1722,7 +1746,7 @@ fn check_overlaps(source: &SourceMap, outlines: &[Outline<'_>], errors: &mut Vec
             errors.push((
                 here.loc,
                 format!(
-                    "{} overlaps {} (line {}): some ground lies inside both; sectors may only meet along walls and at corners, so move or split their outlines",
+                    "{} overlaps {} (line {}): some ground lies inside both; sectors may only meet along walls and at corners, so move or split their outlines (or put them on different layers with layer=, for room over room)",
                     here.label, there.label, there.loc.line
                 ),
             ));
