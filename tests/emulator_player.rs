@@ -568,8 +568,11 @@ fn the_demo_through_the_door_and_on_the_lift_draws_the_host_s_frames() {
 
 /// Through the Start menu to the slopes map (two maps on from the bench map: the cursor starts
 /// on the resolution, the map is two entries down), then east from the hall up the ramp onto
-/// the landing, a right-angle turn south into the attic under its sloped ceiling, a half turn
-/// and back north.
+/// the landing and on across the bridge's deck over the canyon to the east ledge; a right-angle
+/// turn south down the stairs to the bottom step, west into the tunnel, north along the
+/// canyon's floor through the pit, under the bridge and into the pit beyond; fly mode on, up
+/// through the pit's open ceiling into the air over it, and off: a fall back down through the
+/// air's open floor onto the pit's.
 const SLOPES_WALK: &str = "
 10-12: START
 20-22: DOWN
@@ -580,38 +583,57 @@ const SLOPES_WALK: &str = "
 80-340: UP
 350-385: RIGHT
 390-520: UP
-530-601: RIGHT
-610-700: UP
+530-565: RIGHT
+570-618: UP
+630-665: RIGHT
+670-840: UP
+850-852: SELECT
+860-940: A
+950-952: SELECT
 ";
 
+/// Emulator frames [`SLOPES_WALK`] is played for.
+const SLOPES_WALK_FRAMES: u32 = 1040;
+
 #[test]
-fn a_walk_up_the_ramp_and_under_the_sloped_ceiling_is_the_host_s_every_tick() {
-    let run = play(SLOPES_WALK, 720);
-    let (hall, ramp, landing, attic) = (
-        sector_index("slopes.map", "hall"),
-        sector_index("slopes.map", "ramp"),
-        sector_index("slopes.map", "landing"),
-        sector_index("slopes.map", "attic"),
-    );
-    // The host's ticks (every one the ROM's, `play`): on the slopes map, through the hall, the
-    // ramp, the landing and the attic in that order, on the ground every tick of the walk, the
-    // feet rising all the way up the ramp.
+fn a_walk_up_the_ramp_over_the_bridge_and_under_it_is_the_host_s_every_tick() {
+    let run = play(SLOPES_WALK, SLOPES_WALK_FRAMES);
+    let name = |name: &str| sector_index("slopes.map", name);
+    let (hall, ramp, landing, deck) = (name("hall"), name("ramp"), name("landing"), name("deck"));
+    let (east_ledge, step8, tunnel) = (name("east_ledge"), name("step8"), name("tunnel"));
+    let (south_pit, walkway) = (name("south_pit"), name("walkway"));
+    let (north_pit, north_air) = (name("north_pit"), name("north_air"));
+    // The host's ticks (every one the ROM's, `play`): on the slopes map, up the ramp (the feet
+    // rising all the way), over the deck at the ledges' height, down the stairs, along the
+    // canyon's floor under the deck, up through the open ceiling and back down.
     let mut visited: Vec<u16> = Vec::new();
     let mut feet_on_ramp = Vec::new();
+    let mut under_the_deck = 0;
     for game in run.host_ticks() {
         if game.map().name != "slopes" {
             continue;
         }
         let player = &game.player;
-        assert!(player.on_ground, "tick on the slopes map off the ground");
+        if !player.fly && player.sector != north_air && player.sector != north_pit {
+            assert!(player.on_ground, "tick on the slopes map off the ground");
+        }
         if visited.last() != Some(&player.sector) {
             visited.push(player.sector);
         }
         if player.sector == ramp {
             feet_on_ramp.push(player.feet_z.to_bits());
         }
+        if player.sector == deck {
+            assert_eq!(player.feet_z.to_bits(), 64 * 256, "the deck holds the body");
+        }
+        under_the_deck += usize::from(player.sector == walkway);
     }
-    assert_eq!(visited[..4], [hall, ramp, landing, attic], "{visited:?}");
+    let steps: Vec<u16> = (1..=8).map(|k| name(&format!("step{k}"))).collect();
+    let mut expected = vec![hall, ramp, landing, deck, east_ledge];
+    expected.extend(&steps);
+    expected.extend([tunnel, south_pit, walkway, north_pit, north_air, north_pit]);
+    assert_eq!(visited, expected, "{visited:?}");
+    assert_eq!(*steps.last().unwrap(), step8);
     assert!(
         feet_on_ramp.len() > 20,
         "{} ticks on the ramp",
@@ -621,23 +643,35 @@ fn a_walk_up_the_ramp_and_under_the_sloped_ceiling_is_the_host_s_every_tick() {
         feet_on_ramp.windows(2).all(|pair| pair[0] <= pair[1]),
         "the feet rise all the way up the ramp"
     );
-    // The half turn and the walk north lead back out of the attic onto the landing.
+    assert!(under_the_deck > 10, "{under_the_deck} ticks under the deck");
+    // The fall ends on the pit's floor.
     let last = run.last();
-    assert_eq!(last.sector, landing, "{}", last.text);
+    assert_eq!(last.sector, north_pit, "{}", last.text);
+    assert_eq!(
+        run.host_ticks().last().unwrap().player.feet_z.to_bits(),
+        -64 * 256
+    );
 }
 
 #[test]
-fn the_walk_up_the_ramp_draws_the_host_s_frames() {
+fn the_walk_up_the_ramp_and_through_the_canyon_draws_the_host_s_frames() {
     // Every frame the ROM draws on the way, its VRAM page identical to the host's render of its
-    // logged pose: sloped walls, the ramp's and the bank's sloped floors, the attic's sloped
-    // ceiling.
+    // logged pose: sloped walls, the ramp's and the bank's sloped floors, the canyon seen down
+    // through the air's open floor from the deck, and up through the pits' open ceilings from
+    // their floors.
     let script = KeyScript::parse(SLOPES_WALK).unwrap_or_else(|error| panic!("{error}"));
     let mut emulator = boot_until_playing();
     let mut renderer = Renderer::new();
-    let keys: Vec<Keys> = (0..720).map(|frame| script.keys_at(frame)).collect();
+    let keys: Vec<Keys> = (0..SLOPES_WALK_FRAMES)
+        .map(|frame| script.keys_at(frame))
+        .collect();
     let ramp = sector_index("slopes.map", "ramp");
-    let attic = sector_index("slopes.map", "attic");
-    let (mut compared, mut on_ramp, mut in_attic) = (0, 0, 0);
+    let pits = [
+        sector_index("slopes.map", "north_pit"),
+        sector_index("slopes.map", "south_pit"),
+    ];
+    let air = sector_index("slopes.map", "north_air");
+    let (mut compared, mut on_ramp, mut in_pits, mut in_air) = (0, 0, 0, 0);
     play_frames(
         &mut emulator,
         &keys,
@@ -648,11 +682,12 @@ fn the_walk_up_the_ramp_draws_the_host_s_frames() {
             host_frame_matching(emulator, &mut renderer, (player, world), render_line);
             compared += 1;
             on_ramp += usize::from(player.sector == ramp);
-            in_attic += usize::from(player.sector == attic);
+            in_pits += usize::from(pits.contains(&player.sector));
+            in_air += usize::from(player.sector == air);
         },
     );
     assert!(
-        compared > 300 && on_ramp > 20 && in_attic > 20,
-        "{compared} frames compared, {on_ramp} on the ramp, {in_attic} in the attic"
+        compared > 600 && on_ramp > 15 && in_pits > 100 && in_air > 10,
+        "{compared} frames compared, {on_ramp} on the ramp, {in_pits} with the eye in a pit, {in_air} in the air over it"
     );
 }

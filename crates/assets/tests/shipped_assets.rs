@@ -594,7 +594,7 @@ fn examples_in_the_format_doc_compile() {
         true,
     )
     .with_sprite_size("torch", 16, 48);
-    let (mut examples, mut movers, mut triggers, mut slopes) = (0, 0, 0, 0);
+    let (mut examples, mut movers, mut triggers, mut slopes, mut links) = (0, 0, 0, 0, 0);
     let mut lights = Vec::new();
     for section in doc.split("### Example").skip(1) {
         let block = section
@@ -611,6 +611,11 @@ fn examples_in_the_format_doc_compile() {
                 movers += map.movers.len();
                 triggers += map.triggers.len();
                 slopes += map.slopes.len();
+                links += map
+                    .layer_links
+                    .iter()
+                    .filter(|link| link.above != portalcast_format::NO_LINK)
+                    .count();
                 lights.extend(map.lights.iter().map(|l| (l.kind, l.low, l.period, l.tag)));
             }
             Err(errors) => {
@@ -619,9 +624,11 @@ fn examples_in_the_format_doc_compile() {
         }
         examples += 1;
     }
-    assert_eq!(examples, 4);
+    assert_eq!(examples, 5);
     // The slopes' example: the ramp, the attic and the bank.
     assert_eq!(slopes, 3);
+    // The room over room example: the two pits' open ceilings.
+    assert_eq!(links, 2);
     // The movers' example: a door and a lift, a switch and a walk-over line; the grid's door.
     assert_eq!((movers, triggers), (3, 2));
     // The movers' example's light effects: the hall's glow, the corridor's flicker (its default
