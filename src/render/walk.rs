@@ -135,8 +135,8 @@ pub struct FrameStats {
     pub translucent_drawn: u32,
     /// Visits through a floor or ceiling portal into another layer (room over room).
     pub layer_visits: u32,
-    /// Floor or ceiling portals left undrawn for want of room ([`LAYER_WINDOWS`],
-    /// [`LAYERS_WAITING`]): their plane is drawn as solid.
+    /// Floor or ceiling portals left undrawn for want of room (the renderer keeps the windows
+    /// of four full-width planes waiting, eight portals): their plane is drawn as solid.
     pub layer_overflows: u32,
 }
 

@@ -2264,8 +2264,8 @@ fn tables(
             },
             light: sector.light,
             links: layer_links.get(sectors.len()).map_or(0, |link| {
-                u8::from(link.above != NO_LINK) * LINK_CEILING
-                    | u8::from(link.below != NO_LINK) * LINK_FLOOR
+                (u8::from(link.above != NO_LINK) * LINK_CEILING)
+                    | (u8::from(link.below != NO_LINK) * LINK_FLOOR)
             }),
             slope: slope_index[sectors.len()],
         });
