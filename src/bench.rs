@@ -303,8 +303,6 @@ mod tests {
             thing_ticks: u32::MAX,
             middles_drawn: u32::MAX,
             translucent_drawn: u32::MAX,
-            layer_visits: u32::MAX,
-            layer_overflows: u32::MAX,
         };
         let stats = FrameStats {
             sky_pixels: 0,

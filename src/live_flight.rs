@@ -30,7 +30,7 @@ pub const MAX_WAIT_FRAMES: u32 = 1024;
 /// The fly-through of one map through its live world, one frame at a time.
 #[derive(Clone, Debug)]
 pub struct LiveFlight<'m> {
-    map: MapTables<'m>,
+    map: &'m MapTables<'m>,
     path: Peekable<Flight<'m>>,
     camera: Camera,
     /// Frames flown (the world's ticks).
@@ -47,14 +47,14 @@ impl<'m> LiveFlight<'m> {
     /// kilobyte) would sit in the caller's frame, under the renderer's.
     #[inline(never)]
     pub fn new<const S: usize, const M: usize, const T: usize>(
-        map: &MapTables<'m>,
+        map: &'m MapTables<'m>,
         world: &mut World<S, M, T>,
     ) -> LiveFlight<'m> {
         world.restart(map);
         let mut path = Flight::new(map).peekable();
         let camera = path.next().expect("a flight never ends");
         let mut flight = LiveFlight {
-            map: *map,
+            map,
             path,
             camera,
             frame: 0,
@@ -85,7 +85,7 @@ impl<'m> LiveFlight<'m> {
         let map = self.map;
         let next = *self.path.peek().expect("a flight never ends");
         let riding = world
-            .mover_index(&map, self.camera.sector)
+            .mover_index(map, self.camera.sector)
             .is_some_and(|index| {
                 map.movers[index].kind == MOVER_LIFT
                     && world.movers()[index].phase != Phase::Resting
@@ -96,11 +96,11 @@ impl<'m> LiveFlight<'m> {
             self.waited = 0;
         } else {
             self.waited += 1;
-            if let Some(index) = world.mover_index(&map, next.sector) {
+            if let Some(index) = world.mover_index(map, next.sector) {
                 if world.movers()[index].phase == Phase::Resting
                     || world.movers()[index].phase == Phase::Back
                 {
-                    world.use_mover(&map, index);
+                    world.use_mover(map, index);
                 }
             }
         }
@@ -113,19 +113,19 @@ impl<'m> LiveFlight<'m> {
         if self.ridden.is_none() {
             // Used once the body is on the lift alone: from its edge, the landing beside it
             // would turn the lift back at once.
-            if let Some(index) = world.mover_index(&map, self.camera.sector) {
+            if let Some(index) = world.mover_index(map, self.camera.sector) {
                 if map.movers[index].kind == MOVER_LIFT
                     && world.movers()[index].phase == Phase::Resting
-                    && body_only_in(&map, self.camera.sector, self.camera.position)
+                    && body_only_in(map, self.camera.sector, self.camera.position)
                 {
-                    world.use_mover(&map, index);
+                    world.use_mover(map, index);
                     self.ridden = Some(self.camera.sector);
                 }
             }
         }
         let body = self.body(world);
-        world.touch(&map, &body);
-        world.tick(&map, &body);
+        world.touch(map, &body);
+        world.tick(map, &body);
         self.frame += 1;
         self.stand(world);
     }
@@ -140,7 +140,7 @@ impl<'m> LiveFlight<'m> {
         if next.sector == self.camera.sector {
             return true;
         }
-        let live = world.map(&self.map);
+        let live = world.map(self.map);
         flight::passable(
             &live,
             &live.sectors[usize::from(self.camera.sector)],
@@ -155,7 +155,7 @@ impl<'m> LiveFlight<'m> {
         world: &World<S, M, T>,
     ) -> Player {
         Player::standing_at(
-            &world.map(&self.map),
+            &world.map(self.map),
             self.camera.sector,
             self.camera.position,
             self.camera.angle,
@@ -167,8 +167,8 @@ impl<'m> LiveFlight<'m> {
         &mut self,
         world: &mut World<S, M, T>,
     ) {
-        world.show(&self.map, self.frame);
-        let live = world.map(&self.map);
+        world.show(self.map, self.frame);
+        let live = world.map(self.map);
         self.camera.eye_z = flight::eye_z(
             &live,
             &live.sectors[usize::from(self.camera.sector)],

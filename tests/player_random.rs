@@ -137,10 +137,10 @@ fn random_moves_keep_the_invariants_on(map: &MapTables, cases: u32) {
                 }
                 // Never crushed: a ceiling that came down keeps the headroom over the eye (a
                 // sloped one's, over the centre; an open one's, the ceiling above it).
-                let (_, ceiling) = live.open_heights_fx8_at(
+                let (_, ceiling) = portalcast::player::collide::open_heights_at(
+                    &live,
                     player.sector,
-                    player.position.x.to_bits(),
-                    player.position.y.to_bits(),
+                    (player.position.x.to_bits(), player.position.y.to_bits()),
                 );
                 prop_assert!(
                     player.eye_z().to_bits() + player.size.headroom() * 256 <= ceiling,

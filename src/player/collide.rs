@@ -165,6 +165,27 @@ pub fn heights_at(slopes: &[SectorSlope], sector: &Sector, at: (i32, i32)) -> (i
     }
 }
 
+/// The floor and ceiling of the space a body in sector `index` of `map` may use at `at` (24.8
+/// bits), in 24.8 bits: the sector's own heights ([`heights_at`]), with an open floor taken
+/// down to the floor of the sectors below it and an open ceiling up to the ceiling of those
+/// above (room over room, [`MapTables::layer_links`]). Out of line and in ROM: only sectors with
+/// a floor or ceiling portal come here.
+#[inline(never)]
+pub fn open_heights_at(map: &MapTables, index: u16, at: (i32, i32)) -> (i32, i32) {
+    let heights = |index: u16| heights_at(map.slopes, &map.sectors[usize::from(index)], at);
+    let (mut floor, mut ceil) = heights(index);
+    let (mut down, mut up) = (index, index);
+    while let Some(below) = map.sector_below(down) {
+        down = below;
+        floor = heights(down).0;
+    }
+    while let Some(above) = map.sector_above(up) {
+        up = above;
+        ceil = heights(up).1;
+    }
+    (floor, ceil)
+}
+
 /// [`heights_at`] of a sector with a slope: out of line and in ROM, so flat maps' ticks carry
 /// no copy of it in IWRAM.
 #[inline(never)]
@@ -227,7 +248,9 @@ impl Body<'_> {
 
     /// [`Body::admits`] of sector `index` of [`Body::sectors`], on `map`: a sector with a
     /// floor or ceiling portal admits it by the heights of the space it opens into
-    /// ([`MapTables::open_heights_fx8_at`]), as its own tick moves it.
+    /// ([`open_heights_at`]), as its own tick moves it. Inlined: the step's walk
+    /// over nearby walls (IWRAM) asks it of every portal it meets.
+    #[inline(always)]
     pub fn admits_sector(&self, map: &MapTables, index: u16, at: (i32, i32)) -> bool {
         let sector = &self.sectors[usize::from(index)];
         if sector.links != 0 {
@@ -240,7 +263,7 @@ impl Body<'_> {
     /// ROM, as only such sectors come here.
     #[inline(never)]
     fn admits_open(&self, map: &MapTables, index: u16, at: (i32, i32)) -> bool {
-        self.fits(map.open_heights_fx8_at(index, at.0, at.1))
+        self.fits(open_heights_at(map, index, at))
     }
 
     /// Whether the body may move into `sector` (of a map whose sloped planes are `slopes`,

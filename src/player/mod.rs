@@ -229,28 +229,31 @@ impl Player {
         self.sector = sector;
 
         let here = &sectors[usize::from(sector)];
+        let at = (position.x.to_bits(), position.y.to_bits());
+        if here.links != 0 {
+            self.rise_or_fall_in_layers(intent, map, at);
+            return;
+        }
         // The sector's slope index before the map's table: `map` need not be kept for a flat
         // sector.
-        let at = (position.x.to_bits(), position.y.to_bits());
-        let heights = if here.links != 0 {
-            map.open_heights_fx8_at(sector, at.0, at.1)
-        } else if here.slope == NO_SLOPE {
+        let heights = if here.slope == NO_SLOPE {
             (here.floor_z * 256, here.ceil_z * 256)
         } else {
             collide::heights_at(map.slopes, here, at)
         };
         vertical::tick(self, intent, heights);
         self.eye_sector = sector;
-        if here.links != 0 {
-            self.change_layers(map);
-        }
     }
 
-    /// After a tick in a sector with a floor or ceiling portal: the sector of the stack that
-    /// holds the feet now, and the one that holds the eye. Out of line and in ROM: only such
-    /// sectors come here.
+    /// The vertical part of a tick in a sector with a floor or ceiling portal (room over room),
+    /// its centre at `at`: the motion within the heights of the open space, then the sector of
+    /// the stack that holds the feet, and the one that holds the eye. Out of line and in ROM,
+    /// with its own copy of the vertical motion: only such sectors come here, and a second test
+    /// of the sector's links after the motion made the compiler copy the motion into the IWRAM
+    /// tick twice.
     #[inline(never)]
-    fn change_layers(&mut self, map: &MapTables) {
+    fn rise_or_fall_in_layers(&mut self, intent: &Intent, map: &MapTables, at: (i32, i32)) {
+        vertical::tick(self, intent, collide::open_heights_at(map, self.sector, at));
         self.sector = map.sector_at_height(self.sector, self.feet_z.to_bits());
         self.eye_sector = map.sector_at_height(self.sector, self.eye_z().to_bits());
     }

@@ -70,6 +70,10 @@ const _: () = {
 /// The vertical part of one tick, after the horizontal move put the player where its sector's
 /// floor and ceiling are `(floor, ceil)` (24.8 bits: a slope's under the player). Walking down
 /// a slope is following the floor down, as a step down is: no fall, no jitter.
+///
+/// Inlined into the player's tick, which is in IWRAM: called out of line it ran from the
+/// cartridge.
+#[inline(always)]
 pub fn tick(player: &mut Player, intent: &Intent, (floor, ceil): (i32, i32)) {
     let mut feet = player.feet_z.to_bits();
     let stand_eye = player.size.eye_height * 256;

@@ -51,7 +51,7 @@ const SEE_THROUGH_MAX: usize = 16;
 /// Plane windows the walk keeps at once for the floor and ceiling portals it has yet to enter
 /// ([`Renderer::layer_windows`]): a sector's portals to other layers are entered once its own
 /// portals' walks are done, so one waits while the sectors in front of it are drawn. Four
-/// full-width planes; a fifth waiting at once is counted in [`FrameStats::layer_overflows`]
+/// full-width planes; a fifth waiting at once is counted in [`LayerCounts::overflows`]
 /// and its plane drawn as solid.
 const LAYER_WINDOWS: usize = 4 * MAX_COLUMNS;
 
@@ -133,11 +133,18 @@ pub struct FrameStats {
     pub middles_drawn: u32,
     /// Of the things and middles drawn, the translucent ones.
     pub translucent_drawn: u32,
-    /// Visits through a floor or ceiling portal into another layer (room over room).
-    pub layer_visits: u32,
+}
+
+/// Room over room's counters of the last frame drawn ([`Renderer::layer_counts`]): kept in the
+/// renderer's memory, not in [`FrameStats`], which lives on the GBA's stack while a frame is
+/// drawn and has no room left to grow.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LayerCounts {
+    /// Visits through a floor or ceiling portal into another layer.
+    pub visits: u32,
     /// Floor or ceiling portals left undrawn for want of room (the renderer keeps the windows
     /// of four full-width planes waiting, eight portals): their plane is drawn as solid.
-    pub layer_overflows: u32,
+    pub overflows: u32,
 }
 
 /// The renderer's per-column and per-row working memory: the clip and plane windows every wall
@@ -265,6 +272,8 @@ pub struct Renderer<W: WindowStore = ColumnWindows> {
     layers_used: u16,
     /// The walk level of the visit being drawn, for the floor and ceiling portals it finds.
     walk_depth: u16,
+    /// The frame's floor and ceiling portal counts.
+    layer_counts: LayerCounts,
 }
 
 /// Vertices (by index) whose eye-space position a frame keeps once computed; higher ones are
@@ -495,6 +504,10 @@ impl<W: WindowStore> Renderer<W> {
             }; LAYERS_WAITING],
             layers_used: 0,
             walk_depth: 0,
+            layer_counts: LayerCounts {
+                visits: 0,
+                overflows: 0,
+            },
         }
     }
 
@@ -537,15 +550,11 @@ impl<W: WindowStore> Renderer<W> {
         if self.middles_of != map.walls.as_ptr() as usize {
             self.find_middle_sectors(map);
         }
-        // The preprocessing's plan orders visits by the portals between sectors; a map with
-        // floor and ceiling portals is drawn by the plain walk.
         let planned = view.preprocessing == Preprocessing::On
-            && map.layer_links.is_empty()
             && self.plan_visits(&scene, &mut stats, view.sector, 0, width as i32);
         if planned {
             self.draw_plan(&scene, canvas, &mut stats);
         } else {
-            stats.plan_overflows = u32::from(view.preprocessing == Preprocessing::On);
             self.walk(&scene, canvas, &mut stats, view.sector, 0, width as i32);
         }
         if !map.things.is_empty() || self.any_middles {
@@ -558,6 +567,11 @@ impl<W: WindowStore> Renderer<W> {
             stats.thing_ticks = (self.clock)().wrapping_sub(things_started);
         }
         stats
+    }
+
+    /// Room over room's counts of the last frame [`Renderer::render`] drew.
+    pub fn layer_counts(&self) -> LayerCounts {
+        self.layer_counts
     }
 
     /// The column angles of `viewport`'s columns, for the sky: computed when the resolution
@@ -666,6 +680,11 @@ impl<W: WindowStore> Renderer<W> {
         end: i32,
     ) -> bool {
         self.plan.clear();
+        // The plan orders visits by the portals between sectors, not by floor and ceiling
+        // portals: a map with them is drawn by the plain walk (not an overflow).
+        if !scene.map.layer_links.is_empty() {
+            return false;
+        }
         let planned = self.walk_portals(
             scene,
             stats,
@@ -681,6 +700,7 @@ impl<W: WindowStore> Renderer<W> {
                 visit.map(Some)
             },
         );
+        stats.plan_overflows = u32::from(planned.is_err());
         planned.is_ok()
     }
 
@@ -791,6 +811,7 @@ impl<W: WindowStore> Renderer<W> {
         self.portals_used = 0;
         self.layers_used = 0;
         self.walk_depth = 0;
+        self.layer_counts = LayerCounts::default();
         let mut root = WalkLevel::new(sector_index, first, end);
         root.visit = self.enter_recording(stats, &mut root, None, &mut enter)?;
         self.levels[0] = root;
@@ -802,7 +823,7 @@ impl<W: WindowStore> Renderer<W> {
             self.levels[depth] = level;
             if seen.is_none() && self.layers_used != 0 {
                 // The visit's own portals are walked: its floor and ceiling portals next.
-                seen = self.next_waiting_layer(stats, depth);
+                seen = self.next_waiting_layer(depth);
             }
             self.walk_depth = depth as u16 + 1;
             match seen {
@@ -835,11 +856,7 @@ impl<W: WindowStore> Renderer<W> {
     /// windows the visit left there. Out of line and in ROM: only maps with floor and ceiling
     /// portals come here.
     #[inline(never)]
-    fn next_waiting_layer(
-        &mut self,
-        stats: &mut FrameStats,
-        depth: usize,
-    ) -> Option<(u16, i32, i32)> {
+    fn next_waiting_layer(&mut self, depth: usize) -> Option<(u16, i32, i32)> {
         let top = *self.layers[..usize::from(self.layers_used)].last()?;
         if usize::from(top.depth) != depth {
             return None;
@@ -849,7 +866,7 @@ impl<W: WindowStore> Renderer<W> {
         let from = usize::from(top.windows_from);
         self.windows.windows().clip[first..end]
             .copy_from_slice(&self.layer_windows[from..from + (end - first)]);
-        stats.layer_visits += 1;
+        self.layer_counts.visits += 1;
         Some((top.sector, first as i32, end as i32))
     }
 
@@ -862,7 +879,6 @@ impl<W: WindowStore> Renderer<W> {
     fn open_layers(
         &mut self,
         scene: &Scene,
-        stats: &mut FrameStats,
         (sector, sector_index): (&Sector, u16),
         first: i32,
         end: i32,
@@ -909,7 +925,7 @@ impl<W: WindowStore> Renderer<W> {
                 &self.windows.windows().floor[first..end]
             };
             if used == LAYERS_WAITING || from + windows.len() > LAYER_WINDOWS {
-                stats.layer_overflows += 1;
+                self.layer_counts.overflows += 1;
                 self.planes_seen |= seen;
                 continue;
             }
@@ -1005,7 +1021,7 @@ impl<W: WindowStore> Renderer<W> {
             "a column of sector {sector_index} owned by none of its walls"
         );
         if sector.links != 0 {
-            self.open_layers(scene, stats, (sector, sector_index), first, end);
+            self.open_layers(scene, (sector, sector_index), first, end);
         }
         let planes_started = (self.clock)();
         stats.wall_ticks += planes_started.wrapping_sub(walls_started);

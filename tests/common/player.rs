@@ -229,10 +229,10 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
     }
     // The floor and ceiling under the centre (a slope's there; an open floor's or ceiling's
     // beyond it).
-    let (floor, ceil) = map.open_heights_fx8_at(
+    let (floor, ceil) = portalcast::player::collide::open_heights_at(
+        map,
         after.sector,
-        after.position.x.to_bits(),
-        after.position.y.to_bits(),
+        (after.position.x.to_bits(), after.position.y.to_bits()),
     );
     let eye = after.eye_z().to_bits();
     if eye < floor + CROUCH_EYE * 256 {

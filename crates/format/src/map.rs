@@ -550,7 +550,9 @@ impl<'a> MapTables<'a> {
     /// The sector of the stack through sector `index` (linked by floor and ceiling portals)
     /// that holds height `z_fx8` (24.8): up through open ceilings while `z` is at or above the
     /// ceiling, down through open floors while it is below the floor. A height at a link
-    /// belongs to the sector above it.
+    /// belongs to the sector above it. Out of line: the engine asks it of each body it stands
+    /// somewhere, and inlined its loop took stack in every caller's frame.
+    #[inline(never)]
     pub fn sector_at_height(&self, mut index: u16, z_fx8: i32) -> u16 {
         if self.layer_links.is_empty() {
             return index;
@@ -564,28 +566,6 @@ impl<'a> MapTables<'a> {
                 _ => return index,
             }
         }
-    }
-
-    /// The floor and ceiling of the space the body in sector `index` may use, 24.8, at
-    /// `(x_fx8, y_fx8)`: the sector's own heights, with an open floor taken down to the floor
-    /// of the sectors below it and an open ceiling up to the ceiling of those above.
-    pub fn open_heights_fx8_at(&self, index: u16, x_fx8: i32, y_fx8: i32) -> (i32, i32) {
-        let sector = &self.sectors[usize::from(index)];
-        let (mut floor, mut ceil) = self.heights_fx8_at(sector, x_fx8, y_fx8);
-        let (mut down, mut up) = (index, index);
-        while let Some(below) = self.sector_below(down) {
-            down = below;
-            floor = self
-                .heights_fx8_at(&self.sectors[usize::from(down)], x_fx8, y_fx8)
-                .0;
-        }
-        while let Some(above) = self.sector_above(up) {
-            up = above;
-            ceil = self
-                .heights_fx8_at(&self.sectors[usize::from(up)], x_fx8, y_fx8)
-                .1;
-        }
-        (floor, ceil)
     }
 
     /// The walls of `sector`, in clockwise order.
