@@ -485,11 +485,17 @@ impl Plan {
                         game.ticks()
                     );
                 }
-                // Never crushed: a ceiling that came down keeps the headroom over the eye.
-                let ceiling = game.map().sectors[usize::from(game.player.sector)].ceil_z;
+                // Never crushed: a ceiling that came down keeps the headroom over the eye (an
+                // open ceiling's, the one above it).
+                let position = game.player.position;
+                let ceiling = portalcast::player::collide::open_heights_at(
+                    &game.map(),
+                    game.player.sector,
+                    (position.x.to_bits(), position.y.to_bits()),
+                )
+                .1;
                 assert!(
-                    game.player.eye_z().to_bits() + game.player.size.headroom() * 256
-                        <= ceiling * 256,
+                    game.player.eye_z().to_bits() + game.player.size.headroom() * 256 <= ceiling,
                     "tick {} on {map_before}: the eye {} under the ceiling {ceiling}",
                     game.ticks(),
                     game.player.eye_z().to_bits()

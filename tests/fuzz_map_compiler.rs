@@ -722,12 +722,22 @@ fn check_wall_textures(
     // The strips the renderer draws must have a texture.
     let here = &map.sectors[s];
     let both_sky = here.ceil_texture == SKY && there.ceil_texture == SKY;
-    if there.ceil_z < here.ceil_z && !both_sky && wall.upper_texture == NO_TEXTURE {
+    // The heights at both ends of the wall (a slope's there; a flat sector's everywhere): a
+    // strip shows where the neighbour's ceiling is lower, or its floor higher, at either end
+    // (the compiler's rule).
+    let ends = [wall.start, wall.end].map(|vertex| {
+        let v = map.vertices[usize::from(vertex)];
+        let at = |sector| map.heights_fx8_at(sector, v.x * 256, v.y * 256);
+        (at(here), at(there))
+    });
+    let upper_shows = ends.iter().any(|((_, high), (_, other))| other < high);
+    let lower_shows = ends.iter().any(|((low, _), (other, _))| other > low);
+    if upper_shows && !both_sky && wall.upper_texture == NO_TEXTURE {
         return Err(format!(
             "sector {s} wall {i}: upper strip shows but has no texture"
         ));
     }
-    if there.floor_z > here.floor_z && wall.lower_texture == NO_TEXTURE {
+    if lower_shows && wall.lower_texture == NO_TEXTURE {
         return Err(format!(
             "sector {s} wall {i}: lower strip shows but has no texture"
         ));

@@ -12,11 +12,9 @@ use common::player::sector_index;
 use common::*;
 use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
-use portalcast::render::light::Lighting;
-use portalcast::render::view::{Camera, Settings, View};
+use portalcast::render::view::{Camera, Settings};
 use portalcast::render::walk::{LayerCounts, Renderer};
 use portalcast_format::MapTables;
-use portalcast_oracle::RecordingCanvas;
 
 const SURFACE_MISMATCH_MAX_PERCENT: f64 = 0.5;
 
@@ -30,42 +28,30 @@ fn slopes_map() -> MapTables<'static> {
         .tables()
 }
 
-/// Renders `camera` with the engine and the oracle at `resolution`; the engine's counters
-/// and the comparison.
-fn compare(
+/// Renders `camera` with the engine and the oracle at `resolution`, and checks the bound: at
+/// most 0.5 % of pixels on another surface, no hole, no missed sector (with `row_tolerance`,
+/// none beyond a near-tie with a row centre: `engine_against_oracle`). The engine's floor and
+/// ceiling portal counts, and the share of pixels on another surface.
+fn checked(
     map: &MapTables,
     camera: &Camera,
     resolution: Resolution,
     renderer: &mut Renderer,
-) -> (LayerCounts, portalcast_oracle::Comparison) {
-    let host = HostAssets::of(shipped_assets());
-    let view = View::new(
-        camera,
-        &Settings {
-            resolution,
-            ..Settings::DEFAULT
-        },
-    );
-    let mut canvas = RecordingCanvas::new(resolution);
-    renderer.render(map, &host.render(), &view, &mut canvas);
-    let stats = renderer.layer_counts();
+    row_tolerance: bool,
+) -> (LayerCounts, f64) {
+    let settings = Settings {
+        resolution,
+        ..Settings::DEFAULT
+    };
+    let comparison = engine_against_oracle(map, camera, &settings, renderer, row_tolerance);
+    let percent = comparison.surface_mismatch_percent();
     assert!(
-        canvas.coverage_faults().is_empty(),
-        "{camera:?} {resolution:?}: pixels not drawn exactly once"
+        percent <= SURFACE_MISMATCH_MAX_PERCENT
+            && comparison.holes == 0
+            && comparison.missed_sectors.is_empty(),
+        "{camera:?} {resolution:?}: {comparison:?} ({percent:.3} %)"
     );
-    let oracle_view = portalcast_oracle::View::from_viewport(&view.viewport, Lighting::SectorDepth);
-    let oracle_camera = portalcast_oracle::Camera::from_fixed(
-        camera.position.x.to_bits(),
-        camera.position.y.to_bits(),
-        camera.eye_z.to_bits(),
-        camera.angle.to_bits(),
-        Some(camera.sector),
-    );
-    let oracle = portalcast_oracle::render(map, &host.oracle(), &oracle_camera, &oracle_view);
-    (
-        stats,
-        portalcast_oracle::compare(&canvas.surfaces, &canvas.indices, &oracle),
-    )
+    (renderer.layer_counts(), percent)
 }
 
 /// The camera at `(x, y)` with the eye at `eye_z` (24.8) in sector `sector` of the slopes map,
@@ -119,39 +105,28 @@ fn the_canyon_s_layers_match_the_oracle_and_are_entered() {
     let mut worst = 0.0f64;
     for (camera, sees_another_layer) in &poses {
         for resolution in Resolution::ALL {
-            let (stats, comparison) = compare(&map, camera, resolution, &mut renderer);
-            let percent = comparison.surface_mismatch_percent();
+            let (counts, percent) = checked(&map, camera, resolution, &mut renderer, false);
             worst = worst.max(percent);
             frames += 1;
-            assert!(
-                percent <= SURFACE_MISMATCH_MAX_PERCENT
-                    && comparison.holes == 0
-                    && comparison.missed_sectors.is_empty(),
-                "{camera:?} {resolution:?}: {comparison:?} ({percent:.3} %)"
-            );
-            assert_eq!(stats.overflows, 0, "{camera:?} {resolution:?}");
+            assert_eq!(counts.overflows, 0, "{camera:?} {resolution:?}");
             if *sees_another_layer {
                 assert!(
-                    stats.visits > 0,
+                    counts.visits > 0,
                     "{camera:?} {resolution:?}: no visit through a floor or ceiling portal"
                 );
             }
         }
     }
-    // Sampled poses over the whole map, any layer where two hold a point.
+    // Sampled poses over the whole map, any layer where two hold a point; as on the generated
+    // maps, a sector seen only in a near-tie with a row centre is not counted missed (a pose
+    // on the ramp sees the pit's far wall through the air's open floor in one pixel whose row
+    // centre is the landing's edge, within 1/128 pixel).
     for pose in portalcast_oracle::sample_poses(&map, 150, 20) {
         let (camera, _) = cameras_of_pose(&pose);
         for resolution in Resolution::ALL {
-            let (_, comparison) = compare(&map, &camera, resolution, &mut renderer);
-            let percent = comparison.surface_mismatch_percent();
+            let (_, percent) = checked(&map, &camera, resolution, &mut renderer, true);
             worst = worst.max(percent);
             frames += 1;
-            assert!(
-                percent <= SURFACE_MISMATCH_MAX_PERCENT
-                    && comparison.holes == 0
-                    && comparison.missed_sectors.is_empty(),
-                "{camera:?} {resolution:?}: {comparison:?} ({percent:.3} %)"
-            );
         }
     }
     println!("room over room: {frames} frames, worst surface mismatch {worst:.3} %");

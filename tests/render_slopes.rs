@@ -10,11 +10,9 @@ mod common;
 
 use common::*;
 use portalcast::frame::Resolution;
-use portalcast::render::light::Lighting;
-use portalcast::render::view::{Camera, Settings, SlopeSteps, View};
+use portalcast::render::view::{Camera, Settings, SlopeSteps};
 use portalcast::render::walk::Renderer;
 use portalcast_format::MapTables;
-use portalcast_oracle::RecordingCanvas;
 
 const SURFACE_MISMATCH_MAX_PERCENT: f64 = 0.5;
 
@@ -47,10 +45,6 @@ fn pit(cx: i32, cy: i32, steep: i32) -> String {
     )
 }
 
-fn assets() -> &'static portalcast_assets::Compiled {
-    shipped_assets()
-}
-
 /// Renders `map` at `camera` with the engine (at `steps`) and the oracle, at `resolution`.
 fn compare(
     map: &MapTables,
@@ -59,32 +53,12 @@ fn compare(
     steps: SlopeSteps,
     renderer: &mut Renderer,
 ) -> portalcast_oracle::Comparison {
-    let host = HostAssets::of(assets());
-    let view = View::new(
-        camera,
-        &Settings {
-            resolution,
-            slope_steps: steps,
-            ..Settings::DEFAULT
-        },
-    );
-    let mut canvas = RecordingCanvas::new(resolution);
-    renderer.render(map, &host.render(), &view, &mut canvas);
-    assert!(
-        canvas.coverage_faults().is_empty(),
-        "{}: pixels not drawn exactly once",
-        map.name
-    );
-    let oracle_view = portalcast_oracle::View::from_viewport(&view.viewport, Lighting::SectorDepth);
-    let oracle_camera = portalcast_oracle::Camera::from_fixed(
-        camera.position.x.to_bits(),
-        camera.position.y.to_bits(),
-        camera.eye_z.to_bits(),
-        camera.angle.to_bits(),
-        Some(camera.sector),
-    );
-    let oracle = portalcast_oracle::render(map, &host.oracle(), &oracle_camera, &oracle_view);
-    portalcast_oracle::compare(&canvas.surfaces, &canvas.indices, &oracle)
+    let settings = Settings {
+        resolution,
+        slope_steps: steps,
+        ..Settings::DEFAULT
+    };
+    engine_against_oracle(map, camera, &settings, renderer, false)
 }
 
 fn compiled(name: &str, text: &str) -> portalcast_assets::CompiledMap {

@@ -55,6 +55,10 @@ const SEE_THROUGH_MAX: usize = 16;
 /// and its plane drawn as solid.
 const LAYER_WINDOWS: usize = 4 * MAX_COLUMNS;
 
+/// A waiting plane window's rows, each in a byte (rows are below [`MAX_ROWS`] = 160): half
+/// the EWRAM of a [`Window`], which the textures' share of EWRAM keeps.
+type SavedWindow = [u8; 2];
+
 /// Floor and ceiling portals waiting at once ([`Renderer::layers`]).
 const LAYERS_WAITING: usize = 8;
 
@@ -265,7 +269,7 @@ pub struct Renderer<W: WindowStore = ColumnWindows> {
     any_middles: bool,
     /// The plane windows of the floor and ceiling portals waiting in [`Renderer::layers`], a
     /// stack: each visit's above those of the visits on the walk's path before it.
-    layer_windows: [Window; LAYER_WINDOWS],
+    layer_windows: [SavedWindow; LAYER_WINDOWS],
     /// Floor and ceiling portals found, not yet entered (a stack, as the walk's levels).
     layers: [WaitingLayer; LAYERS_WAITING],
     /// Entries of [`Renderer::layers`] in use.
@@ -494,7 +498,7 @@ impl<W: WindowStore> Renderer<W> {
             middle_sectors: [0; VISITS_TRACKED / 32],
             middles_of: 0,
             any_middles: false,
-            layer_windows: [Window::EMPTY; LAYER_WINDOWS],
+            layer_windows: [[0; 2]; LAYER_WINDOWS],
             layers: [WaitingLayer {
                 sector: 0,
                 first: 0,
@@ -864,8 +868,16 @@ impl<W: WindowStore> Renderer<W> {
         self.layers_used -= 1;
         let (first, end) = (usize::from(top.first as u16), usize::from(top.end as u16));
         let from = usize::from(top.windows_from);
-        self.windows.windows().clip[first..end]
-            .copy_from_slice(&self.layer_windows[from..from + (end - first)]);
+        let saved = &self.layer_windows[from..from + (end - first)];
+        for (clip, &[top, bottom]) in self.windows.windows().clip[first..end]
+            .iter_mut()
+            .zip(saved)
+        {
+            *clip = Window {
+                top: top.into(),
+                bottom: bottom.into(),
+            };
+        }
         self.layer_counts.visits += 1;
         Some((top.sector, first as i32, end as i32))
     }
@@ -929,7 +941,15 @@ impl<W: WindowStore> Renderer<W> {
                 self.planes_seen |= seen;
                 continue;
             }
-            self.layer_windows[from..from + windows.len()].copy_from_slice(windows);
+            for (saved, window) in self.layer_windows[from..from + windows.len()]
+                .iter_mut()
+                .zip(windows)
+            {
+                // A window's rows are on the screen (0 ..= 160), an empty one's too.
+                debug_assert!((0..=MAX_ROWS as i16).contains(&window.top.max(window.bottom)));
+                debug_assert!(window.top.min(window.bottom) >= 0);
+                *saved = [window.top as u8, window.bottom as u8];
+            }
             self.layers[used] = WaitingLayer {
                 sector: beyond,
                 first: first as i16,

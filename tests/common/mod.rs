@@ -268,3 +268,55 @@ impl<'c> HostAssets<'c> {
         }
     }
 }
+
+/// Renders `camera` on `map` at `settings` with `renderer` (the shipped assets) and with the
+/// oracle, checking that the engine drew every pixel once; the comparison of the two. With
+/// `row_tolerance`, a sector or thing the oracle shows only within
+/// [`portalcast_oracle::ROW_TOLERANCE_PX`] of a row centre does not count as missed
+/// ([`portalcast_oracle::compare_with_row_tolerance`], for sampled poses, where such near-ties
+/// turn up).
+pub fn engine_against_oracle(
+    map: &portalcast_format::MapTables,
+    camera: &portalcast::render::view::Camera,
+    settings: &portalcast::render::view::Settings,
+    renderer: &mut portalcast::render::walk::Renderer,
+    row_tolerance: bool,
+) -> portalcast_oracle::Comparison {
+    let host = HostAssets::of(shipped_assets());
+    let view = portalcast::render::view::View::new(camera, settings);
+    let mut canvas = portalcast_oracle::RecordingCanvas::new(settings.resolution);
+    renderer.render(map, &host.render(), &view, &mut canvas);
+    assert!(
+        canvas.coverage_faults().is_empty(),
+        "{}: {camera:?} {:?}: pixels not drawn exactly once",
+        map.name,
+        settings.resolution
+    );
+    let oracle_view = portalcast_oracle::View::from_viewport(
+        &view.viewport,
+        portalcast::render::light::Lighting::SectorDepth,
+    );
+    let oracle_camera = portalcast_oracle::Camera::from_fixed(
+        camera.position.x.to_bits(),
+        camera.position.y.to_bits(),
+        camera.eye_z.to_bits(),
+        camera.angle.to_bits(),
+        Some(camera.sector),
+    );
+    if row_tolerance {
+        let (oracle, moved) = portalcast_oracle::render_with_row_tolerance(
+            map,
+            &host.oracle(),
+            &oracle_camera,
+            &oracle_view,
+        );
+        return portalcast_oracle::compare_with_row_tolerance(
+            &canvas.surfaces,
+            &canvas.indices,
+            &oracle,
+            [&moved[0], &moved[1]],
+        );
+    }
+    let oracle = portalcast_oracle::render(map, &host.oracle(), &oracle_camera, &oracle_view);
+    portalcast_oracle::compare(&canvas.surfaces, &canvas.indices, &oracle)
+}

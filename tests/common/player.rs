@@ -85,47 +85,49 @@ pub fn sector_polygon(map: &MapTables, sector: u16) -> Vec<WorldPoint> {
         .collect()
 }
 
+/// Wall `wall` of `map` as a segment.
+fn segment_of(map: &MapTables, wall: &portalcast_format::Wall) -> (WorldPoint, WorldPoint) {
+    let (a, b) = (
+        map.vertices[usize::from(wall.start)],
+        map.vertices[usize::from(wall.end)],
+    );
+    (
+        WorldPoint::from_int(a.x, a.y),
+        WorldPoint::from_int(b.x, b.y),
+    )
+}
+
 /// Every solid wall of the map, as segments.
 pub fn solid_walls(map: &MapTables) -> Vec<(WorldPoint, WorldPoint)> {
     map.walls
         .iter()
         .filter(|wall| wall.neighbour().is_none())
-        .map(|wall| {
-            let (a, b) = (
-                map.vertices[usize::from(wall.start)],
-                map.vertices[usize::from(wall.end)],
-            );
-            (
-                WorldPoint::from_int(a.x, a.y),
-                WorldPoint::from_int(b.x, b.y),
-            )
-        })
+        .map(|wall| segment_of(map, wall))
         .collect()
 }
 
-/// The solid walls that can stop a body with its feet at `feet` (24.8): on a map with room
-/// over room, those of the sectors whose heights meet the body's (a pit's walls do not stop a
-/// body in the air over it); on any other map, all of them.
-pub fn solid_walls_at(map: &MapTables, feet: i32, height: i32) -> Vec<(WorldPoint, WorldPoint)> {
-    if map.layer_links.is_empty() {
-        return solid_walls(map);
-    }
+/// The walls that bound a body with its feet at `feet` (24.8) and `height` units tall: on a
+/// map with room over room, those of the sectors whose heights meet the body's (a pit's walls
+/// do not stop a body in the air over it, nor the deck's edges one on the pit's floor under
+/// it); on any other map, all of them.
+fn walls_meeting<'m>(
+    map: &'m MapTables,
+    feet: i32,
+    height: i32,
+) -> impl Iterator<Item = &'m portalcast_format::Wall> + 'm {
     let top = feet + height * 256;
+    let layered = !map.layer_links.is_empty();
     map.sectors
         .iter()
-        .filter(|sector| sector.floor_z * 256 < top && feet < sector.ceil_z * 256)
+        .filter(move |sector| !layered || sector.floor_z * 256 < top && feet < sector.ceil_z * 256)
         .flat_map(|sector| map.sector_walls(sector))
+}
+
+/// The solid walls that can stop a body with its feet at `feet` (24.8) ([`walls_meeting`]).
+pub fn solid_walls_at(map: &MapTables, feet: i32, height: i32) -> Vec<(WorldPoint, WorldPoint)> {
+    walls_meeting(map, feet, height)
         .filter(|wall| wall.neighbour().is_none())
-        .map(|wall| {
-            let (a, b) = (
-                map.vertices[usize::from(wall.start)],
-                map.vertices[usize::from(wall.end)],
-            );
-            (
-                WorldPoint::from_int(a.x, a.y),
-                WorldPoint::from_int(b.x, b.y),
-            )
-        })
+        .map(|wall| segment_of(map, wall))
         .collect()
 }
 
@@ -192,30 +194,11 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             sectors: map.sectors,
         };
         let at = (after.position.x.to_bits(), after.position.y.to_bits());
-        // On a map with room over room, the portals of the sectors whose heights meet the
-        // body's (the deck's edges do not stop a body on the pit's floor under them).
-        let top = before.feet_z.to_bits() + before.size.height * 256;
-        let meets = |sector: &portalcast_format::Sector| {
-            map.layer_links.is_empty()
-                || sector.floor_z * 256 < top && before.feet_z.to_bits() < sector.ceil_z * 256
-        };
-        let portals = map
-            .sectors
-            .iter()
-            .filter(|sector| meets(sector))
-            .flat_map(|sector| map.sector_walls(sector));
-        for wall in portals {
+        for wall in walls_meeting(map, before.feet_z.to_bits(), before.size.height) {
             let Some(next) = wall.neighbour() else {
                 continue;
             };
-            let (a, b) = (
-                map.vertices[usize::from(wall.start)],
-                map.vertices[usize::from(wall.end)],
-            );
-            let (a, b) = (
-                WorldPoint::from_int(a.x, a.y),
-                WorldPoint::from_int(b.x, b.y),
-            );
+            let (a, b) = segment_of(map, wall);
             let crosses =
                 segment_contact(before.position, after.position, a, b) == SegmentContact::Crossing;
             let into = portalcast::math::cross(a, b, after.position) < 0;

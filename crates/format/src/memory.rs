@@ -9,10 +9,9 @@ pub const EWRAM_BYTES: usize = 256 * 1024;
 /// gives textures only what is left. 72 KiB since the things stage (its sprites' clip windows
 /// and the portal middles' columns, about 13 KiB) joined the renderer; 82 KiB since the walk
 /// follows 256 portals in a row instead of 64 (Doom maps, issue 19: 44 bytes a level); 86 KiB
-/// since the portal middles keep two full-width layers of columns (Doom's cages of bars); 90 KiB
-/// since room over room keeps the windows of four full-width floor or ceiling portals waiting
-/// (3.8 KiB, issue 20).
-pub const EWRAM_ENGINE_BYTES: usize = 90 * 1024;
+/// since the portal middles keep two full-width layers of columns (Doom's cages of bars). Room
+/// over room's four full-width planes of windows waiting (1.9 KiB, issue 20) fit in it.
+pub const EWRAM_ENGINE_BYTES: usize = 86 * 1024;
 
 /// Bytes each of the engine's EWRAM tables of textures ([`TEXTURE_TABLES`]) takes per texture
 /// (a [`crate::Texture`] on the GBA, asserted there).

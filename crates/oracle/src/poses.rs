@@ -46,10 +46,14 @@ pub fn sample_poses(map: &MapTables, count: usize, seed: u64) -> Vec<Camera> {
         let x = on_fx8_grid(f64::from(min_x) + rng.unit() * f64::from(max_x - min_x));
         let y = on_fx8_grid(f64::from(min_y) + rng.unit() * f64::from(max_y - min_y));
         let angle = angle_from_bits(rng.next_u64() as u16);
-        // Where layers overlap, any of the sectors holding the point.
+        // Where layers overlap, any of the sectors holding the point (a draw only then, so
+        // the poses of maps without layers are what they were).
         let holding = find_sectors(map, x, y);
-        let Some(&sector_index) = holding.get(rng.below(holding.len().max(1) as u64) as usize)
-        else {
+        let pick = match holding.len() {
+            0 | 1 => 0,
+            n => rng.below(n as u64) as usize,
+        };
+        let Some(&sector_index) = holding.get(pick) else {
             continue;
         };
         let sector = &map.sectors[usize::from(sector_index)];
