@@ -759,7 +759,7 @@ fn crossing_the_bridge_then_walking_down_and_under_it_tracks_both_layers() {
         portalcast::math::point_in_convex_polygon(&deck_outline, player.position),
         portalcast::math::Containment::Inside
     );
-    assert_eq!((player.sector, player.eye_sector), (walkway, walkway));
+    assert_eq!((player.sector, player.eye_sector()), (walkway, walkway));
     assert_eq!(player.feet_z, Fx24_8::from_int(-64));
     run_until(
         &mut player,
@@ -802,7 +802,7 @@ fn walking_off_the_landing_falls_through_the_open_floor_and_flying_rises_through
     assert_eq!(sectors, [landing, north_air, north_pit]);
     assert!(player.on_ground);
     assert_eq!(player.feet_z, Fx24_8::from_int(-64), "on the pit's floor");
-    assert_eq!(player.eye_sector, north_pit);
+    assert_eq!(player.eye_sector(), north_pit);
     // Flying straight up: the eye passes the link first, then the feet.
     player.toggle_fly();
     let rise = Intent {
@@ -814,7 +814,7 @@ fn walking_off_the_landing_falls_through_the_open_floor_and_flying_rises_through
         run(&mut player, &map, rise, 1);
         let eye_above = player.eye_z() >= Fx24_8::from_int(64);
         let feet_above = player.feet_z >= Fx24_8::from_int(64);
-        assert_eq!(player.eye_sector == north_air, eye_above, "{player:?}");
+        assert_eq!(player.eye_sector() == north_air, eye_above, "{player:?}");
         assert_eq!(player.sector == north_air, feet_above, "{player:?}");
         eye_crossed_first |= eye_above && !feet_above;
     }

@@ -253,15 +253,16 @@ impl Body<'_> {
     #[inline(always)]
     pub fn admits_sector(&self, map: &MapTables, index: u16, at: (i32, i32)) -> bool {
         let sector = &self.sectors[usize::from(index)];
-        if sector.links != 0 {
-            return self.admits_open(map, index, at);
-        }
-        self.admits(map.slopes, sector, at)
+        // The open space's heights admit whatever the sector's own do (its floor is no
+        // higher, its ceiling no lower): asked only where those refuse, so that the step's walk
+        // reads no links byte for the portals it passes.
+        self.admits(map.slopes, sector, at) || sector.links != 0 && self.admits_open(map, index, at)
     }
 
     /// [`Body::admits_sector`] of a sector with a floor or ceiling portal: out of line and in
     /// ROM, as only such sectors come here.
     #[inline(never)]
+    #[cold]
     fn admits_open(&self, map: &MapTables, index: u16, at: (i32, i32)) -> bool {
         self.fits(open_heights_at(map, index, at))
     }

@@ -31,7 +31,7 @@ pub mod collide;
 pub mod input;
 pub mod vertical;
 
-use portalcast_format::{MapTables, PlayerSize, Sector, NO_SLOPE};
+use portalcast_format::{MapTables, PlayerSize, Sector, NO_LINK, NO_SLOPE};
 
 use crate::math::{Angle, Fx24_8, WorldPoint};
 use crate::render::view::{Camera, MAX_LOOK_LINES};
@@ -66,9 +66,11 @@ pub struct Player {
     /// The sector strictly containing [`Player::position`] that holds the feet: on a map with
     /// room over room, the one of the stack there whose heights the feet are within.
     pub sector: u16,
-    /// The sector holding the eye, which the view is drawn from: [`Player::sector`], or where
-    /// the body reaches through a floor or ceiling portal, the sector above it.
-    pub eye_sector: u16,
+    /// The feet's sector when the last tick in a sector with a floor or ceiling portal ended
+    /// ([`Player::eye_sector`]), or [`NO_LINK`].
+    layered_feet: u16,
+    /// The eye's sector then.
+    layered_eye: u16,
     /// Horizontal velocity, 24.8 bits per tick (x, y).
     pub velocity: (i32, i32),
     /// View direction.
@@ -99,7 +101,8 @@ impl Player {
     pub const NOWHERE: Player = Player {
         position: WorldPoint::new(Fx24_8::ZERO, Fx24_8::ZERO),
         sector: 0,
-        eye_sector: 0,
+        layered_feet: NO_LINK,
+        layered_eye: NO_LINK,
         velocity: (0, 0),
         angle: Angle::from_bits(0),
         feet_z: Fx24_8::ZERO,
@@ -136,7 +139,8 @@ impl Player {
         Player {
             position,
             sector,
-            eye_sector: map.sector_at_height(sector, floor + size.eye_height * 256),
+            layered_feet: sector,
+            layered_eye: map.sector_at_height(sector, floor + size.eye_height * 256),
             angle,
             feet_z: Fx24_8::from_bits(floor),
             eye_height: Fx24_8::from_int(size.eye_height),
@@ -148,6 +152,18 @@ impl Player {
     /// The eye's height.
     pub fn eye_z(&self) -> Fx24_8 {
         self.feet_z + self.eye_height
+    }
+
+    /// The sector holding the eye, which the view is drawn from: [`Player::sector`], or where
+    /// the body reaches up through a floor or ceiling portal, the sector above it. Kept by the
+    /// ticks in sectors with such portals only (a tick elsewhere stores nothing for it): their
+    /// record stands while the feet are still in the sector it was made in.
+    pub fn eye_sector(&self) -> u16 {
+        if self.sector == self.layered_feet {
+            self.layered_eye
+        } else {
+            self.sector
+        }
     }
 
     /// Whether the eye is below the standing height (crouched, or held down by a ceiling).
@@ -171,7 +187,7 @@ impl Player {
             position: self.position,
             eye_z: self.eye_z(),
             angle: self.angle,
-            sector: self.eye_sector,
+            sector: self.eye_sector(),
             look_lines: self.look_lines,
         }
     }
@@ -229,33 +245,37 @@ impl Player {
         self.sector = sector;
 
         let here = &sectors[usize::from(sector)];
-        let at = (position.x.to_bits(), position.y.to_bits());
-        if here.links != 0 {
-            self.rise_or_fall_in_layers(intent, map, at);
-            return;
-        }
-        // The sector's slope index before the map's table: `map` need not be kept for a flat
-        // sector.
-        let heights = if here.slope == NO_SLOPE {
+        // The sector's slope index and links before the map's tables: `map` need not be kept
+        // for a flat sector (the two sit in one word of the sector).
+        let heights = if here.slope == NO_SLOPE && here.links == 0 {
             (here.floor_z * 256, here.ceil_z * 256)
+        } else if here.links == 0 {
+            collide::heights_at(
+                map.slopes,
+                here,
+                (position.x.to_bits(), position.y.to_bits()),
+            )
         } else {
-            collide::heights_at(map.slopes, here, at)
+            self.rise_or_fall_in_layers(intent, map);
+            return;
         };
         vertical::tick(self, intent, heights);
-        self.eye_sector = sector;
     }
 
-    /// The vertical part of a tick in a sector with a floor or ceiling portal (room over room),
-    /// its centre at `at`: the motion within the heights of the open space, then the sector of
+    /// The vertical part of a tick in a sector with a floor or ceiling portal (room over room):
+    /// the motion within the heights of the open space, then the sector of
     /// the stack that holds the feet, and the one that holds the eye. Out of line and in ROM,
     /// with its own copy of the vertical motion: only such sectors come here, and a second test
     /// of the sector's links after the motion made the compiler copy the motion into the IWRAM
     /// tick twice.
     #[inline(never)]
-    fn rise_or_fall_in_layers(&mut self, intent: &Intent, map: &MapTables, at: (i32, i32)) {
+    #[cold]
+    fn rise_or_fall_in_layers(&mut self, intent: &Intent, map: &MapTables) {
+        let at = (self.position.x.to_bits(), self.position.y.to_bits());
         vertical::tick(self, intent, collide::open_heights_at(map, self.sector, at));
         self.sector = map.sector_at_height(self.sector, self.feet_z.to_bits());
-        self.eye_sector = map.sector_at_height(self.sector, self.eye_z().to_bits());
+        self.layered_feet = self.sector;
+        self.layered_eye = map.sector_at_height(self.sector, self.eye_z().to_bits());
     }
 
     fn turn(&mut self, direction: i8) {
