@@ -2,6 +2,8 @@
 //! claims (checked with the polygon test, not the flight's own), the eye between floor and
 //! ceiling, smooth motion, and a path that sees much of the map.
 
+mod common;
+
 use std::collections::BTreeSet;
 
 use portalcast::assets::MAPS;
@@ -90,6 +92,30 @@ fn the_flight_is_the_same_every_time() {
                 portalcast::math::Fx24_8::from_bits(map.player_start.x_fx8),
                 portalcast::math::Fx24_8::from_bits(map.player_start.y_fx8)
             )
+        );
+    }
+}
+
+#[test]
+fn the_slopes_map_s_benchmark_frames_pass_over_and_under_the_bridge() {
+    let map = portalcast::render::demo::map_named("slopes").expect("the slopes map is shipped");
+    let name = |name: &str| common::player::sector_index("slopes.map", name);
+    let seen: BTreeSet<u16> = Flight::new(&map)
+        .take(portalcast::bench::frames_for(&map) as usize)
+        .map(|camera| camera.sector)
+        .collect();
+    for sector in [
+        "deck",
+        "walkway",
+        "north_air",
+        "north_pit",
+        "attic",
+        "bank",
+        "ramp",
+    ] {
+        assert!(
+            seen.contains(&name(sector)),
+            "the slopes map's benchmark frames never enter {sector}: {seen:?}"
         );
     }
 }

@@ -664,7 +664,10 @@ fn slope_knob(doc: &mut String, measurements: &Measurements) {
          with slopes, along their own fly-throughs. The texel column is the share of pixels \
          whose palette index differs from the f64 oracle's, which maps every pixel exactly: \
          `slp=1`'s figure is what the rest of the frame (walls, flat planes, rounding) \
-         leaves, and each larger `N` adds its affine drift to it.\n\n"
+         leaves, and each larger `N` adds its affine drift to it. The shipped slopes map also \
+         holds room over room (a canyon whose pit opens into the air above it, and a bridge \
+         over a walkway: docs/MAP_FORMAT.md, \"Room over room\"), so its rows are the figures \
+         of a map with slopes and layers.\n\n"
     );
     // The headline's targets, for the maps with slopes at their defaults.
     let _ = writeln!(
