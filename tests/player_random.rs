@@ -123,7 +123,7 @@ fn random_moves_keep_the_invariants_on(map: &MapTables, cases: u32) {
         let at = (player.position.x.to_bits(), player.position.y.to_bits());
         prop_assume!(player
             .body(live.sectors)
-            .admits_sector(&live, player.sector, at));
+            .admits_sector(live.slopes, player.sector, at));
         player.feet_z = Fx24_8::from_bits(
             live.heights_fx8_at(&live.sectors[usize::from(player.sector)], at.0, at.1).0,
         );

@@ -246,25 +246,13 @@ impl Body<'_> {
         try_moves(map, sector, from, step, body, &obstacles, None)
     }
 
-    /// [`Body::admits`] of sector `index` of [`Body::sectors`], on `map`: a sector with a
-    /// floor or ceiling portal admits it by the heights of the space it opens into
-    /// ([`open_heights_at`]), as its own tick moves it. Inlined: the step's walk
-    /// over nearby walls (IWRAM) asks it of every portal it meets.
-    #[inline(always)]
-    pub fn admits_sector(&self, map: &MapTables, index: u16, at: (i32, i32)) -> bool {
-        let sector = &self.sectors[usize::from(index)];
-        // The open space's heights admit whatever the sector's own do (its floor is no
-        // higher, its ceiling no lower): asked only where those refuse, so that the step's walk
-        // reads no links byte for the portals it passes.
-        self.admits(map.slopes, sector, at) || sector.links != 0 && self.admits_open(map, index, at)
-    }
-
-    /// [`Body::admits_sector`] of a sector with a floor or ceiling portal: out of line and in
-    /// ROM, as only such sectors come here.
-    #[inline(never)]
-    #[cold]
-    fn admits_open(&self, map: &MapTables, index: u16, at: (i32, i32)) -> bool {
-        self.fits(open_heights_at(map, index, at))
+    /// [`Body::admits`] of sector `index` of [`Body::sectors`]. A sector with a floor or ceiling
+    /// portal admits the body by its own heights, as any other: the body moves in the layer of
+    /// its feet (docs/MAP_FORMAT.md, "Room over room"). Only its vertical motion uses the open
+    /// space's heights ([`open_heights_at`]): a test of each sector's links here cost the
+    /// step's walk over nearby walls (IWRAM) 40 cycles a tick.
+    pub fn admits_sector(&self, slopes: &[SectorSlope], index: u16, at: (i32, i32)) -> bool {
+        self.admits(slopes, &self.sectors[usize::from(index)], at)
     }
 
     /// Whether the body may move into `sector` (of a map whose sloped planes are `slopes`,
@@ -595,7 +583,7 @@ fn track_through_portals(
             return Track::Blocked;
         };
         if wall.flags & WALL_MIDDLE_BLOCKS != 0
-            || (next != start && !body.admits_sector(map, next, point_bits(to)))
+            || (next != start && !body.admits_sector(map.slopes, next, point_bits(to)))
         {
             return Track::Blocked;
         }
@@ -795,7 +783,7 @@ impl<'a, 'm> Obstacles<'a, 'm> {
                     // A portal whose middle blocks is a wall to the body.
                     Some(next)
                         if wall.flags & WALL_MIDDLE_BLOCKS == 0
-                            && (next == sector || body.admits_sector(map, next, target)) =>
+                            && (next == sector || body.admits_sector(map.slopes, next, target)) =>
                     {
                         if !sectors[..found].contains(&next) && found < MAX_NEARBY_SECTORS {
                             sectors[found] = next;

@@ -202,7 +202,7 @@ pub fn check_tick(map: &MapTables, before: &Player, after: &Player) -> Result<()
             let crosses =
                 segment_contact(before.position, after.position, a, b) == SegmentContact::Crossing;
             let into = portalcast::math::cross(a, b, after.position) < 0;
-            if crosses && into && !body.admits_sector(map, next, at) {
+            if crosses && into && !body.admits_sector(map.slopes, next, at) {
                 return Err(format!(
                     "path {:?} -> {:?} crossed into sector {next}, which the body {body:?} may not enter",
                     before.position, after.position
