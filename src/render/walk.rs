@@ -406,6 +406,9 @@ struct Scene<'s, 'a> {
     frame_stamp: u32,
     /// What the things stage needs of the frame.
     things: ThingView<'s, 'a>,
+    /// Whether the map has floor or ceiling portals ([`MapTables::layer_links`]): asked once a
+    /// frame, so that a visit on another map reads no sector's links.
+    layered: bool,
 }
 
 impl VertexCache {
@@ -549,6 +552,7 @@ impl<W: WindowStore> Renderer<W> {
             inverse_focal_y: i64::from(recip_small(view.viewport.focal_y as u32).to_bits()),
             frame_stamp: self.frame_stamp,
             things: ThingView::new(map, assets, view),
+            layered: !map.layer_links.is_empty(),
         };
         self.things.clear();
         if self.middles_of != map.walls.as_ptr() as usize {
@@ -825,11 +829,10 @@ impl<W: WindowStore> Renderer<W> {
             let mut level = self.levels[depth];
             let mut seen = level.next_portal(scene, &self.vertices, &self.portals);
             self.levels[depth] = level;
-            if seen.is_none() && self.layers_used != 0 {
+            if seen.is_none() && scene.layered && self.layers_used != 0 {
                 // The visit's own portals are walked: its floor and ceiling portals next.
                 seen = self.next_waiting_layer(depth);
             }
-            self.walk_depth = depth as u16 + 1;
             match seen {
                 Some(_) if depth as u32 == MAX_PORTAL_DEPTH => stats.depth_cutoffs += 1,
                 // A sector seen through no row of its portal draws nothing, nor does any
@@ -840,6 +843,7 @@ impl<W: WindowStore> Renderer<W> {
                             .iter()
                             .all(|window| window.is_empty()) => {}
                 Some((neighbour, start, stop)) => {
+                    self.walk_depth = depth as u16 + 1;
                     let mut next = WalkLevel::new(neighbour, start, stop);
                     next.visit = self.enter_recording(stats, &mut next, level.visit, &mut enter)?;
                     depth += 1;
@@ -1040,7 +1044,7 @@ impl<W: WindowStore> Renderer<W> {
                 && !self.windows.windows().floor[range].contains(&UNSET),
             "a column of sector {sector_index} owned by none of its walls"
         );
-        if sector.links != 0 {
+        if scene.layered && sector.links != 0 {
             self.open_layers(scene, (sector, sector_index), first, end);
         }
         let planes_started = (self.clock)();
