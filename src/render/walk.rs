@@ -693,7 +693,7 @@ impl<W: WindowStore> Renderer<W> {
         if !scene.map.layer_links.is_empty() {
             return false;
         }
-        let planned = self.walk_portals(
+        let planned = self.walk_portals::<_, false>(
             scene,
             stats,
             sector_index,
@@ -746,17 +746,17 @@ impl<W: WindowStore> Renderer<W> {
         end: i32,
     ) {
         self.skip_closed = true;
-        let Ok(()) = self.walk_portals(
-            scene,
-            stats,
-            sector_index,
-            first,
-            end,
-            |renderer, stats, sector, first, end, _| -> Result<_, Infallible> {
-                renderer.draw_sector(scene, canvas, stats, sector, first, end);
-                Ok(None)
-            },
-        );
+        let draw = |renderer: &mut Self, stats: &mut FrameStats, sector, first, end, _| {
+            renderer.draw_sector(scene, canvas, stats, sector, first, end);
+            Ok::<_, Infallible>(None)
+        };
+        // Two copies of the walk (ROM, where each instruction of a loop costs its fetch): the
+        // one for maps with floor and ceiling portals keeps their checks out of the other's.
+        let Ok(()) = if scene.layered {
+            self.walk_portals::<_, true>(scene, stats, sector_index, first, end, draw)
+        } else {
+            self.walk_portals::<_, false>(scene, stats, sector_index, first, end, draw)
+        };
         self.skip_closed = false;
     }
 
@@ -799,8 +799,10 @@ impl<W: WindowStore> Renderer<W> {
     /// `enter` is called for `sector_index` in columns `first..end`, then, depth first and front
     /// to back, for every sector seen through its portals with the columns its portal owns and
     /// what `enter` returned for the sector in front. An error from `enter` ends the walk.
+    /// `LAYERED`: the map has floor and ceiling portals ([`Scene::layered`]), whose waiting
+    /// windows the walk enters once each visit's own portals are walked.
     #[inline(always)]
-    fn walk_portals<E>(
+    fn walk_portals<E, const LAYERED: bool>(
         &mut self,
         scene: &Scene,
         stats: &mut FrameStats,
@@ -829,7 +831,7 @@ impl<W: WindowStore> Renderer<W> {
             let mut level = self.levels[depth];
             let mut seen = level.next_portal(scene, &self.vertices, &self.portals);
             self.levels[depth] = level;
-            if seen.is_none() && scene.layered && self.layers_used != 0 {
+            if LAYERED && seen.is_none() && self.layers_used != 0 {
                 // The visit's own portals are walked: its floor and ceiling portals next.
                 seen = self.next_waiting_layer(depth);
             }
@@ -843,7 +845,9 @@ impl<W: WindowStore> Renderer<W> {
                             .iter()
                             .all(|window| window.is_empty()) => {}
                 Some((neighbour, start, stop)) => {
-                    self.walk_depth = depth as u16 + 1;
+                    if LAYERED {
+                        self.walk_depth = depth as u16 + 1;
+                    }
                     let mut next = WalkLevel::new(neighbour, start, stop);
                     next.visit = self.enter_recording(stats, &mut next, level.visit, &mut enter)?;
                     depth += 1;
