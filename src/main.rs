@@ -1,13 +1,26 @@
-//! The portalcast ROM. It only builds for the GBA (`cargo rom`); a host build explains that.
+//! The portalcast ROM. Built for the GBA by `cargo rom`; on the host, `cargo run` is `cargo play`
+//! (this binary's host build starts it): it builds the ROM and opens it in mGBA when there is a
+//! display, or runs the demo headless in the mGBA core with the log on stdout.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(not(target_os = "none"))]
 fn main() {
-    eprintln!(
-        "portalcast's binary is the GBA ROM: build it with `cargo rom` (writes target/portalcast.gba) \
-         or run it with `cargo play`."
-    );
-    std::process::exit(2);
+    // `cargo run` runs this with CARGO set to the cargo that built it.
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| env!("CARGO").into());
+    let status = std::process::Command::new(&cargo)
+        .arg("play")
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .status();
+    match status {
+        Ok(status) => std::process::exit(status.code().unwrap_or(1)),
+        Err(error) => {
+            eprintln!(
+                "portalcast: could not start `{} play` ({error}); build the ROM with `cargo rom`",
+                cargo.to_string_lossy()
+            );
+            std::process::exit(2);
+        }
+    }
 }
 
 #[cfg(target_os = "none")]

@@ -1,5 +1,5 @@
-//! The portalcast asset compiler. One implementation, used by the ROM's `build.rs` and by host
-//! tests.
+//! The portalcast asset compiler. One implementation, used by the ROM's `build.rs`, by a game's
+//! own `build.rs` through [`Builder`], and by host tests.
 //!
 //! [`compile_dir`] reads an asset directory (the repo's `assets/` or a user's), checks every map
 //! and every image the maps use, and returns a [`Compiled`] set: palette, colormap, textures
@@ -12,6 +12,7 @@
 //! reported all at once, one line each, `file:line:col: what is wrong, what to do`
 //! ([`CompileErrors`]); on any error nothing is written.
 
+mod builder;
 mod diag;
 pub mod doom;
 mod emit;
@@ -39,6 +40,10 @@ use portalcast_format::{
     THING_TRANSLUCENT, WALL_MIDDLE_TRANSLUCENT,
 };
 
+pub use builder::{
+    rom_link_args, BuildError, Builder, ASSETS_FILE, LINKER_SCRIPT, LINKER_SCRIPT_FILE,
+    WRAPPED_DIVISION_HELPERS,
+};
 pub use diag::{CompileErrors, Diagnostic, Loc};
 pub use map_build::{wall_length_fx8, Catalog, CompiledMap};
 
