@@ -23,6 +23,7 @@ pub mod render;
 pub mod selfcheck;
 pub mod stack;
 pub mod testpic;
+pub mod text;
 pub mod world;
 
 #[cfg(target_os = "none")]

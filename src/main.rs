@@ -41,6 +41,7 @@ mod rom {
     use portalcast::{assets, kernel_check, testpic};
     use portalcast_format::MapTables;
 
+    const KEY_A: u16 = Buttons::A.0;
     const KEY_B: u16 = Buttons::B.0;
     const KEY_SELECT: u16 = Buttons::SELECT.0;
     const KEY_RIGHT: u16 = Buttons::RIGHT.0;
@@ -87,6 +88,9 @@ mod rom {
         // nothing may write there afterwards.
         memory::colormap_in_vram();
         memory::code_in_vram();
+        if held_at_boot & (KEY_L | KEY_R | KEY_A) == KEY_L | KEY_R | KEY_A {
+            machine_check_scene(&mut display);
+        }
         if held_at_boot & (KEY_L | KEY_R) == KEY_L | KEY_R {
             display.set_palette(&testpic::PALETTE);
             kernel_check_scene(&mut display);
@@ -629,6 +633,48 @@ mod rom {
         }
     }
 
+    /// Flips the machine check makes before its panic.
+    const MACHINE_CHECK_FLIPS: u32 = 30;
+    /// VBlanks the machine check's own interrupt handler has seen.
+    static CHAINED_VBLANKS: gba::prelude::GbaCell<u32> = gba::prelude::GbaCell::new(0);
+
+    extern "C" fn count_vblank(bits: gba::interrupts::IrqBits) {
+        if bits.vblank() {
+            CHAINED_VBLANKS.write(CHAINED_VBLANKS.read().wrapping_add(1));
+        }
+    }
+
+    /// L, R and A held at boot: what a game built on the engine does with the machine besides
+    /// the view (tests/emulator_machine.rs). It chains an interrupt handler of its own, turns on
+    /// the OBJ layer, flips [`MACHINE_CHECK_FLIPS`] times, prints `machine flips=… mode4=… bg2=…
+    /// obj=… obj_1d=… chained_vblanks=… sampled_vblanks=…` (DISPCNT's bits after the flips; the VBlanks its handler
+    /// and the engine's sampler saw meanwhile), then panics on purpose: the panic screen.
+    fn machine_check_scene(display: &mut Display) -> ! {
+        let first = hw::without_interrupts(|| {
+            input::chain(Some(count_vblank));
+            input::samples_written()
+        });
+        display.with_control(|control| control.with_show_obj(true).with_obj_vram_1d(true));
+        for _ in 0..MACHINE_CHECK_FLIPS {
+            display.flip_at_vblank(Resolution::R120x80);
+        }
+        let (chained, sampled) = hw::without_interrupts(|| {
+            (
+                CHAINED_VBLANKS.read(),
+                input::samples_written().wrapping_sub(first),
+            )
+        });
+        let control = display.control();
+        log::info(format_args!(
+            "machine flips={MACHINE_CHECK_FLIPS} mode4={} bg2={} obj={} obj_1d={} chained_vblanks={chained} sampled_vblanks={sampled}",
+            u8::from(control.video_mode() == gba::prelude::VideoMode::_4),
+            u8::from(control.show_bg2()),
+            u8::from(control.show_obj()),
+            u8::from(control.obj_vram_1d()),
+        ));
+        panic!("the machine check's deliberate panic, after {MACHINE_CHECK_FLIPS} flips")
+    }
+
     /// L+R held at boot: draw the kernel check at every resolution with a few seeds, printing
     /// where each page is, so the emulator test can compare VRAM with the host twins.
     fn kernel_check_scene(display: &mut Display) -> ! {
@@ -896,9 +942,6 @@ mod rom {
 
     #[panic_handler]
     fn panic(info: &core::panic::PanicInfo) -> ! {
-        log::fatal(format_args!("panic: {info}"));
-        loop {
-            core::hint::spin_loop();
-        }
+        hw::panic_screen::show(info)
     }
 }

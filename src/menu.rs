@@ -15,6 +15,7 @@ use crate::raster::Canvas;
 use crate::render::demo::lighting_label;
 use crate::render::light::Lighting;
 use crate::render::view::{Floors, Preprocessing, TexturePlacement, ThingsShown};
+use crate::text::{glyph_lit, GLYPH_HEIGHT, GLYPH_WIDTH};
 
 /// One line of the menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -172,10 +173,6 @@ impl MenuColours {
     }
 }
 
-/// Width of a glyph in font pixels.
-const GLYPH_WIDTH: usize = 3;
-/// Height of a glyph in font pixels.
-const GLYPH_HEIGHT: usize = 5;
 /// Horizontal advance per character (one column of space).
 const ADVANCE: usize = GLYPH_WIDTH + 1;
 /// Vertical advance per line.
@@ -192,61 +189,6 @@ const PANEL_LEFT: usize = (120 - PANEL_WIDTH) / 2;
 const PANEL_TOP: usize = (80 - PANEL_HEIGHT) / 2;
 const _: () = assert!(PANEL_WIDTH <= 64, "a panel row is a u64 bit mask");
 const _: () = assert!(PANEL_LEFT + PANEL_WIDTH <= 120 && PANEL_TOP + PANEL_HEIGHT <= 80);
-
-/// 3×5 glyphs: five rows of three bits, the top row in bits 12–14, the left column the high
-/// bit of each row.
-const fn glyph(c: u8) -> u16 {
-    const fn rows(r: [u16; 5]) -> u16 {
-        (r[0] << 12) | (r[1] << 9) | (r[2] << 6) | (r[3] << 3) | r[4]
-    }
-    match c {
-        b'0' => rows([0b111, 0b101, 0b101, 0b101, 0b111]),
-        b'1' => rows([0b010, 0b110, 0b010, 0b010, 0b111]),
-        b'2' => rows([0b111, 0b001, 0b111, 0b100, 0b111]),
-        b'3' => rows([0b111, 0b001, 0b111, 0b001, 0b111]),
-        b'4' => rows([0b101, 0b101, 0b111, 0b001, 0b001]),
-        b'5' => rows([0b111, 0b100, 0b111, 0b001, 0b111]),
-        b'6' => rows([0b111, 0b100, 0b111, 0b101, 0b111]),
-        b'7' => rows([0b111, 0b001, 0b001, 0b010, 0b010]),
-        b'8' => rows([0b111, 0b101, 0b111, 0b101, 0b111]),
-        b'9' => rows([0b111, 0b101, 0b111, 0b001, 0b111]),
-        b'A' => rows([0b010, 0b101, 0b111, 0b101, 0b101]),
-        b'B' => rows([0b110, 0b101, 0b110, 0b101, 0b110]),
-        b'C' => rows([0b011, 0b100, 0b100, 0b100, 0b011]),
-        b'D' => rows([0b110, 0b101, 0b101, 0b101, 0b110]),
-        b'E' => rows([0b111, 0b100, 0b110, 0b100, 0b111]),
-        b'F' => rows([0b111, 0b100, 0b110, 0b100, 0b100]),
-        b'G' => rows([0b011, 0b100, 0b101, 0b101, 0b011]),
-        b'H' => rows([0b101, 0b101, 0b111, 0b101, 0b101]),
-        b'I' => rows([0b111, 0b010, 0b010, 0b010, 0b111]),
-        b'J' => rows([0b001, 0b001, 0b001, 0b101, 0b010]),
-        b'K' => rows([0b101, 0b101, 0b110, 0b101, 0b101]),
-        b'L' => rows([0b100, 0b100, 0b100, 0b100, 0b111]),
-        b'M' => rows([0b101, 0b111, 0b111, 0b101, 0b101]),
-        b'N' => rows([0b110, 0b101, 0b101, 0b101, 0b101]),
-        b'O' => rows([0b010, 0b101, 0b101, 0b101, 0b010]),
-        b'P' => rows([0b110, 0b101, 0b110, 0b100, 0b100]),
-        b'Q' => rows([0b010, 0b101, 0b101, 0b110, 0b011]),
-        b'R' => rows([0b110, 0b101, 0b110, 0b101, 0b101]),
-        b'S' => rows([0b011, 0b100, 0b010, 0b001, 0b110]),
-        b'T' => rows([0b111, 0b010, 0b010, 0b010, 0b010]),
-        b'U' => rows([0b101, 0b101, 0b101, 0b101, 0b111]),
-        b'V' => rows([0b101, 0b101, 0b101, 0b101, 0b010]),
-        b'W' => rows([0b101, 0b101, 0b111, 0b111, 0b101]),
-        b'X' => rows([0b101, 0b101, 0b010, 0b101, 0b101]),
-        b'Y' => rows([0b101, 0b101, 0b010, 0b010, 0b010]),
-        b'Z' => rows([0b111, 0b001, 0b010, 0b100, 0b111]),
-        b'>' => rows([0b100, 0b010, 0b001, 0b010, 0b100]),
-        b':' => rows([0b000, 0b010, 0b000, 0b010, 0b000]),
-        b'-' => rows([0b000, 0b000, 0b111, 0b000, 0b000]),
-        b'.' => rows([0b000, 0b000, 0b000, 0b000, 0b010]),
-        b'_' => rows([0b000, 0b000, 0b000, 0b000, 0b111]),
-        b'?' => rows([0b111, 0b001, 0b010, 0b000, 0b010]),
-        b' ' => 0,
-        // Anything else: a full block, visibly not a letter.
-        _ => rows([0b111; 5]),
-    }
-}
 
 /// One line of text: up to [`LINE_CHARS`] characters, lower case shown as upper case.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -283,12 +225,7 @@ impl Line {
     /// Whether font pixel (`x`, `row`) of the line is lit.
     fn lit(&self, x: usize, row: usize) -> bool {
         let (column, within) = (x / ADVANCE, x % ADVANCE);
-        if within >= GLYPH_WIDTH || column >= LINE_CHARS || row >= GLYPH_HEIGHT {
-            return false;
-        }
-        let bits = glyph(self.chars[column]);
-        let shift = (GLYPH_HEIGHT - 1 - row) * GLYPH_WIDTH + (GLYPH_WIDTH - 1 - within);
-        bits >> shift & 1 != 0
+        column < LINE_CHARS && glyph_lit(self.chars[column], within, row)
     }
 }
 
@@ -428,6 +365,7 @@ fn fill(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::text::glyph;
 
     #[test]
     fn the_hud_line_shows_the_rate_and_the_cycles() {

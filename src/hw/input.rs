@@ -1,8 +1,11 @@
 //! Buttons sampled at every VBlank, in the VBlank interrupt, into a ring the game drains once
 //! per drawn frame: the game runs one tick per sample, so it advances at 60 ticks per second
 //! whatever the frame rate, and never misses a press shorter than a frame.
+//!
+//! The engine owns gba's interrupt handler; a game's own handler runs after it, on every
+//! interrupt, through [`chain`].
 
-use gba::interrupts::IrqBits;
+use gba::interrupts::{IrqBits, IrqFn};
 use gba::prelude::GbaCell;
 use gba::RUST_IRQ_HANDLER;
 
@@ -17,13 +20,31 @@ static RING: [GbaCell<u16>; RING_SAMPLES as usize] = [const { GbaCell::new(0) };
 /// Samples written since [`start`]; the next goes to `RING[WRITTEN % RING_SAMPLES]`.
 static WRITTEN: GbaCell<u32> = GbaCell::new(0);
 
-/// Runs in IRQ mode on every interrupt (the display only enables VBlank's).
+/// The game's handler, called after the sampler's on every interrupt.
+/// Held as gba's `IrqFn` (an `unsafe` function pointer, the type its cell takes), but only ever
+/// set from a safe function ([`chain`]).
+static CHAINED: GbaCell<Option<IrqFn>> = GbaCell::new(None);
+
+/// Runs in IRQ mode on every interrupt (the display enables VBlank's; a game may enable more).
 extern "C" fn on_interrupt(bits: IrqBits) {
     if bits.vblank() {
         let written = WRITTEN.read();
         RING[(written % RING_SAMPLES) as usize].write(super::keys_held());
         WRITTEN.write(written.wrapping_add(1));
     }
+    if let Some(chained) = CHAINED.read() {
+        // SAFETY: `chain` stores only safe functions.
+        unsafe { chained(bits) };
+    }
+}
+
+/// Has `handler` run on every interrupt after the engine's own (the button sampler), with the
+/// bits of the interrupts being served; `None` removes it. It runs in IRQ mode on the BIOS's
+/// small IRQ stack, with interrupts masked: keep it short. The VBlank interrupt stays enabled
+/// (the display and the sampler need it); a game that wants others (a timer, HBlank) enables
+/// them in IE and their sources itself, and its handler sees their bits.
+pub fn chain(handler: Option<extern "C" fn(IrqBits)>) {
+    CHAINED.write(handler.map(|handler| handler as IrqFn));
 }
 
 /// Installs the sampler. The VBlank interrupt itself is armed by `video::Display::start`.

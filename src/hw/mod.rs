@@ -9,6 +9,7 @@ pub mod log;
 pub mod math_bench;
 pub mod memory;
 pub mod meter;
+pub mod panic_screen;
 pub mod video;
 
 use gba::mmio::{IME, KEYINPUT, WAITCNT};

@@ -1,5 +1,9 @@
 //! Mode 4 with two pages, BG2's affine step per resolution, the palette, and VBlank waits through
 //! the VBlank interrupt and the BIOS `IntrWait`.
+//!
+//! The display owns only its bits of DISPCNT (the mode, BG2 and the page shown): a flip leaves
+//! the others as they are, so a game may show hardware sprites or windows over the 3D view
+//! ([`Display::with_control`]).
 
 use crate::frame::Resolution;
 use gba::bios::VBlankIntrWait;
@@ -29,6 +33,9 @@ impl Display {
             shown_page: 0,
             shown_resolution: resolution,
         };
+        // The whole register once: at power-on it may hold anything (forced blank included);
+        // from here on only the display's own bits change.
+        DISPCNT.write(DisplayControl::new());
         display.show(resolution, false);
         display
     }
@@ -60,6 +67,28 @@ impl Display {
         self.show(resolution, true);
     }
 
+    /// Changes DISPCNT's bits that are not the display's (the OBJ layer and its VRAM mapping,
+    /// windows, forced blank) by `change`, applied to the register as it is now; the mode, BG2
+    /// and the page shown stay the display's. Every later flip keeps the game's bits. To show
+    /// hardware sprites over the view: `display.with_control(|c|
+    /// c.with_show_obj(true).with_obj_vram_1d(true))`; in Mode 4 their tiles are those from
+    /// 0x0601_4000 (`hw::memory` says which of them the engine leaves free).
+    pub fn with_control(&mut self, change: impl FnOnce(DisplayControl) -> DisplayControl) {
+        let now = DISPCNT.read();
+        let changed = change(now);
+        DISPCNT.write(
+            changed
+                .with_video_mode(VideoMode::_4)
+                .with_show_bg2(now.show_bg2())
+                .with_show_frame1(self.shown_page == 1),
+        );
+    }
+
+    /// DISPCNT as it is now.
+    pub fn control(&self) -> DisplayControl {
+        DISPCNT.read()
+    }
+
     /// Sleeps until the next VBlank starts, changing nothing.
     pub fn wait_vblank(&self) {
         VBlankIntrWait();
@@ -73,7 +102,8 @@ impl Display {
         BG2X.write(i32fx8::from_bits(0));
         BG2Y.write(i32fx8::from_bits(0));
         DISPCNT.write(
-            DisplayControl::new()
+            DISPCNT
+                .read()
                 .with_video_mode(VideoMode::_4)
                 .with_show_bg2(with_bg2)
                 .with_show_frame1(self.shown_page == 1),
