@@ -86,7 +86,7 @@ mod rom {
         // After the boot keys are read (a test holds them for the first frames only), before any
         // scene: the soak test's guard over OBJ VRAM reads the copy as the game starts, and
         // nothing may write there afterwards.
-        memory::colormap_in_vram();
+        memory::colormap_in_vram(&assets::COLORMAP.0);
         memory::code_in_vram();
         if held_at_boot & (KEY_L | KEY_R | KEY_A) == KEY_L | KEY_R | KEY_A {
             machine_check_scene(&mut display);
@@ -153,7 +153,10 @@ mod rom {
     fn play_scene(display: &mut Display, frame_lines: bool) -> ! {
         let renderer = memory::renderer_in_ewram(meter::now);
         let colours = MenuColours::from_palette(&assets::PALETTE);
-        let game = memory::game_in_ewram(assets::MAPS);
+        let game = game_in_ewram(assets::MAPS);
+        // Everything the scene keeps in EWRAM is handed out before it starts, so the
+        // `ewram_used` of its start line is final (the soak guards the EWRAM above it).
+        LentPageRows::prepare(textures_in_ewram().len());
         let mut sampler = input::Sampler::new();
         // What the two timer reads around a tick cost with nothing between them: taken off
         // each tick's figure, so `tick_cycles` counts the tick alone.
@@ -162,10 +165,11 @@ mod rom {
             meter::cycles_since(started)
         };
         log::info(format_args!(
-            "play start vblank={} map={} timer_cycles={timer_cycles} frame_lines={}",
+            "play start vblank={} map={} timer_cycles={timer_cycles} frame_lines={} ewram_used={}",
             sampler.next_index(),
             game.map_name(),
-            u8::from(frame_lines)
+            u8::from(frame_lines),
+            memory::ewram_used()
         ));
         let mut rate = RateWindow::new(sampler.next_index());
         let mut frame: u32 = 0;
@@ -453,8 +457,8 @@ mod rom {
     /// `bench done`. `cargo bench-report` and the guard test read the lines.
     fn bench_scene(display: &mut Display, guard_only: bool) -> ! {
         let renderer = memory::renderer_in_ewram(meter::now);
-        let world = memory::bench_world_in_ewram();
-        let flight = memory::bench_flight_in_ewram();
+        let world = memory::ewram_uninit().write(const { GameWorld::new() });
+        let flight = memory::ewram_uninit();
         let mut run = |(map, settings): (&'static MapTables<'static>, Settings), kernels: bool| {
             let render_assets = demo::assets_for(settings.textures, assets_in_fast_memory);
             // Started here, not in `bench_run`: its construction is the scene's deepest stack.
@@ -571,7 +575,7 @@ mod rom {
         {
             *lent = None;
         } else if lent.is_none() {
-            *lent = LentPageRows::lend(memory::textures_in_ewram());
+            *lent = LentPageRows::lend(textures_in_ewram(), assets::TEXTURE_CHAINS_BY_HEAT);
         }
     }
 
@@ -595,8 +599,54 @@ mod rom {
         &'static [portalcast_format::Texture<'static>],
         &'static portalcast_format::Colormap,
     ) {
-        (memory::textures_in_ewram(), memory::colormap_in_vram())
+        (
+            textures_in_ewram(),
+            memory::colormap_in_vram(&assets::COLORMAP.0),
+        )
     }
+
+    /// The textures, those the asset compiler placed in EWRAM copied there (once).
+    fn textures_in_ewram() -> &'static [portalcast_format::Texture<'static>] {
+        memory::textures_in_ewram(
+            assets::TEXTURES,
+            &assets::TEXEL_BLOB.0,
+            assets::TEXEL_EWRAM_LEN,
+        )
+    }
+
+    /// The game on `maps`, in EWRAM: with a map's live sector table
+    /// ([`portalcast::world::World`]) it is too large for the stack's room in IWRAM. The blank
+    /// game is a constant: written without a copy on the stack, then started in place.
+    fn game_in_ewram(maps: &'static [MapTables<'static>]) -> &'static mut Game<'static> {
+        let game = memory::ewram_uninit().write(const { Game::blank(&[]) });
+        game.set_maps(maps);
+        game.start();
+        game
+    }
+
+    // The EWRAM the asset compiler gives textures (`portalcast_format::memory`) is what the
+    // ROM's own state leaves: a renderer or game grown past its share stops the build here,
+    // naming the constant, rather than at run time.
+    const _: () = {
+        use portalcast_format::memory::{
+            ewram_texel_budget, live_state_bytes, EWRAM_ENGINE_BYTES, TEXTURE_ENTRY_BYTES,
+        };
+        let live_state = live_state_bytes(
+            assets::LIVE_SECTORS,
+            assets::LIVE_MOVERS,
+            assets::LIVE_TRIGGERS,
+        );
+        assert!(
+            core::mem::size_of::<GbaRenderer>()
+                + core::mem::size_of::<Game>()
+                + core::mem::size_of::<GameWorld>()
+                + core::mem::size_of::<LiveFlight>()
+                <= EWRAM_ENGINE_BYTES + live_state,
+            "the renderer's, the game's and the bench's EWRAM outgrew EWRAM_ENGINE_BYTES (crates/format/src/memory.rs)"
+        );
+        assert!(core::mem::size_of::<portalcast_format::Texture<'static>>() <= TEXTURE_ENTRY_BYTES);
+        assert!(assets::TEXEL_EWRAM_LEN <= ewram_texel_budget(assets::TEXTURE_COUNT, live_state));
+    };
 
     /// B held at boot: the foundation's test picture. Select cycles the resolution, left/right
     /// scroll.

@@ -161,7 +161,16 @@ fn soak_map(map: &'static str, seed: u64, frames: u32) -> Result<String, String>
         .to_owned();
     let iwram_used = number(&boot_line, "iwram_used") as u32;
     let stack_room = number(&boot_line, "stack_room") as u32;
-    let ewram_used = number(&boot_line, "ewram_used") as u32;
+    // The EWRAM the game was handed (its linked statics and what it took at start), final by
+    // its start line.
+    let start_line = emulator
+        .debug_lines()
+        .into_iter()
+        .find(|line| line.starts_with("play start"))
+        .ok_or("no play start line")?
+        .to_owned();
+    let ewram_used = number(&start_line, "ewram_used") as u32;
+    assert!(ewram_used >= number(&boot_line, "ewram_used") as u32);
 
     // More ticks than the frames left: the ROM's last frame may run a tick or two past them.
     let ticks = frames + 64;

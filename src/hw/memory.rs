@@ -26,10 +26,13 @@ pub fn stack_reserve() -> usize {
 /// Start of EWRAM.
 pub const EWRAM_START: usize = 0x0200_0000;
 
-/// Bytes of EWRAM the ROM uses (its `.ewram_bss`: the renderer's memory and the texture copy);
-/// nothing is ever written above them.
+/// Bytes of EWRAM the ROM uses so far: its `.ewram_bss` (the renderer's memory) and what
+/// [`ewram_uninit`] has handed out (the game's state, the texture copy); nothing is ever written
+/// above them.
 pub fn ewram_used() -> usize {
-    &raw const __ewram_bss_end as usize - EWRAM_START
+    // SAFETY: single-threaded read of a word only `take_ewram` writes.
+    let next = unsafe { (&raw const EWRAM_NEXT).read() };
+    next.max(&raw const __ewram_bss_end as usize) - EWRAM_START
 }
 
 /// Bytes of IWRAM taken by code, data and zeroed data.
@@ -196,153 +199,112 @@ pub fn renderer_in_ewram(clock: fn() -> u32) -> &'static mut GbaRenderer {
     }
 }
 
-use crate::game::Game;
-
-#[link_section = ".ewram_bss"]
-static mut GAME: MaybeUninit<Game<'static>> = MaybeUninit::uninit();
-static mut GAME_TAKEN: bool = false;
-
-/// The game on `maps`, in EWRAM: with a map's live sector table ([`crate::world::World`]) it
-/// is too large for the stack's room in IWRAM. Hands it out once.
-pub fn game_in_ewram(
-    maps: &'static [portalcast_format::MapTables<'static>],
-) -> &'static mut Game<'static> {
-    // SAFETY: single-threaded, and the flag makes this the only reference ever made to the
-    // static; the interrupt handler never touches it. `write` initialises it before the
-    // reference is made.
-    unsafe {
-        let taken = &raw mut GAME_TAKEN;
-        assert!(!*taken, "the game's memory is handed out once");
-        *taken = true;
-        let slot: *mut Game<'static> = (&raw mut GAME).cast();
-        // The blank game is a constant: written without a copy on the stack, then started in
-        // place.
-        slot.write(const { Game::blank(&[]) });
-        let game = &mut *slot;
-        game.set_maps(maps);
-        game.start();
-        game
-    }
-}
-
-use crate::game::GameWorld;
-
-#[link_section = ".ewram_bss"]
-static mut BENCH_WORLD: MaybeUninit<GameWorld> = MaybeUninit::uninit();
-static mut BENCH_WORLD_TAKEN: bool = false;
-
-/// The bench scene's live world (its fly-through's doors and lifts: [`crate::live_flight`]), in
-/// EWRAM for the same reason as the game's. Hands it out once.
-pub fn bench_world_in_ewram() -> &'static mut GameWorld {
-    // SAFETY: single-threaded, and the flag makes this the only reference ever made to the
-    // static; the interrupt handler never touches it. `write` initialises it (EWRAM's bss
-    // starts as whatever the last program left) before the reference is made.
-    unsafe {
-        let taken = &raw mut BENCH_WORLD_TAKEN;
-        assert!(!*taken, "the bench's world is handed out once");
-        *taken = true;
-        let slot: *mut GameWorld = (&raw mut BENCH_WORLD).cast();
-        slot.write(const { GameWorld::new() });
-        &mut *slot
-    }
-}
-
-use crate::live_flight::LiveFlight;
-
-#[link_section = ".ewram_bss"]
-static mut BENCH_FLIGHT: MaybeUninit<LiveFlight<'static>> = MaybeUninit::uninit();
-static mut BENCH_FLIGHT_TAKEN: bool = false;
-
-/// Where the bench scene keeps the fly-through it is flying: in EWRAM, not in its stack frame
-/// under the renderer's (a flight is half a kilobyte, and IWRAM's stack has no room for it).
-/// Hands it out once; each run writes its own flight there.
-pub fn bench_flight_in_ewram() -> &'static mut MaybeUninit<LiveFlight<'static>> {
-    // SAFETY: single-threaded, and the flag makes this the only reference ever made to the
-    // static; the interrupt handler never touches it. A `MaybeUninit` needs no initialising.
-    unsafe {
-        let taken = &raw mut BENCH_FLIGHT_TAKEN;
-        assert!(!*taken, "the bench's flight slot is handed out once");
-        *taken = true;
-        let slot: *mut MaybeUninit<LiveFlight<'static>> = &raw mut BENCH_FLIGHT;
-        &mut *slot
-    }
-}
-
-use crate::assets;
 use crate::frame;
-use portalcast_format::{Align4, Texture};
+use portalcast_format::{Align4, Texture, TextureChain};
 
-#[link_section = ".ewram_bss"]
-static mut TEXEL_COPY: Align4<[u8; assets::TEXEL_EWRAM_LEN]> = Align4([0; assets::TEXEL_EWRAM_LEN]);
+/// The end of EWRAM.
+const EWRAM_END: usize = EWRAM_START + portalcast_format::memory::EWRAM_BYTES;
 
-// The EWRAM the asset compiler gives textures (`portalcast_format::memory`) is what the engine's
-// own statics leave: a renderer grown past its share stops the build here, naming the
-// constant, rather than in the linker.
-const _: () = {
-    use portalcast_format::memory::{
-        ewram_texel_budget, live_state_bytes, EWRAM_ENGINE_BYTES, TEXTURE_ENTRY_BYTES,
-    };
-    let live_state = live_state_bytes(
-        assets::LIVE_SECTORS,
-        assets::LIVE_MOVERS,
-        assets::LIVE_TRIGGERS,
-    );
-    assert!(
-        core::mem::size_of::<GbaRenderer>()
-            + core::mem::size_of::<Game>()
-            + core::mem::size_of::<crate::game::GameWorld>()
-            + core::mem::size_of::<crate::live_flight::LiveFlight>()
-            <= EWRAM_ENGINE_BYTES + live_state,
-        "the renderer's, the game's and the bench's EWRAM outgrew EWRAM_ENGINE_BYTES (crates/format/src/memory.rs)"
-    );
-    assert!(core::mem::size_of::<Texture<'static>>() <= TEXTURE_ENTRY_BYTES);
-    assert!(assets::TEXEL_EWRAM_LEN <= ewram_texel_budget(assets::TEXTURE_COUNT, live_state));
-};
-#[link_section = ".ewram_bss"]
-static mut EWRAM_TEXTURES: MaybeUninit<[Texture<'static>; assets::TEXTURE_COUNT]> =
-    MaybeUninit::uninit();
-static mut TEXTURES_TAKEN: bool = false;
+/// The first EWRAM byte no one has been handed yet ([`ewram_uninit`]); 0 until the first hand-out,
+/// which starts it at the end of the linked `.ewram_bss`. In IWRAM's `.bss`, which the runtime
+/// clears at boot (EWRAM's is not: a real GBA powers on with arbitrary bytes there).
+#[link_section = ".bss.ewram_next"]
+static mut EWRAM_NEXT: usize = 0;
 
-/// The texture placement knob's EWRAM side: copies the texels (both layouts, all mip levels) of
-/// the textures the asset compiler placed in EWRAM (the hottest that fit, at the start of the
-/// blob: `assets::TEXEL_EWRAM_LEN` bytes) from the cartridge and returns the textures, those
-/// re-pointed there and the others still in the cartridge. EWRAM reads cost 3 cycles a byte
-/// against the cartridge's 5 (WAITCNT 0x4317, sequential or not: the kernels' texel loads are
-/// random). Done once; later calls return the same table.
-pub fn textures_in_ewram() -> &'static [Texture<'static>] {
-    // SAFETY: single-threaded, and the flag makes the copy and the table's initialisation
-    // happen once, before the only shared references to either are made; the interrupt
-    // handler touches neither. Each entry written lies inside the table (`TEXTURES` has
-    // `TEXTURE_COUNT` entries), and all are written before the table is read.
+/// Hands out `bytes` bytes of EWRAM aligned to `align` that were never handed out before:
+/// their address. Panics, naming what was asked and what is left, if EWRAM is full.
+fn take_ewram(bytes: usize, align: usize) -> usize {
+    // SAFETY: single-threaded; the interrupt handler never hands out memory.
     unsafe {
-        let table: *mut [Texture<'static>; assets::TEXTURE_COUNT] =
-            (&raw mut EWRAM_TEXTURES).cast();
-        let taken = &raw mut TEXTURES_TAKEN;
-        if !*taken {
-            *taken = true;
-            let copy_slot: *mut Align4<[u8; assets::TEXEL_EWRAM_LEN]> = &raw mut TEXEL_COPY;
-            let copy: &'static mut [u8; assets::TEXEL_EWRAM_LEN] = &mut (*copy_slot).0;
-            copy.copy_from_slice(&assets::TEXEL_BLOB.0[..assets::TEXEL_EWRAM_LEN]);
+        let next = &raw mut EWRAM_NEXT;
+        if *next == 0 {
+            *next = &raw const __ewram_bss_end as usize;
+        }
+        let start = (*next).next_multiple_of(align);
+        let left = EWRAM_END.saturating_sub(start);
+        assert!(
+            bytes <= left,
+            "EWRAM is full: {bytes} bytes asked for, {left} left"
+        );
+        *next = start + bytes;
+        start
+    }
+}
+
+/// Room for a `T` in EWRAM, above the linked statics, handed out once and never taken back: for
+/// the large parts of a game (its live world, a game state with the map's sector table) that
+/// the stack's room in IWRAM cannot hold. Build it in place from a constant so that it never
+/// goes through the stack: `memory::ewram_uninit().write(const { World::new() })`. EWRAM reads
+/// cost 3 cycles (IWRAM 1). Panics if EWRAM is full.
+pub fn ewram_uninit<T>() -> &'static mut MaybeUninit<T> {
+    let at = take_ewram(core::mem::size_of::<T>(), core::mem::align_of::<T>());
+    // SAFETY: `take_ewram` never hands out a byte twice, the bytes lie in EWRAM above every
+    // linked static (so nothing else uses them), and the address is aligned for `T`. A
+    // `MaybeUninit` needs no initialising.
+    unsafe { &mut *(at as *mut MaybeUninit<T>) }
+}
+
+/// Room for `len` values of `T` in EWRAM, as [`ewram_uninit`].
+pub fn ewram_uninit_slice<T>(len: usize) -> &'static mut [MaybeUninit<T>] {
+    let bytes = core::mem::size_of::<T>()
+        .checked_mul(len)
+        .expect("EWRAM is full: a slice larger than the address space");
+    let at = take_ewram(bytes, core::mem::align_of::<T>());
+    // SAFETY: as `ewram_uninit`, for `len` values.
+    unsafe { core::slice::from_raw_parts_mut(at as *mut MaybeUninit<T>, len) }
+}
+
+/// The texture table [`textures_in_ewram`] made, once it has: (first entry, entries).
+static mut EWRAM_TEXTURES: (usize, usize) = (0, 0);
+
+/// The texture placement knob's EWRAM side: copies the first `ewram_len` bytes of `blob` (the
+/// asset compiler's texel blob, which holds the hottest textures that fit first, both layouts
+/// and all mip levels: its `TEXEL_EWRAM_LEN`) from the cartridge to EWRAM, and returns
+/// `textures` with those re-pointed at the copy and the others still in the cartridge. EWRAM
+/// reads cost 3 cycles a byte against the cartridge's 5 (WAITCNT 0x4317, sequential or not: the
+/// kernels' texel loads are random). Done once; later calls return the same table, whatever
+/// they pass.
+pub fn textures_in_ewram(
+    textures: &'static [Texture<'static>],
+    blob: &'static [u8],
+    ewram_len: usize,
+) -> &'static [Texture<'static>] {
+    // SAFETY: single-threaded; the table's address is recorded once, after the whole table is
+    // written; the interrupt handler touches none of it.
+    unsafe {
+        let made = &raw mut EWRAM_TEXTURES;
+        if (*made).1 == 0 && !textures.is_empty() {
+            let copy: &'static mut [MaybeUninit<Align4<[u8; 4]>>] =
+                ewram_uninit_slice(ewram_len.div_ceil(4));
+            let copy: &'static mut [u8] =
+                core::slice::from_raw_parts_mut(copy.as_mut_ptr().cast::<u8>(), ewram_len);
+            copy.copy_from_slice(&blob[..ewram_len]);
             let copy: &'static [u8] = copy;
-            let blob = assets::TEXEL_BLOB.0.as_ptr() as usize;
+            let blob_start = blob.as_ptr() as usize;
             // Texels in the copied prefix are read from the copy; the rest from the cartridge.
             let rebase = |texels: &'static [u8]| {
-                let offset = texels.as_ptr() as usize - blob;
-                copy.get(offset..offset + texels.len()).unwrap_or(texels)
+                let offset = (texels.as_ptr() as usize).wrapping_sub(blob_start);
+                copy.get(offset..offset.wrapping_add(texels.len()))
+                    .unwrap_or(texels)
             };
             // Entry by entry in place: the whole table built on the stack first would take
             // 28 bytes a texture of the 4 KiB the stack has (a Doom map's 109 textures: 3 KiB,
             // which once ran the stack into the interrupt handler's pointer).
-            let slots: *mut Texture<'static> = table.cast();
-            for (index, texture) in assets::TEXTURES.iter().enumerate() {
-                slots.add(index).write(Texture {
+            let table = ewram_uninit_slice::<Texture<'static>>(textures.len());
+            for (slot, texture) in table.iter_mut().zip(textures) {
+                slot.write(Texture {
                     columns: rebase(texture.columns),
                     rows: rebase(texture.rows),
                     ..*texture
                 });
             }
+            *made = (table.as_ptr() as usize, table.len());
         }
-        &*table
+        let (at, len) = *made;
+        if len == 0 {
+            return &[];
+        }
+        core::slice::from_raw_parts(at as *const Texture<'static>, len)
     }
 }
 
@@ -406,7 +368,9 @@ pub fn code_in_vram() {
 /// read in 1 cycle, EWRAM in 3 and the cartridge in 5 (WAITCNT 0x4317), and IWRAM has no room
 /// for it. The copy uses word stores (VRAM ignores byte stores to OBJ tiles); afterwards the
 /// colormap is only read. Call it at boot, before the soak's guard regions are read.
-pub fn colormap_in_vram() -> &'static portalcast_format::Colormap {
+pub fn colormap_in_vram(
+    colormap: &portalcast_format::Colormap,
+) -> &'static portalcast_format::Colormap {
     use portalcast_format::Colormap;
     const WORDS: usize = core::mem::size_of::<Colormap>() / 4;
     const { assert!(core::mem::size_of::<Colormap>() <= FREE_OBJ_VRAM_BYTES) };
@@ -418,12 +382,14 @@ pub fn colormap_in_vram() -> &'static portalcast_format::Colormap {
         let copied = &raw mut COLORMAP_COPIED;
         if !*copied {
             *copied = true;
-            let source = assets::COLORMAP.0.as_ptr().cast::<u32>();
+            let source = colormap.as_ptr().cast::<u8>();
             let destination = FREE_OBJ_VRAM as *mut u32;
             for word in 0..WORDS {
+                // Byte by byte: the colormap handed in need not be word aligned.
+                let bytes = core::array::from_fn(|byte| source.add(word * 4 + byte).read());
                 destination
                     .add(word)
-                    .write_volatile(source.add(word).read());
+                    .write_volatile(u32::from_le_bytes(bytes));
             }
         }
         &*(FREE_OBJ_VRAM as *const Colormap)
@@ -452,9 +418,9 @@ const LENT_ROWS: [(usize, usize); 2] = [
 /// other `.bss` flags, whose addressing the hot code shares.
 #[link_section = ".bss.rows_lent"]
 static mut ROWS_LENT: bool = false;
-#[link_section = ".ewram_bss"]
-static mut LENT_TEXTURES: MaybeUninit<[Texture<'static>; assets::TEXTURE_COUNT]> =
-    MaybeUninit::uninit();
+/// The texture table of the lent rows ([`LentPageRows::textures`]), in EWRAM from the first
+/// lend on: (first entry, entries).
+static mut LENT_TEXTURES: (usize, usize) = (0, 0);
 
 /// Whether the page rows from [`LENT_FROM_ROW`] hold texture chains ([`LentPageRows`]): no
 /// canvas or clear may write them then.
@@ -475,13 +441,20 @@ pub struct LentPageRows {
 
 impl LentPageRows {
     /// Copies the chains of `textures` (the table [`textures_in_ewram`] returns, or the
-    /// cartridge's) into the free page rows, hottest first ([`assets::TEXTURE_CHAINS_BY_HEAT`]),
-    /// each that still fits; `None` if the rows are lent already. Copy it only while the
-    /// display shows a resolution of at most [`LENT_FROM_ROW`] rows, or the chains show on
-    /// screen until the next flip.
+    /// cartridge's) into the free page rows, hottest first (`chains_by_heat`, the asset
+    /// compiler's `TEXTURE_CHAINS_BY_HEAT`), each that still fits; `None` if the rows are lent
+    /// already, or if `textures` has not as many entries as at the first lend (whose table,
+    /// in EWRAM, every lend reuses). Copy it only while the display shows a resolution of at
+    /// most [`LENT_FROM_ROW`] rows, or the chains show on screen until the next flip.
     #[inline(never)]
-    pub fn lend(textures: &[Texture<'static>]) -> Option<LentPageRows> {
-        if page_rows_lent() || textures.len() != assets::TEXTURE_COUNT {
+    pub fn lend(
+        textures: &[Texture<'static>],
+        chains_by_heat: &[(u16, TextureChain)],
+    ) -> Option<LentPageRows> {
+        LentPageRows::prepare(textures.len());
+        // SAFETY: single-threaded read of what `prepare` recorded.
+        let (at, len) = unsafe { (&raw const LENT_TEXTURES).read() };
+        if page_rows_lent() || len == 0 || textures.len() != len {
             return None;
         }
         let mut free = LENT_ROWS;
@@ -491,17 +464,15 @@ impl LentPageRows {
         // it). Each copy lies inside one block of `LENT_ROWS` (checked by the fit test), at a
         // word-aligned address, written by halfword stores (VRAM takes no byte stores); the
         // slices made over it are read only, and live no longer than the `&self` borrow
-        // `textures` hands them out under, after which `Drop` clears the flag. The table is
-        // written whole before the first shared reference to it is made.
+        // `textures` hands them out under, after which `Drop` clears the flag. The table (in
+        // EWRAM, handed out once above and used by nothing else) is written whole before the
+        // first shared reference to it is made.
         unsafe {
             (&raw mut ROWS_LENT).write(true);
-            let table: *mut [Texture<'static>; assets::TEXTURE_COUNT] =
-                (&raw mut LENT_TEXTURES).cast();
-            for (slot, texture) in (*table).iter_mut().zip(textures) {
-                *slot = *texture;
-            }
-            for &(index, chain) in assets::TEXTURE_CHAINS_BY_HEAT {
-                let Some(slot) = (*table).get_mut(usize::from(index)) else {
+            let table = core::slice::from_raw_parts_mut(at as *mut Texture<'static>, len);
+            table.copy_from_slice(textures);
+            for &(index, chain) in chains_by_heat {
+                let Some(slot) = table.get_mut(usize::from(index)) else {
                     continue;
                 };
                 let texels = slot.chain(chain);
@@ -529,11 +500,29 @@ impl LentPageRows {
         Some(LentPageRows { chains, bytes })
     }
 
+    /// Hands out the EWRAM table of `textures` entries that every [`LentPageRows::lend`] uses,
+    /// now rather than at the first lend, so that a scene's EWRAM is all handed out when it
+    /// starts; once (later calls change nothing).
+    pub fn prepare(textures: usize) {
+        // SAFETY: single-threaded; the table's address is recorded once, and the interrupt
+        // handler never touches it.
+        unsafe {
+            let made = &raw mut LENT_TEXTURES;
+            if (*made).1 == 0 && textures != 0 {
+                let table = ewram_uninit_slice::<Texture<'static>>(textures);
+                *made = (table.as_ptr() as usize, table.len());
+            }
+        }
+    }
+
     /// The textures, the lent chains read from the page rows.
     pub fn textures(&self) -> &[Texture<'_>] {
         // SAFETY: `lend` wrote the whole table before making `self`; it is only rewritten by
         // the next `lend`, which cannot run while `self` lives (the flag).
-        unsafe { &*(&raw const LENT_TEXTURES).cast::<[Texture<'static>; assets::TEXTURE_COUNT]>() }
+        unsafe {
+            let (at, len) = (&raw const LENT_TEXTURES).read();
+            core::slice::from_raw_parts(at as *const Texture<'static>, len)
+        }
     }
 
     /// How many chains and bytes it holds.
