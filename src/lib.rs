@@ -1,28 +1,22 @@
 //! portalcast: a sector/portal 3D engine for the Game Boy Advance.
 //!
 //! The library is `no_std` and builds for the host (where `cargo test` checks the math, the
-//! rasterizer twins and the renderer against an f64 oracle) and for `thumbv4t-none-eabi` (where the
-//! ROM binary in `main.rs` drives it). See `docs/ARCHITECTURE.md` for the pipeline.
+//! rasterizer twins and the renderer against an f64 oracle) and for `thumbv4t-none-eabi`, where a
+//! game drives it: the shipped ROM (`crates/rom`) is one, built from this public API like any
+//! other. A game brings its own maps, textures and sprites, compiled by
+//! `portalcast_assets::Builder` in its build script (docs/GUIDE.md). See `docs/ARCHITECTURE.md`
+//! for the pipeline.
 #![cfg_attr(not(test), no_std)]
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
-pub mod assets;
-pub mod bench;
-pub mod flight;
 pub mod frame;
-pub mod game;
-pub mod kernel_check;
-pub mod live_flight;
 pub mod math;
 pub mod math_bench;
-pub mod menu;
 pub mod player;
 pub mod raster;
 pub mod render;
-pub mod selfcheck;
 pub mod stack;
-pub mod testpic;
 pub mod text;
 pub mod world;
 

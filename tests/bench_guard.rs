@@ -17,8 +17,8 @@ const CHUNK: u32 = 200;
 
 #[test]
 fn the_rom_and_the_report_agree_on_the_marker_lines() {
-    assert_eq!(portalcast::bench::GUARD_DONE, bench_log::GUARD_DONE);
-    assert_eq!(portalcast::bench::BENCH_DONE, bench_log::BENCH_DONE);
+    assert_eq!(portalcast_rom::bench::GUARD_DONE, bench_log::GUARD_DONE);
+    assert_eq!(portalcast_rom::bench::BENCH_DONE, bench_log::BENCH_DONE);
 }
 
 #[test]

@@ -8,12 +8,12 @@ mod common;
 
 use std::collections::BTreeMap;
 
-use portalcast::flight::eye_z;
 use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::view::{Camera, Settings};
 use portalcast::render::walk::Renderer;
 use portalcast_oracle::compare_with_engine;
+use portalcast_rom::flight::eye_z;
 
 use portalcast_xtask::freedoom::MAPS;
 /// Sampled poses a map (besides the start).

@@ -129,7 +129,7 @@ fn extreme_maps_fly_through_in_the_rom_within_the_cycle_bound() {
     for map in extreme_maps::extreme_maps() {
         let frames = per_map.get(map.name).map_or(0, |entry| entry.1);
         assert!(
-            frames >= portalcast::bench::FRAMES_PER_SETTING as usize,
+            frames >= portalcast_rom::bench::FRAMES_PER_SETTING as usize,
             "{}: {frames} bench frames (expected a run at every resolution)",
             map.name
         );

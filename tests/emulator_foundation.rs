@@ -7,8 +7,8 @@ mod common;
 use common::*;
 use portalcast::frame::Resolution;
 use portalcast::raster::{HostCanvas, HostPage};
-use portalcast::{kernel_check, testpic};
 use portalcast_harness::Keys;
+use portalcast_rom::{kernel_check, testpic};
 
 #[test]
 fn rom_boots_and_prints_its_figures() {
@@ -28,7 +28,7 @@ fn rom_boots_and_prints_its_figures() {
     // The ROM's divisions (ARM code through asm/runtime.s) against the host's.
     assert_eq!(
         number(&boot_line, "division_digest"),
-        u64::from(portalcast::selfcheck::division_digest()),
+        u64::from(portalcast_rom::selfcheck::division_digest()),
         "{boot_line}"
     );
     println!("{boot_line}");

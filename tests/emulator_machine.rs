@@ -1,5 +1,5 @@
 //! A game shares the machine with the engine, in the real mGBA core (the ROM's machine check:
-//! L, R and A held at power-on, src/main.rs): its own interrupt handler runs after the engine's
+//! L, R and A held at power-on, crates/rom/src/main.rs): its own interrupt handler runs after the engine's
 //! on every interrupt, the OBJ-layer bits it sets in DISPCNT survive the display's flips, and a
 //! panic shows its message on the screen and logs it at level Fatal.
 
@@ -60,7 +60,7 @@ fn a_game_chains_interrupts_keeps_its_display_bits_and_sees_its_panic() {
         .expect("the panic's log line");
     assert_eq!(panic_line.level, LogLevel::Fatal, "{panic_line:?}");
     assert!(
-        message.starts_with("panicked at src/main.rs:")
+        message.starts_with("panicked at crates/rom/src/main.rs:")
             && message.ends_with("the machine check's deliberate panic, after 30 flips"),
         "{message}"
     );

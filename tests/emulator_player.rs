@@ -16,12 +16,12 @@ use common::demos::{replay, PlayerLine, WorldLine, WorldLines};
 use common::player::sector_index;
 use common::rom_frames::{boot_until_playing, host_frame_matching, play_frames};
 use common::*;
-use portalcast::game::Game;
 use portalcast::player::vertical::{CROUCH_EYE, JUMP_RISE, STAND_EYE};
 use portalcast::render::walk::Renderer;
 use portalcast::world::Phase;
 use portalcast_format::TRIGGER_THROWN;
 use portalcast_harness::{KeyScript, Keys};
+use portalcast_rom::game::Game;
 
 /// What one run of a demo in the ROM left behind.
 struct RomRun {
@@ -112,7 +112,7 @@ fn play_script(script: &KeyScript, frames: u32) -> RomRun {
 
 /// The floor under the logged pose.
 fn floor_bits(line: &PlayerLine) -> i32 {
-    portalcast::render::demo::demo_map().sectors[usize::from(line.sector)].floor_z * 256
+    portalcast_rom::demo::demo_map().sectors[usize::from(line.sector)].floor_z * 256
 }
 
 #[test]
@@ -367,7 +367,7 @@ fn the_tick_benchmark_walk_turns_strafes_jumps_and_slides_along_walls() {
     let script = KeyScript::load(&portalcast_xtask::workspace_root().join(KEYS_FILE))
         .unwrap_or_else(|error| panic!("{error}"));
     let run = play_script(&script, FRAMES);
-    let map = portalcast::render::demo::demo_map();
+    let map = portalcast_rom::demo::demo_map();
     let walls: Vec<((f64, f64), (f64, f64))> = solid_walls(&map)
         .into_iter()
         .map(|(a, b)| {

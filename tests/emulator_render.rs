@@ -11,15 +11,15 @@ mod common;
 use common::demos::{render_line_settings, PlayerLine, WorldLine, WorldLines};
 use common::*;
 use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
-use portalcast::menu::{self, MenuColours, Shown};
 use portalcast::raster::{HostCanvas, HostPage};
-use portalcast::render::demo;
 use portalcast::render::view::{
     Floors, Preprocessing, Settings, TexturePlacement, ThingsShown, View,
 };
 use portalcast::render::walk::Renderer;
 use portalcast::render::RenderAssets;
 use portalcast_harness::{Emulator, Keys};
+use portalcast_rom::demo;
+use portalcast_rom::menu::{self, MenuColours, Shown};
 use std::collections::BTreeSet;
 
 /// One frame the ROM drew, compared.
@@ -232,7 +232,7 @@ fn rom_frames_are_identical_to_the_host_renderer() {
         emulator: boot(),
         assets: demo::render_assets(),
         renderer: Renderer::new(),
-        colours: MenuColours::from_palette(&portalcast::assets::PALETTE),
+        colours: MenuColours::from_palette(&portalcast_rom::assets::PALETTE),
         player: None,
         world: None,
         world_lines: WorldLines::default(),
@@ -293,7 +293,10 @@ fn rom_frames_are_identical_to_the_host_renderer() {
 
     let compared = &checker.compared;
     let maps: BTreeSet<&str> = compared.iter().map(|c| c.map.as_str()).collect();
-    let compiled: BTreeSet<&str> = portalcast::assets::MAPS.iter().map(|m| m.name).collect();
+    let compiled: BTreeSet<&str> = portalcast_rom::assets::MAPS
+        .iter()
+        .map(|m| m.name)
+        .collect();
     assert_eq!(maps, compiled, "the menu must reach every shipped map");
     for lighting in ["depth", "off", "sector"] {
         assert!(

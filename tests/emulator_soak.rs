@@ -36,12 +36,12 @@ mod common;
 use common::demos::{PlayerLine, WorldLine, WorldLines};
 use common::player::check_tick;
 use common::{boot, field, number, FRAME_LINES_HOLD, FRAME_LINES_KEY};
-use portalcast::game::Game;
-use portalcast::menu::{Entry, ENTRIES};
 use portalcast::player::input::Buttons;
 use portalcast::render::walk::ColumnWindows;
 use portalcast::stack::{IWRAM_START, STACK_PAINT, STACK_TOP};
 use portalcast_harness::{Emulator, KeyScript, Keys, LogLevel};
+use portalcast_rom::game::Game;
+use portalcast_rom::menu::{Entry, ENTRIES};
 // SplitMix64, seeded: the soak is the same run every time.
 use portalcast_oracle::Rng;
 use std::collections::BTreeSet;
@@ -110,7 +110,10 @@ fn every_map_survives_random_and_adversarial_input() {
                 .unwrap_or_else(|_| panic!("PORTALCAST_SOAK_FRAMES={text} is not a frame count"))
         })
         .unwrap_or(SHORT_SOAK_FRAMES);
-    let maps: Vec<&'static str> = portalcast::assets::MAPS.iter().map(|m| m.name).collect();
+    let maps: Vec<&'static str> = portalcast_rom::assets::MAPS
+        .iter()
+        .map(|m| m.name)
+        .collect();
     // One emulator per map, on their own threads: the maps are independent runs.
     let reports: Vec<Result<String, String>> = std::thread::scope(|scope| {
         let handles: Vec<_> = maps
@@ -454,7 +457,7 @@ impl Plan {
     fn write(map: &str, seed: u64, ticks: u32) -> Plan {
         let mut plan = Plan {
             keys: Vec::new(),
-            states: vec![Game::new(portalcast::assets::MAPS)],
+            states: vec![Game::new(portalcast_rom::assets::MAPS)],
             rng: Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15)),
         };
         // Idle first: the game may have ticked once or twice before the script takes over.
@@ -534,7 +537,7 @@ impl Plan {
         while self.game().menu.cursor != entry {
             self.press(Buttons::DOWN.0);
         }
-        for _ in 0..portalcast::assets::MAPS.len() {
+        for _ in 0..portalcast_rom::assets::MAPS.len() {
             if self.game().map_name() == map {
                 break;
             }

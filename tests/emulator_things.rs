@@ -42,9 +42,9 @@ fn sprite_covers(
 ) -> Option<Vec<bool>> {
     let thing = &map.things[index];
     // The shipped tiny map's things are still images seen alike from every side.
-    let set = &portalcast::assets::SPRITE_SETS[usize::from(thing.sprite)];
+    let set = &portalcast_rom::assets::SPRITE_SETS[usize::from(thing.sprite)];
     assert_eq!((set.frames, set.rotations), (1, 1), "{}", set.name);
-    let sprite = &portalcast::assets::SPRITES[usize::from(set.first)];
+    let sprite = &portalcast_rom::assets::SPRITES[usize::from(set.first)];
     let (sin, cos) = portalcast_oracle::engine_direction(camera);
     let (dx, dy) = (
         f64::from(thing.x_fx8) / 256.0 - camera.x,

@@ -29,7 +29,6 @@ use std::collections::BTreeSet;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
-use portalcast::flight::{eye_z, strictly_inside};
 use portalcast::frame::Resolution;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::render::view::{Camera, Preprocessing, Settings, MAX_LOOK_LINES};
@@ -37,6 +36,7 @@ use portalcast::render::walk::{Renderer, MAX_PORTAL_DEPTH};
 use portalcast::render::RenderAssets;
 use portalcast_format::{MapTables, NO_PORTAL};
 use portalcast_oracle::{angle_to_bits, compare_with_engine, sample_poses};
+use portalcast_rom::flight::{eye_z, strictly_inside};
 use portalcast_xtask::extreme_maps::{self, CHAIN_SECTORS, PORTAL_ALCOVES, STAR_SECTORS};
 
 /// The environment variable that sets how many poses of each kind a map gets.

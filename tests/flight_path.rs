@@ -6,10 +6,10 @@ mod common;
 
 use std::collections::BTreeSet;
 
-use portalcast::assets::MAPS;
-use portalcast::bench::FRAMES_PER_SETTING;
-use portalcast::flight::{Flight, MAX_TURN_PER_FRAME, SPEED};
 use portalcast::math::{point_in_convex_polygon, Containment, WorldPoint};
+use portalcast_rom::assets::MAPS;
+use portalcast_rom::bench::FRAMES_PER_SETTING;
+use portalcast_rom::flight::{Flight, MAX_TURN_PER_FRAME, SPEED};
 
 /// Frames checked per map: many tours' worth on the shipped maps.
 const CHECKED_FRAMES: usize = 20_000;
@@ -98,10 +98,10 @@ fn the_flight_is_the_same_every_time() {
 
 #[test]
 fn the_slopes_map_s_benchmark_frames_pass_over_and_under_the_bridge() {
-    let map = portalcast::render::demo::map_named("slopes").expect("the slopes map is shipped");
+    let map = portalcast_rom::demo::map_named("slopes").expect("the slopes map is shipped");
     let name = |name: &str| common::player::sector_index("slopes.map", name);
     let seen: BTreeSet<u16> = Flight::new(&map)
-        .take(portalcast::bench::frames_for(&map) as usize)
+        .take(portalcast_rom::bench::frames_for(&map) as usize)
         .map(|camera| camera.sector)
         .collect();
     for sector in [

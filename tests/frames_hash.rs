@@ -3,16 +3,16 @@
 //!
 //! `cargo test --release --test frames_hash -- --nocapture` prints the hash.
 
-use portalcast::assets;
-use portalcast::bench::default_settings;
-use portalcast::flight::Flight;
 use portalcast::frame::Resolution;
 use portalcast::math::Angle;
-use portalcast::render::demo::render_assets;
 use portalcast::render::view::{Camera, View};
 use portalcast::render::walk::Renderer;
 use portalcast_format::MapTables;
 use portalcast_oracle::RecordingCanvas;
+use portalcast_rom::assets;
+use portalcast_rom::bench::default_settings;
+use portalcast_rom::demo::render_assets;
+use portalcast_rom::flight::Flight;
 
 /// Frames of each map's fly-through hashed (from its start: the map as drawn, no mover moved;
 /// the value below was measured on these).

@@ -2108,33 +2108,50 @@ fn every_map_compiles_to_valid_tables_or_fails_cleanly() {
 // ---------------------------------------------------------------------------------------------
 // The build script's side of the contract, and regressions.
 
-/// `build.rs` writes the assets only after `compile_dir` succeeded: its error arm exits first.
+/// The build scripts' `portalcast_assets::Builder` writes nothing when the assets do not
+/// compile (the old tables stay, and so does the old `.gba`), and everything when they do.
 #[test]
-fn build_script_writes_only_after_a_successful_compile() {
-    let script = std::fs::read_to_string(repo().join("build.rs")).expect("reading build.rs");
-    let compile = script
-        .find("portalcast_assets::compile_dir(")
-        .expect("build.rs compiles with compile_dir");
-    let error_arm = compile
-        + script[compile..]
-            .find("Err(errors) =>")
-            .expect("build.rs matches the compile error");
-    let exit = error_arm
-        + script[error_arm..]
-            .find("std::process::exit(1)")
-            .expect("the error arm exits");
+fn the_builder_writes_only_after_a_successful_compile() {
+    let base = std::env::temp_dir().join(format!("portalcast-builder-{}", std::process::id()));
+    let (assets, out) = (base.join("assets"), base.join("out"));
+    let _ = std::fs::remove_dir_all(&base);
+    std::fs::create_dir_all(assets.join("maps")).unwrap();
+    std::fs::create_dir_all(&out).unwrap();
+    let shipped = repo().join("assets");
+    for dir in ["textures", "sky", "sprites"] {
+        copy_dir(&shipped.join(dir), &assets.join(dir));
+    }
+    std::fs::write(assets.join("maps/broken.map"), "sector nonsense\n").unwrap();
+    let builder = || {
+        portalcast_assets::Builder::new(&assets)
+            .out_dir(&out)
+            .rom_link(false)
+    };
+    let error = builder().build().expect_err("a broken map");
+    assert!(error.to_string().contains("broken.map:1:"), "{error}");
     assert_eq!(
-        script.matches("write_to(").count(),
-        1,
-        "build.rs writes the assets in one place"
+        std::fs::read_dir(&out).unwrap().count(),
+        0,
+        "nothing written on an error"
     );
-    let write = script
-        .find("compiled.write_to(")
-        .expect("build.rs writes the compiled assets");
-    assert!(
-        compile < error_arm && error_arm < exit && exit < write,
-        "build.rs must exit on a compile error before it writes anything"
-    );
+    std::fs::copy(
+        shipped.join("maps/tiny.map"),
+        assets.join("maps/broken.map"),
+    )
+    .unwrap();
+    builder().build().expect("the shipped tiny map");
+    assert!(out.join(portalcast_assets::ASSETS_FILE).is_file());
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+fn copy_dir(from: &std::path::Path, to: &std::path::Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        if entry.file_type().unwrap().is_file() {
+            std::fs::copy(entry.path(), to.join(entry.file_name())).unwrap();
+        }
+    }
 }
 
 /// The shipped maps pass the whole pipeline unmutated (and so does the validator).

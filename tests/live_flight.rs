@@ -1,16 +1,16 @@
-//! The fly-through through the live world (`portalcast::live_flight`, issue 18): on every shipped
+//! The fly-through through the live world (`portalcast_rom::live_flight`, issue 18): on every shipped
 //! map the camera's eye stays strictly between its sector's live floor and ceiling (a slope's
 //! under it), the camera never gives up waiting, and the world it flies through is the game's
 //! (its movers within their ranges, and moving where the map has any); on the bench map it opens the corridor's door and waits for it, and rides the
 //! lift down with its eye on the lift's floor.
 
-use portalcast::assets;
-use portalcast::flight::EYE_HEIGHT;
-use portalcast::game::GameWorld;
-use portalcast::live_flight::{LiveFlight, MAX_WAIT_FRAMES};
 use portalcast::player::collide::RADIUS;
 use portalcast::world::Phase;
 use portalcast_format::{MOVER_DOOR, MOVER_LIFT, THING_SOLID};
+use portalcast_rom::assets;
+use portalcast_rom::flight::EYE_HEIGHT;
+use portalcast_rom::game::GameWorld;
+use portalcast_rom::live_flight::{LiveFlight, MAX_WAIT_FRAMES};
 
 /// Frames flown on each map: well past one tour of the bench map.
 const FRAMES: u32 = 2000;
@@ -91,7 +91,7 @@ fn on_the_bench_map_the_camera_opens_the_door_and_rides_the_lift() {
     let mut flight = LiveFlight::new(map, &mut world);
     let (mut through_door, mut rode_down) = (None, false);
     let mut previous = flight.camera().sector;
-    for frame in 0..portalcast::bench::BENCH_MAP_FRAMES {
+    for frame in 0..portalcast_rom::bench::BENCH_MAP_FRAMES {
         let camera = flight.camera();
         let crossed = camera.sector != previous
             && door_neighbours.contains(&previous)

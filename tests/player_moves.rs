@@ -12,8 +12,8 @@ use portalcast::player::collide::RADIUS;
 use portalcast::player::input::Intent;
 use portalcast::player::vertical::{CROUCH_EYE, JUMP_RISE, JUMP_TICKS, STAND_EYE};
 use portalcast::player::Player;
-use portalcast::render::demo;
 use portalcast_format::{MapTables, PlayerSize};
+use portalcast_rom::demo;
 
 fn bench() -> MapTables<'static> {
     demo::map_named("bench").expect("the bench map is shipped")

@@ -86,7 +86,7 @@ fn place(map: &MapTables, sector_pick: usize, weights: &[u32], angle: u16) -> Op
 }
 
 fn random_moves_keep_the_invariants(map_name: &str) {
-    let map = portalcast::render::demo::map_named(map_name).expect("a shipped map");
+    let map = portalcast_rom::demo::map_named(map_name).expect("a shipped map");
     random_moves_keep_the_invariants_on(&map, CASES);
 }
 
@@ -187,7 +187,10 @@ fn random_moves_never_enter_a_cluster_of_solid_things() {
 
 #[test]
 fn every_shipped_map_is_covered() {
-    let names: Vec<&str> = portalcast::assets::MAPS.iter().map(|m| m.name).collect();
+    let names: Vec<&str> = portalcast_rom::assets::MAPS
+        .iter()
+        .map(|m| m.name)
+        .collect();
     assert_eq!(
         names,
         ["bench", "grid", "slopes", "tiny"],

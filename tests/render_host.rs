@@ -179,7 +179,7 @@ fn a_middle_seen_from_near_its_wall_line_keeps_its_steps_in_the_kernel_s_bound()
     let mut canvas = StepsChecking(RecordingCanvas::new(settings.resolution));
     let stats = Renderer::new().render(
         &live.map(&map),
-        &portalcast::render::demo::render_assets(),
+        &portalcast_rom::demo::render_assets(),
         &view,
         &mut canvas,
     );

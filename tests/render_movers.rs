@@ -4,18 +4,18 @@
 //! the accuracy targets: at most 0.5 % of pixels on another surface and no missed sector. And the
 //! bench's switch, thrown, shows its used texture in both.
 
-use portalcast::assets;
 use portalcast::frame::Resolution;
-use portalcast::game::GameWorld;
 use portalcast::math::{Angle, Fx24_8, WorldPoint};
 use portalcast::player::Player;
-use portalcast::render::demo::render_assets;
 use portalcast::render::surface::Surface;
 use portalcast::render::view::{Camera, Settings};
 use portalcast::render::walk::Renderer;
 use portalcast::world::Phase;
 use portalcast_format::{MapTables, MOVER_DOOR, MOVER_LIFT, TRIGGER_SWITCH};
 use portalcast_oracle::compare_with_engine;
+use portalcast_rom::assets;
+use portalcast_rom::demo::render_assets;
+use portalcast_rom::game::GameWorld;
 
 const SURFACE_MISMATCH_MAX_PERCENT: f64 = 0.5;
 

@@ -10,15 +10,15 @@
 //! `cargo test --release --test scene_preprocessing -- --nocapture`. The cycles it saves or
 //! costs are in docs/BENCH.md (the `prep=on` rows).
 
-use portalcast::assets::MAPS;
-use portalcast::bench::{default_settings, FRAMES_PER_SETTING};
-use portalcast::flight::Flight;
 use portalcast::frame::Resolution;
-use portalcast::render::demo::render_assets;
 use portalcast::render::view::{Camera, Preprocessing, Settings, View};
 use portalcast::render::walk::{FrameStats, Renderer};
 use portalcast_format::MapTables;
 use portalcast_oracle::{plane_groups, plane_surface, RecordingCanvas};
+use portalcast_rom::assets::MAPS;
+use portalcast_rom::bench::{default_settings, FRAMES_PER_SETTING};
+use portalcast_rom::demo::render_assets;
+use portalcast_rom::flight::Flight;
 
 /// Differing pixels allowed, per pixel compared: one in ten thousand.
 const DIFFERING_PIXELS_PER_PIXEL: f64 = 1e-4;

@@ -1,8 +1,8 @@
 //! The ARM kernels of `asm/`, assembled into IWRAM, behind safe calls.
 
 use crate::frame::{PAGE_HALFWORDS, PAGE_ROW_HALFWORDS};
+use crate::raster::span::SpanTarget;
 use crate::raster::span::{SpanPacking, SpanSteps, SpanTexture};
-use crate::testpic::SpanTarget;
 
 // `raw`: the files are plain assembly, so `{r4-r10}` register lists are not format arguments.
 // Each file switches the assembler to ARM; `restore_code_mode!` switches it back to the mode

@@ -56,7 +56,7 @@ impl Window {
 }
 
 use crate::frame::{PAGE_HALFWORDS, PAGE_ROW_HALFWORDS};
-use crate::testpic::SpanTarget;
+use crate::raster::span::SpanTarget;
 use span::{SpanPacking, SpanSteps, SpanTexture};
 
 /// A Mode 4 page in host memory, drawn by the twins: what the ROM's VRAM page holds after the

@@ -62,6 +62,21 @@ pub fn draw_span(dst: &mut [u16], texture: &SpanTexture, steps: SpanSteps, packi
     }
 }
 
+/// Receives spans: the VRAM back page through the asm kernels on the GBA, a host page through the
+/// twins in tests.
+pub trait SpanTarget {
+    /// Draws `halfwords` halfwords of page row `row`, starting at halfword `first_halfword`.
+    fn draw_span(
+        &mut self,
+        row: usize,
+        first_halfword: usize,
+        halfwords: usize,
+        texture: &SpanTexture,
+        steps: SpanSteps,
+        packing: SpanPacking,
+    );
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -3,7 +3,6 @@
 //! they share (`surface`, `light`), things (`things`, r_things), and the thesis' scene preprocessing (`visits`). Rasterizing
 //! goes through [`crate::raster::Canvas`].
 
-pub mod demo;
 pub mod light;
 pub mod planes;
 pub mod ratio;

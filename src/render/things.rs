@@ -652,9 +652,9 @@ fn wrap_column(u_fx8: i64, width: u32) -> u8 {
 /// What a middle's columns share and the ray fraction's numerator and denominator at the
 /// column before the first, with their steps: the set-up of the columns of a wall whose
 /// middle image is `width` columns wide with its top edge at height `top`, seen by `view`
-/// from eye-space `a` to `b`, lit by its sector's `light` level ([`Things::collect_middle`]'s,
+/// from eye-space `a` to `b`, lit by its sector's `light` level (`Things::collect_middle`'s,
 /// and the kernel check's, which hands it random walls).
-pub(crate) struct MiddleSetup {
+pub struct MiddleSetup {
     /// What every column shares.
     pub(crate) shared: MiddleShared,
     /// The numerator of the ray's fraction along the wall at the column before the first.
@@ -668,7 +668,7 @@ pub(crate) struct MiddleSetup {
 impl MiddleSetup {
     /// The set-up of the middle columns from `first_column` on of the wall from `a` to `b`
     /// (eye space), `(length_fx8, x_offset)` its length in 24.8 bits and its texture offset.
-    pub(crate) fn new(
+    pub fn new(
         view: &View,
         (a, b): (EyePoint, EyePoint),
         first_column: i32,
@@ -743,9 +743,9 @@ impl MiddleSetup {
 }
 
 /// The columns `columns` of a middle, as the canvas's own loop makes them
-/// ([`Canvas::middle_columns`]) where it has one, else as [`middle_columns`], their twin, does;
+/// ([`Canvas::middle_columns`]) where it has one, else as `middle_columns`, their twin, does;
 /// how many it wrote to `out`.
-pub(crate) fn middle_columns_of(
+pub fn middle_columns_of(
     canvas: &mut impl Canvas,
     setup: &MiddleSetup,
     columns: core::ops::Range<i32>,

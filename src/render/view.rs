@@ -33,7 +33,7 @@ pub struct Settings {
     /// Lighting rule.
     pub lighting: Lighting,
     /// Where the ROM reads texels from. The renderer draws whatever textures it is handed; the
-    /// ROM picks them by this knob ([`crate::render::demo::assets_for`]).
+    /// ROM picks them by this knob (`portalcast_rom::demo::assets_for`).
     pub textures: TexturePlacement,
     /// Whether the visits of a sector seen through neighbouring portals are merged first.
     pub preprocessing: Preprocessing,

@@ -8,9 +8,9 @@
 //! logs `play start vblank=s`), so its tick `j` (1-based) ran on frame `s + j`.
 
 use super::{field, number};
-use portalcast::game::Game;
 use portalcast::player::input::Buttons;
 use portalcast_harness::KeyScript;
+use portalcast_rom::game::Game;
 
 /// Emulator frame of the game's tick `tick` (1-based), for a game that started at `start`.
 pub fn frame_of_tick(start: u32, tick: u32) -> u32 {
@@ -19,7 +19,7 @@ pub fn frame_of_tick(start: u32, tick: u32) -> u32 {
 
 /// The game after every tick of `script`: element `j` is the state after `j` ticks.
 pub fn replay(script: &KeyScript, start: u32, ticks: u32) -> Vec<Game<'static>> {
-    let mut game = Game::new(portalcast::assets::MAPS);
+    let mut game = Game::new(portalcast_rom::assets::MAPS);
     let mut states = vec![game];
     for tick in 1..=ticks {
         game.tick(Buttons(script.keys_at(frame_of_tick(start, tick)).bits()));
@@ -158,18 +158,18 @@ pub fn render_line_settings(
     portalcast_format::MapTables<'static>,
     portalcast::render::view::Settings,
 ) {
-    use portalcast::render::demo;
+    use portalcast_rom::demo;
     let map = demo::map_named(field(text, "map").unwrap()).expect("the ROM names a compiled map");
     (map, line_settings(text))
 }
 
-/// The settings a ROM's `render` or `bench` line names ([`portalcast::bench::SettingsLabel`]).
+/// The settings a ROM's `render` or `bench` line names ([`portalcast_rom::bench::SettingsLabel`]).
 pub fn line_settings(text: &str) -> portalcast::render::view::Settings {
     use portalcast::frame::Resolution;
-    use portalcast::render::demo::lighting_from_label;
     use portalcast::render::view::{
         Floors, Preprocessing, Settings, SlopeSteps, TexturePlacement, ThingsShown,
     };
+    use portalcast_rom::demo::lighting_from_label;
     let label = |key| field(text, key).unwrap_or_else(|| panic!("no {key}= in {text}"));
     Settings {
         resolution: Resolution::from_label(label("res")).unwrap(),
@@ -273,8 +273,8 @@ impl WorldLine {
     pub fn world_of(
         line: Option<&WorldLine>,
         map: &portalcast_format::MapTables,
-    ) -> portalcast::game::GameWorld {
-        let mut world = portalcast::game::GameWorld::start(map);
+    ) -> portalcast_rom::game::GameWorld {
+        let mut world = portalcast_rom::game::GameWorld::start(map);
         if let Some(line) = line {
             assert_eq!(line.heights.len(), map.movers.len(), "{line:?}");
             assert_eq!(line.lights.len(), map.lights.len(), "{line:?}");

@@ -13,7 +13,7 @@ use std::ops::RangeInclusive;
 use std::path::PathBuf;
 
 /// Held at power-on, the key that switches on the game's per-frame `player` and `render` lines
-/// (src/main.rs): without it the ROM writes none, as a player runs it. The ROM waits for it to
+/// (crates/rom/src/main.rs): without it the ROM writes none, as a player runs it. The ROM waits for it to
 /// be let go before the game starts, so it never reaches the game.
 pub const FRAME_LINES_KEY: Keys = Keys::START;
 
@@ -136,7 +136,7 @@ pub fn shipped_assets() -> &'static portalcast_assets::Compiled {
 }
 
 /// A live world on the host with room for any map's sectors, movers and triggers, Freedoom's
-/// included (the ROM's own, `portalcast::game::GameWorld`, is sized by the maps it holds).
+/// included (the ROM's own, `portalcast_rom::game::GameWorld`, is sized by the maps it holds).
 pub type HostWorld = portalcast::world::World<4096, 64, 256>;
 
 /// Freedoom Phase 1's maps the tests build (`portalcast_xtask::freedoom::MAPS`), compiled once

@@ -26,7 +26,7 @@ pub fn host_frame_matching(
     let live = WorldLine::world_of(world, &map);
     renderer.render(
         &live.map(&map),
-        &portalcast::render::demo::render_assets(),
+        &portalcast_rom::demo::render_assets(),
         &view,
         &mut canvas,
     );

@@ -51,6 +51,7 @@ pub struct Builder {
     maps: Option<Vec<String>>,
     iwad: Option<PathBuf>,
     rom_link: bool,
+    out_dir: Option<PathBuf>,
 }
 
 impl Builder {
@@ -61,6 +62,7 @@ impl Builder {
             maps: None,
             iwad: None,
             rom_link: true,
+            out_dir: None,
         }
     }
 
@@ -84,13 +86,22 @@ impl Builder {
         self
     }
 
+    /// Writes into `dir` instead of cargo's `OUT_DIR` (a tool's or a test's own directory).
+    pub fn out_dir(mut self, dir: impl Into<PathBuf>) -> Builder {
+        self.out_dir = Some(dir.into());
+        self
+    }
+
     /// Compiles the assets into `OUT_DIR` ([`ASSETS_FILE`] and its blobs), prints cargo's
     /// `rerun-if-changed` lines, a warning naming the import report if the import left things
     /// out, and for a GBA build the link arguments. Run from a build script (it reads cargo's
     /// variables). On a bad map, image or WAD nothing is written and the error lists every
     /// problem, one line each.
     pub fn build(self) -> Result<Compiled, BuildError> {
-        let out_dir = PathBuf::from(cargo_var("OUT_DIR")?);
+        let out_dir = match &self.out_dir {
+            Some(dir) => dir.clone(),
+            None => PathBuf::from(cargo_var("OUT_DIR")?),
+        };
         let assets = match self.assets.is_absolute() {
             true => self.assets.clone(),
             false => PathBuf::from(cargo_var("CARGO_MANIFEST_DIR")?).join(&self.assets),

@@ -2,10 +2,7 @@
 //! (through the rasterizer twins, recording which surface each pixel shows), render it with the
 //! oracle, and compare. The accuracy test and the benchmark report both go through here.
 
-use portalcast::bench::{frames_for, ACCURACY_FRAME_STEP};
 use portalcast::frame::Resolution;
-use portalcast::game::GameWorld;
-use portalcast::live_flight::LiveFlight;
 use portalcast::raster::column::ColumnTexture;
 use portalcast::raster::flat::FlatTexture;
 use portalcast::raster::sprite::SpriteColumn;
@@ -15,6 +12,9 @@ use portalcast::render::view::{self, Settings, View};
 use portalcast::render::walk::{FrameStats, Renderer};
 use portalcast::render::RenderAssets;
 use portalcast_format::MapTables;
+use portalcast_rom::bench::{frames_for, ACCURACY_FRAME_STEP};
+use portalcast_rom::game::GameWorld;
+use portalcast_rom::live_flight::LiveFlight;
 
 use crate::{compare, render, Assets, Camera, Comparison, Frame};
 

@@ -1755,7 +1755,7 @@ fn compare_counts_a_floor_or_a_ceiling_as_its_plane_group() {
 /// dais in their middle, raised and brighter, is one of its own.
 #[test]
 fn the_bench_hall_s_cells_are_one_plane_group_and_its_dais_another() {
-    let map = portalcast::assets::MAPS
+    let map = portalcast_rom::assets::MAPS
         .iter()
         .find(|map| map.name == "bench")
         .expect("the bench map");

@@ -2,15 +2,15 @@
 //!
 //! A bench line is `bench map=NAME <settings> frame=N cycles=C <stage>_cycles=… …`: the
 //! settings are every `key=value` word between `map=` and `frame=`, the stages every later word
-//! whose key ends in `_cycles` (see `portalcast::bench`). An accuracy line is
+//! whose key ends in `_cycles` (see `portalcast_rom::bench`). An accuracy line is
 //! `accuracy map=NAME <settings> frames=N <counter>=…`. Nothing here knows the knob or stage
 //! names, so new ones become rows and columns of the report by themselves.
 
 use std::collections::BTreeSet;
 
-/// What the ROM prints after the regression guard's runs (`portalcast::bench::GUARD_DONE`).
+/// What the ROM prints after the regression guard's runs (`portalcast_rom::bench::GUARD_DONE`).
 pub const GUARD_DONE: &str = "bench guard done";
-/// What the ROM prints at the end of its bench scene (`portalcast::bench::BENCH_DONE`).
+/// What the ROM prints at the end of its bench scene (`portalcast_rom::bench::BENCH_DONE`).
 pub const BENCH_DONE: &str = "bench done";
 
 /// One measured frame of a bench run.
@@ -126,13 +126,13 @@ pub fn bench_runs(log: &str) -> Result<Vec<Run>, String> {
     runs_of(log, "bench")
 }
 
-/// The set-up runs in `log` (`portalcast::bench::SetupLine`: frames drawn without kernels, with
+/// The set-up runs in `log` (`portalcast_rom::bench::SetupLine`: frames drawn without kernels, with
 /// their counts), grouped like [`bench_runs`].
 pub fn setup_runs(log: &str) -> Result<Vec<Run>, String> {
     runs_of(log, SETUP_WORD)
 }
 
-/// The first word of the ROM's set-up lines (`portalcast::bench::SETUP_WORD`).
+/// The first word of the ROM's set-up lines (`portalcast_rom::bench::SETUP_WORD`).
 pub const SETUP_WORD: &str = "setup";
 
 /// The runs of the lines of `log` that start with `word` and `map=`.

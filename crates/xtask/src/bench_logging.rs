@@ -135,7 +135,7 @@ fn parse(log: &str) -> TaskResult<RateFigures> {
                 .and_then(|text| text.parse().ok())
                 .ok_or_else(|| {
                     TaskError(format!(
-                        "no {key}= in the ROM's line `{line}`: src/main.rs (RateWindow) and \
+                        "no {key}= in the ROM's line `{line}`: crates/rom/src/main.rs (RateWindow) and \
                          crates/xtask/src/bench_logging.rs disagree on its format"
                     ))
                 })

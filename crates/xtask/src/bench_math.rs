@@ -208,7 +208,7 @@ struct Results {
 fn parse(log: &str) -> TaskResult<Results> {
     let bad = |line: &str| {
         TaskError(format!(
-            "cannot read the ROM's line `{line}`: src/main.rs (math_scene) and \
+            "cannot read the ROM's line `{line}`: crates/rom/src/main.rs (math_scene) and \
              crates/xtask/src/bench_math.rs disagree on its format"
         ))
     };

@@ -92,7 +92,7 @@ fn parse(log: &str) -> TaskResult<TickFigures> {
                 .and_then(|text| text.parse().ok())
                 .ok_or_else(|| {
                     TaskError(format!(
-                        "no {key}= in the ROM's line `{line}`: src/main.rs (play_scene) and \
+                        "no {key}= in the ROM's line `{line}`: crates/rom/src/main.rs (play_scene) and \
                          crates/xtask/src/bench_tick.rs disagree on its format"
                     ))
                 })

@@ -337,7 +337,13 @@ fn rom_build_command(isa: EngineIsa, target_dir: &Path) -> Command {
             ROM_TARGET,
             "-Zbuild-std=core",
         ])
-        .args(["-p", "portalcast", "--bin", "portalcast", "--target-dir"])
+        .args([
+            "-p",
+            "portalcast-rom",
+            "--bin",
+            "portalcast",
+            "--target-dir",
+        ])
         .arg(target_dir);
     command
 }
@@ -379,7 +385,8 @@ impl ArmProfileNoise {
         let llvm =
             line == "'-thumb-mode' is not a recognized feature for this target (ignoring feature)";
         // Each of the engine's units has that one warning; a count above one has others too.
-        let count = line.starts_with("warning: `portalcast` (")
+        let count = (line.starts_with("warning: `portalcast` (")
+            || line.starts_with("warning: `portalcast-rom` ("))
             && (line.ends_with(") generated 1 warning")
                 || line.ends_with(") generated 1 warning (1 duplicate)"));
         !(llvm || count)

@@ -186,21 +186,32 @@ fn test() -> TaskResult<()> {
         "cargo clippy (host)",
     )?;
     let rom_target_dir = portalcast_xtask::rom_target_dir();
-    run(
-        cargo()
-            .args([
-                "clippy",
-                "--profile",
-                portalcast_xtask::EngineIsa::Arm.profile(),
-                "--target",
-                portalcast_xtask::ROM_TARGET,
-                "-Zbuild-std=core",
-            ])
-            .args(["-p", "portalcast", "--target-dir"])
-            .arg(&rom_target_dir)
-            .args(["--", "-D", "warnings"]),
-        "cargo clippy (GBA)",
-    )?;
+    // The engine's library (its host launcher, src/play.rs, needs std), then the ROM: one run
+    // each, as a target filter would apply to both packages.
+    for (packages, what) in [
+        (
+            &["-p", "portalcast", "--lib"][..],
+            "cargo clippy (GBA, the engine)",
+        ),
+        (&["-p", "portalcast-rom"][..], "cargo clippy (GBA, the ROM)"),
+    ] {
+        run(
+            cargo()
+                .args([
+                    "clippy",
+                    "--profile",
+                    portalcast_xtask::EngineIsa::Arm.profile(),
+                    "--target",
+                    portalcast_xtask::ROM_TARGET,
+                    "-Zbuild-std=core",
+                ])
+                .args(packages)
+                .arg("--target-dir")
+                .arg(&rom_target_dir)
+                .args(["--", "-D", "warnings"]),
+            what,
+        )?;
+    }
     // Dead intra-doc links and malformed doc comments fail here, not in a reader's browser.
     run(
         cargo()

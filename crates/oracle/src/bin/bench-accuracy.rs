@@ -1,5 +1,5 @@
 //! The accuracy half of `cargo bench-report`: for every run of the ROM's bench scene (same maps,
-//! settings and fly-through, from `portalcast::bench` and `portalcast::flight`), renders every
+//! settings and fly-through, from `portalcast_rom::bench` and `portalcast_rom::flight`), renders every
 //! `ACCURACY_FRAME_STEP`-th frame with the engine on the host and with the oracle, and prints one
 //! line per run:
 //!
@@ -10,10 +10,10 @@
 //! is the largest over them. The engine's frames on the host are the ROM's frames: the emulator
 //! test `emulator_render` proves them identical pixel for pixel.
 
-use portalcast::bench::{all_runs, SettingsLabel};
-use portalcast::render::demo::render_assets;
 use portalcast::render::walk::Renderer;
 use portalcast_oracle::bench_run_accuracy;
+use portalcast_rom::bench::{all_runs, SettingsLabel};
+use portalcast_rom::demo::render_assets;
 
 fn main() {
     let assets = render_assets();

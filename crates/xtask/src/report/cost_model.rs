@@ -175,7 +175,7 @@ pub fn section(runs: &[Run], setup_runs: &[Run]) -> String {
          projection, the steppers, the run's entry), its things' collection and its plane's \
          job; a thing's projection, collection and clip windows. R² is how much of the frames' \
          spread the fit explains. `cargo bench-report` fits it from the bench scene's set-up \
-         and bench lines (`portalcast::bench::SetupLine`, `BenchLine`).\n\n",
+         and bench lines (`portalcast_rom::bench::SetupLine`, `BenchLine`).\n\n",
     );
     let mut fits = Vec::new();
     doc.push_str("| resolution | wall stage: ");

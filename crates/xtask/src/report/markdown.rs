@@ -391,14 +391,14 @@ fn method(doc: &mut String, measurements: &Measurements) {
         doc,
         "## How the figures are made\n\n\
          The ROM's bench scene (R held at power-on) flies one fixed camera path through every map \
-         (`src/flight.rs`): from the player start, a depth-first tour of the sectors a walker can \
+         (`crates/rom/src/flight.rs`): from the player start, a depth-first tour of the sectors a walker can \
          pass between, through the middle of each portal to the next sector's centre and back out \
          of dead ends, at about Doom's running speed, the eye at standing height, turning smoothly \
          towards where it goes. Like a player, it keeps clear of solid things: where one stands at \
          a sector's centre (the bench map's statue) the path stops short of it, and it goes round \
          one in its way. The path is derived from the map alone, so every map has one, and \
          every pose is exact in the engine's formats, so the host replays the ROM's frames exactly. \
-         The path is flown through the map's live world (`src/live_flight.rs`), a game tick a \
+         The path is flown through the map's live world (`crates/rom/src/live_flight.rs`), a game tick a \
          frame: the camera waits at a shut door and opens it, rides a lift standing on it, \
          and the light effects run, so the frames include movers mid-motion. \
          For each map and setting the ROM draws one unmeasured frame (it fills the per-resolution \
@@ -894,7 +894,7 @@ fn set_up(doc: &mut String, measurements: &Measurements) {
          The bench scene ends by flying the guard's runs again (the bench map at the default \
          settings) on a canvas that prepares every kernel call up to its argument block and runs \
          none (`VramCanvas::without_kernels`), and prints each frame's counts \
-         (`portalcast::bench::SetupLine`). The wall stage's cycles there, over the wall columns, \
+         (`portalcast_rom::bench::SetupLine`). The wall stage's cycles there, over the wall columns, \
          are the **set-up per wall column**: ownership, projection, rows, clip windows, texture \
          column, mip level and light, the strips' set-up, and the per-wall and per-visit work \
          spread over the columns; the plane stage's, over the spans, the **set-up per span** \

@@ -40,7 +40,7 @@ pub const DOC_FILE: &str = "docs/BENCH.md";
 /// The chart, relative to the workspace root.
 pub const CHART_FILE: &str = "docs/bench-cycles.png";
 /// What the ROM prints after the guard's runs and at the end of its bench scene (the same
-/// words as `portalcast::bench::GUARD_DONE` and `BENCH_DONE`; the guard test checks they agree).
+/// words as `portalcast_rom::bench::GUARD_DONE` and `BENCH_DONE`; the guard test checks they agree).
 pub const GUARD_DONE: &str = bench_log::GUARD_DONE;
 const BENCH_DONE: &str = bench_log::BENCH_DONE;
 /// The kernel check's line of cycles per pixel.
@@ -58,7 +58,7 @@ pub struct Measurements {
     pub runs: Vec<Run>,
     /// How many of `runs`, from the first, are the regression guard's.
     pub guard_runs: usize,
-    /// The guard's runs again, drawn without kernels (`portalcast::bench::setup_runs`).
+    /// The guard's runs again, drawn without kernels (`portalcast_rom::bench::setup_runs`).
     pub setup_runs: Vec<Run>,
     /// The host's accuracy lines, one per run.
     pub accuracy: Vec<Accuracy>,

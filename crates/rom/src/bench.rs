@@ -13,13 +13,13 @@ use core::fmt;
 use portalcast_format::MapTables;
 
 use crate::assets;
-use crate::frame::Resolution;
-use crate::render::demo::lighting_label;
-use crate::render::light::Lighting;
-use crate::render::view::{
+use crate::demo::lighting_label;
+use portalcast::frame::Resolution;
+use portalcast::render::light::Lighting;
+use portalcast::render::view::{
     Floors, Preprocessing, Settings, SlopeSteps, TexturePlacement, ThingsShown,
 };
-use crate::render::walk::FrameStats;
+use portalcast::render::walk::FrameStats;
 
 /// Frames measured per setting along a map's [`crate::flight`] path, flown through its live
 /// world ([`crate::live_flight`]), on every map but the bench map.

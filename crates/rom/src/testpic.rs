@@ -2,23 +2,10 @@
 //! kernel. It exercises the asm seam, both halfword packings, wrap-around in both directions and
 //! all three resolutions; the emulator test compares the ROM's frame with the host twin's.
 
-use crate::frame::{Resolution, PAGE_ROW_HALFWORDS};
-use crate::raster::span::{SpanPacking, SpanSteps, SpanTexture, SPAN_TEXTURE_SIDE};
-
-/// Receives spans: the VRAM back page through the asm kernels on the GBA, a host page through the
-/// twins in tests.
-pub trait SpanTarget {
-    /// Draws `halfwords` halfwords of page row `row`, starting at halfword `first_halfword`.
-    fn draw_span(
-        &mut self,
-        row: usize,
-        first_halfword: usize,
-        halfwords: usize,
-        texture: &SpanTexture,
-        steps: SpanSteps,
-        packing: SpanPacking,
-    );
-}
+use portalcast::frame::{Resolution, PAGE_ROW_HALFWORDS};
+use portalcast::raster::span::{
+    SpanPacking, SpanSteps, SpanTarget, SpanTexture, SPAN_TEXTURE_SIDE,
+};
 
 /// The test picture's 256-colour BGR555 palette: hue bands whose brightness ramps within each
 /// band, so neighbouring indices are easy to tell apart on screen and in a diff.

@@ -1,45 +1,32 @@
-//! The portalcast ROM. Built for the GBA by `cargo rom`; on the host, `cargo run` is `cargo play`
-//! (this binary's host build starts it): it builds the ROM and opens it in mGBA when there is a
-//! display, or runs the demo headless in the mGBA core with the log on stdout.
+//! The portalcast ROM. It only builds for the GBA (`cargo rom`); a host build explains that.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(not(target_os = "none"))]
 fn main() {
-    // `cargo run` runs this with CARGO set to the cargo that built it.
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| env!("CARGO").into());
-    let status = std::process::Command::new(&cargo)
-        .arg("play")
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .status();
-    match status {
-        Ok(status) => std::process::exit(status.code().unwrap_or(1)),
-        Err(error) => {
-            eprintln!(
-                "portalcast: could not start `{} play` ({error}); build the ROM with `cargo rom`",
-                cargo.to_string_lossy()
-            );
-            std::process::exit(2);
-        }
-    }
+    eprintln!(
+        "portalcast's binary is the GBA ROM: build it with `cargo rom` (writes target/portalcast.gba) \
+         or run it with `cargo run` or `cargo play` at the repository's top."
+    );
+    std::process::exit(2);
 }
 
 #[cfg(target_os = "none")]
 mod rom {
     use core::mem::MaybeUninit;
-    use portalcast::bench::{self, BenchLine};
     use portalcast::frame::Resolution;
-    use portalcast::game::{Game, GameWorld};
     use portalcast::hw::kernels::{VramCanvas, VramPage};
     use portalcast::hw::memory::{GbaRenderer, LentPageRows};
     use portalcast::hw::{self, input, log, memory, meter, video::Display};
-    use portalcast::live_flight::LiveFlight;
-    use portalcast::menu::{self, MenuColours};
     use portalcast::player::input::Buttons;
-    use portalcast::render::demo;
     use portalcast::render::view::{Settings, TexturePlacement, View};
     use portalcast::render::RenderAssets;
-    use portalcast::{assets, kernel_check, testpic};
     use portalcast_format::MapTables;
+    use portalcast_rom::bench::{self, BenchLine};
+    use portalcast_rom::demo;
+    use portalcast_rom::game::{Game, GameWorld};
+    use portalcast_rom::live_flight::LiveFlight;
+    use portalcast_rom::menu::{self, MenuColours};
+    use portalcast_rom::{assets, kernel_check, testpic};
 
     const KEY_A: u16 = Buttons::A.0;
     const KEY_B: u16 = Buttons::B.0;
@@ -72,7 +59,7 @@ mod rom {
             memory::iwram_used(),
             memory::stack_room(),
             memory::ewram_used(),
-            portalcast::selfcheck::division_digest(),
+            portalcast_rom::selfcheck::division_digest(),
             core::mem::size_of::<Game>(),
             assets::LIVE_SECTORS,
             core::mem::size_of::<portalcast_format::Sector>(),
@@ -847,8 +834,8 @@ mod rom {
         // A sprite column of one post, a texel a row: 160 rows against 32 (translucent: over
         // the page, through a blend table, which any 64 KiB of the cartridge can stand in for).
         let blend: Option<&portalcast_format::BlendTable> =
-            portalcast::assets::BLEND.or_else(|| {
-                portalcast::assets::SKY
+            portalcast_rom::assets::BLEND.or_else(|| {
+                portalcast_rom::assets::SKY
                     .and_then(|sky| sky.texels.get(..65536))
                     .and_then(|bytes| bytes.as_chunks::<256>().0.try_into().ok())
             });

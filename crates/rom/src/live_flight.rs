@@ -19,9 +19,9 @@ use core::iter::Peekable;
 use portalcast_format::{MapTables, MOVER_LIFT};
 
 use crate::flight::{self, Flight};
-use crate::player::Player;
-use crate::render::view::Camera;
-use crate::world::{body_only_in, Phase, World};
+use portalcast::player::Player;
+use portalcast::render::view::Camera;
+use portalcast::world::{body_only_in, Phase, World};
 
 /// Frames the camera waits for its way to clear before it flies on regardless (a mover that
 /// never opens: in practice a wait ends in under 300).

@@ -8,7 +8,7 @@
 //! starts again from the start sector. Each leg, from a sector's centre (or the player start) to
 //! the middle of one of its portals or back, lies inside that one convex sector, so the path never
 //! leaves the map and the sector of every pose is known; it is still checked exactly, with the
-//! side-of-line tests of [`crate::math`], and a pose that lands on a wall line (the middle of a
+//! side-of-line tests of [`portalcast::math`], and a pose that lands on a wall line (the middle of a
 //! portal, at the end of a leg) moves on by one 1/256 step until it is strictly inside.
 //!
 //! Like a player, the path keeps clear of solid things: a sector's centre inside a solid thing's
@@ -24,9 +24,9 @@
 
 use portalcast_format::{MapTables, Sector, Thing, Wall, THING_SOLID};
 
-use crate::math::{div_round_nearest, side_of_line, Angle, Fx24_8, Side, WorldPoint};
-use crate::player::collide::RADIUS;
-use crate::render::view::Camera;
+use portalcast::math::{div_round_nearest, side_of_line, Angle, Fx24_8, Side, WorldPoint};
+use portalcast::player::collide::RADIUS;
+use portalcast::render::view::Camera;
 
 /// Distance flown per frame, in world units.
 pub const SPEED: i32 = 24;
@@ -118,7 +118,7 @@ fn centre(map: &MapTables, sector: &Sector) -> WorldPoint {
 }
 
 /// How near the eye may come to a solid thing's centre, in 24.8 bits: the thing's radius and the
-/// player's, the distance a player's centre keeps (`crate::player::collide`).
+/// player's, the distance a player's centre keeps (`portalcast::player::collide`).
 fn clearance_bits(thing: &Thing) -> i64 {
     (i64::from(thing.radius) + i64::from(RADIUS)) << Fx24_8::FRAC_BITS
 }

@@ -4,10 +4,10 @@
 
 use portalcast_format::{Colormap, MapTables, Sky, Texture};
 
-use super::light::Lighting;
-use super::view::TexturePlacement;
-use super::RenderAssets;
 use crate::assets;
+use portalcast::render::light::Lighting;
+use portalcast::render::view::TexturePlacement;
+use portalcast::render::RenderAssets;
 
 /// Name of the map the demo shows.
 pub const DEMO_MAP: &str = "bench";

@@ -8,14 +8,14 @@
 
 use portalcast_format::MapTables;
 
+use crate::demo::DEMO_MAP;
 use crate::menu::{self, Entry, Menu, MenuText, Shown, ENTRIES};
-use crate::player::input::{Buttons, Controls};
-use crate::player::Player;
-use crate::render::demo::DEMO_MAP;
-use crate::render::light::Lighting;
-use crate::render::view::{Camera, Settings};
-use crate::render::view::{Floors, TexturePlacement};
-use crate::world::World;
+use portalcast::player::input::{Buttons, Controls};
+use portalcast::player::Player;
+use portalcast::render::light::Lighting;
+use portalcast::render::view::{Camera, Settings};
+use portalcast::render::view::{Floors, TexturePlacement};
+use portalcast::world::World;
 
 /// The live state of the ROM's maps: room for the largest one with movers.
 pub type GameWorld = World<

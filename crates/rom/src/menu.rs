@@ -9,13 +9,13 @@
 //! draws, and the emulator test compares menu frames pixel for pixel too. Its size on the
 //! screen is the same at every resolution: a font pixel is 2×2 screen pixels.
 
-use crate::frame::Resolution;
-use crate::raster::flat::{FlatTexture, PackedUv};
-use crate::raster::Canvas;
-use crate::render::demo::lighting_label;
-use crate::render::light::Lighting;
-use crate::render::view::{Floors, Preprocessing, TexturePlacement, ThingsShown};
-use crate::text::{glyph_lit, GLYPH_HEIGHT, GLYPH_WIDTH};
+use crate::demo::lighting_label;
+use portalcast::frame::Resolution;
+use portalcast::raster::flat::{FlatTexture, PackedUv};
+use portalcast::raster::Canvas;
+use portalcast::render::light::Lighting;
+use portalcast::render::view::{Floors, Preprocessing, TexturePlacement, ThingsShown};
+use portalcast::text::{glyph_lit, GLYPH_HEIGHT, GLYPH_WIDTH};
 
 /// One line of the menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -365,7 +365,7 @@ fn fill(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::text::glyph;
+    use portalcast::text::glyph;
 
     #[test]
     fn the_hud_line_shows_the_rate_and_the_cycles() {

@@ -2,9 +2,9 @@
 //! (texture heights, flat sizes, lit and unlit, both packings). The ROM draws it through the asm
 //! kernels and the host through the twins; the emulator test requires identical pages.
 
-use crate::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
-use crate::raster::flat::{FlatTexture, PackedUv, FLAT_LOG2_SIDES};
-use crate::raster::Canvas;
+use portalcast::raster::column::{ColumnTexture, COLUMN_LOG2_HEIGHTS};
+use portalcast::raster::flat::{FlatTexture, PackedUv, FLAT_LOG2_SIDES};
+use portalcast::raster::Canvas;
 
 const TEXEL_POOL_SIZE: usize = 4096;
 
@@ -178,8 +178,8 @@ const MIDDLE_IMAGE_WIDTH: u16 = IMAGE_COLUMNS.next_power_of_two() as u16;
 
 /// The openings the check middles are seen through, by column: windows of every height inside
 /// the 80 rows every resolution has, and some empty.
-static MIDDLE_OPENINGS: [crate::raster::Window; 240] = {
-    let mut windows = [crate::raster::Window { top: 0, bottom: 0 }; 240];
+static MIDDLE_OPENINGS: [portalcast::raster::Window; 240] = {
+    let mut windows = [portalcast::raster::Window { top: 0, bottom: 0 }; 240];
     let mut x = 0;
     while x < 240 {
         let top = ((x * 37 + 11) % 80) as i16;
@@ -188,7 +188,7 @@ static MIDDLE_OPENINGS: [crate::raster::Window; 240] = {
         } else {
             top + 1 + ((x * 53 + 7) % (80 - top as usize)) as i16
         };
-        windows[x] = crate::raster::Window { top, bottom };
+        windows[x] = portalcast::raster::Window { top, bottom };
         x += 1;
     }
     windows
@@ -336,15 +336,15 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
         let scale = (1 << 14) + rng.below(8 << 16) as i32;
         let top = rng.below(height) as i16;
         let bottom = top + 1 + rng.below(height - top as u32) as i16;
-        let sprite = crate::raster::sprite::SpriteColumn {
+        let sprite = portalcast::raster::sprite::SpriteColumn {
             posts: &posts[starts[column]..],
             y_top: ((rng.next() % (2 * height)) as i32 - height as i32) << 16
                 | rng.below(1 << 16) as i32,
             scale,
             iscale: ((1u64 << 32) / scale as u64) as u32,
-            clip: crate::raster::Window { top, bottom },
+            clip: portalcast::raster::Window { top, bottom },
             colormap: if job % 3 == 0 {
-                &crate::raster::IDENTITY_ROW
+                &portalcast::raster::IDENTITY_ROW
             } else {
                 &COLORMAP
             },
@@ -353,14 +353,14 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
         };
         canvas.sprite_column(rng.below(width) as usize, &sprite);
     }
-    let mut records = [crate::raster::sprite::BatchColumn::default(); BATCH_COLUMNS_MAX];
+    let mut records = [portalcast::raster::sprite::BatchColumn::default(); BATCH_COLUMNS_MAX];
     for batch in 0..BATCHES {
         let count = 1 + rng.below(BATCH_COLUMNS_MAX as u32) as usize;
         for record in &mut records[..count] {
             let scale = (1 << 14) + rng.below(8 << 16) as i32;
             let top = rng.below(height) as i16;
             let bottom = top + 1 + rng.below(height - top as u32) as i16;
-            *record = crate::raster::sprite::BatchColumn {
+            *record = portalcast::raster::sprite::BatchColumn {
                 x: rng.below(width) as u8,
                 // One column past the image's: its offset entry is missing.
                 column: rng.below(IMAGE_COLUMNS as u32 + 1) as u8,
@@ -369,14 +369,14 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
                     0 => u8::MAX,
                     row => (row - 1) as u8,
                 },
-                clip: crate::raster::Window { top, bottom },
+                clip: portalcast::raster::Window { top, bottom },
                 y_top: ((rng.next() % (2 * height)) as i32 - height as i32) << 16
                     | rng.below(1 << 16) as i32,
                 scale,
                 iscale: ((1u64 << 32) / scale as u64) as u32,
             };
         }
-        canvas.sprite_columns(&crate::raster::sprite::SpriteBatch {
+        canvas.sprite_columns(&portalcast::raster::sprite::SpriteBatch {
             posts: &SPRITE_IMAGE,
             columns: &records[..count],
             colormap: &CHECK_LIGHT_ROWS,
@@ -393,16 +393,16 @@ pub fn draw(canvas: &mut impl Canvas, seed: u32) {
 /// plane, face it or not, from a unit to thousands away (the nearest clamp, rays past either
 /// end, steep and grazing angles), under every lighting rule.
 fn draw_middles(canvas: &mut impl Canvas, rng: &mut Lcg) {
-    use crate::math::{Angle, EyePoint, Fx24_8, WorldPoint};
-    use crate::render::light::Lighting;
-    use crate::render::things::{middle_columns_of, MiddleSetup};
-    use crate::render::view::{Camera, View};
+    use portalcast::math::{Angle, EyePoint, Fx24_8, WorldPoint};
+    use portalcast::render::light::Lighting;
+    use portalcast::render::things::{middle_columns_of, MiddleSetup};
+    use portalcast::render::view::{Camera, View};
     let resolution = canvas.resolution();
     let width = resolution.width() as u32;
-    let mut out = [crate::raster::sprite::BatchColumn::default(); MIDDLE_COLUMNS_MAX];
+    let mut out = [portalcast::raster::sprite::BatchColumn::default(); MIDDLE_COLUMNS_MAX];
     for job in 0..MIDDLES {
         let lighting = [Lighting::Off, Lighting::Sector, Lighting::SectorDepth][job as usize % 3];
-        let settings = crate::render::view::Settings {
+        let settings = portalcast::render::view::Settings {
             lighting,
             ..crate::bench::default_settings(resolution)
         };
@@ -444,7 +444,7 @@ fn draw_middles(canvas: &mut impl Canvas, rng: &mut Lcg) {
             &mut out,
             (light, lighting),
         );
-        canvas.sprite_columns(&crate::raster::sprite::SpriteBatch {
+        canvas.sprite_columns(&portalcast::raster::sprite::SpriteBatch {
             posts: &SPRITE_IMAGE,
             columns: &out[..written],
             colormap: &CHECK_LIGHT_ROWS,
