@@ -396,6 +396,21 @@ pub fn colormap_in_vram(
     }
 }
 
+/// The light colormap copied to EWRAM (8 KiB, handed out by [`ewram_uninit`]): for a game that
+/// gives the OBJ VRAM [`colormap_in_vram`] would take to its own sprites (`hw::ObjVram`).
+pub fn colormap_in_ewram(
+    colormap: &portalcast_format::Colormap,
+) -> &'static portalcast_format::Colormap {
+    use portalcast_format::{Colormap, LIGHT_LEVELS};
+    let rows = ewram_uninit_slice::<[u8; 256]>(LIGHT_LEVELS);
+    for (slot, row) in rows.iter_mut().zip(colormap) {
+        slot.write(*row);
+    }
+    // SAFETY: every one of the `LIGHT_LEVELS` rows was written above, and a `Colormap` is
+    // exactly those rows, with their alignment.
+    unsafe { &*rows.as_ptr().cast::<Colormap>() }
+}
+
 /// Page rows from this one down are what a frame of at most this many rows never draws: BG2
 /// shows a 120×80 frame's rows 0..80 at twice their height, so rows 80..160 of both Mode 4
 /// pages are free while that resolution is on screen.

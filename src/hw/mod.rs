@@ -6,11 +6,14 @@
 pub mod input;
 pub mod kernels;
 pub mod log;
+pub mod machine;
 pub mod math_bench;
 pub mod memory;
 pub mod meter;
 pub mod panic_screen;
 pub mod video;
+
+pub use machine::{Machine, ObjVram};
 
 use gba::mmio::{IME, KEYINPUT, WAITCNT};
 use gba::prelude::WaitstateControl;

@@ -316,6 +316,14 @@ fn source(compiled: &Compiled, blobs: &Blobs, out_dir: &Path) -> String {
         );
     }
     let _ = writeln!(s, "];");
+    let _ = writeln!(
+        s,
+        "\n/// All of the above as one value, as the engine takes them.\n\
+         pub static ASSETS: {FORMAT}::Assets<'static> = {FORMAT}::Assets {{ palette: &PALETTE, \
+         colormap: &COLORMAP.0, textures: TEXTURES, texel_blob: &TEXEL_BLOB.0, \
+         texel_ewram_len: TEXEL_EWRAM_LEN, texture_chains_by_heat: TEXTURE_CHAINS_BY_HEAT, sky: SKY, \
+         blend: BLEND, sprites: SPRITES, sprite_sets: SPRITE_SETS, maps: MAPS }};"
+    );
     s
 }
 

@@ -13,11 +13,13 @@
 //! toward +y.
 #![no_std]
 
+mod assets;
 pub mod limits;
 mod map;
 pub mod memory;
 mod texture;
 
+pub use assets::Assets;
 pub use map::{
     find_twin, sector_heights_fx8_at, LayerLink, Light, MapTables, Mover, Plane, PlayerSize,
     PlayerStart, Sector, SectorSlope, Thing, Trigger, Vertex, Wall, LIGHT_FLICKER, LIGHT_GLOW,

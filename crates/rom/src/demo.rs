@@ -2,7 +2,7 @@
 //! (`DEMO_MAP`), the next map for the menu, and the textures placed as the settings ask. (The
 //! bench scene's camera path is `crate::flight`.)
 
-use portalcast_format::{Colormap, MapTables, Sky, Texture};
+use portalcast_format::{Colormap, MapTables, Texture};
 
 use crate::assets;
 use portalcast::render::light::Lighting;
@@ -11,8 +11,6 @@ use portalcast::render::RenderAssets;
 
 /// Name of the map the demo shows.
 pub const DEMO_MAP: &str = "bench";
-
-static NO_SKY_TEXELS: [u8; 8] = [0; 8];
 
 /// The demo map from the compiled assets (the first map if there is no `bench`).
 pub fn demo_map() -> MapTables<'static> {
@@ -38,18 +36,7 @@ pub fn next_map(map: &MapTables) -> MapTables<'static> {
 
 /// The compiled textures, sky and colormap.
 pub fn render_assets() -> RenderAssets<'static> {
-    RenderAssets {
-        textures: assets::TEXTURES,
-        sky: assets::SKY.unwrap_or(Sky {
-            width_log2: 0,
-            height: 8,
-            texels: &NO_SKY_TEXELS,
-        }),
-        colormap: &assets::COLORMAP.0,
-        sprites: assets::SPRITES,
-        sprite_sets: assets::SPRITE_SETS,
-        blend: assets::BLEND,
-    }
+    RenderAssets::from_assets(&assets::ASSETS)
 }
 
 /// The compiled assets with the textures and colormap `placement` asks for: `in_fast_memory`

@@ -10,7 +10,12 @@ mod report;
 /// lift ride (assets/demo/play.keys).
 const PLAY_FRAMES: &str = "1200";
 
-const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math | cargo bench-tick | cargo bench-logging | cargo generated-maps DIR";
+const USAGE: &str = "usage: cargo rom | cargo play | cargo xtest | cargo bench-rom | cargo bench-report [--check] [--update-baseline] | cargo bench-math | cargo bench-tick | cargo bench-logging | cargo generated-maps DIR | run-rom ELF (a game's cargo runner: crates/xtask/run-rom)";
+
+/// The environment variable setting how many frames `run-rom` runs a game headless.
+const RUN_FRAMES_ENV: &str = "PORTALCAST_RUN_FRAMES";
+/// Frames `run-rom` runs a game headless unless `PORTALCAST_RUN_FRAMES` says otherwise.
+const RUN_FRAMES_DEFAULT: &str = "600";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -24,6 +29,7 @@ fn main() -> ExitCode {
         Some("bench-tick") => portalcast_xtask::bench_tick::run(),
         Some("bench-logging") => portalcast_xtask::bench_logging::run(),
         Some("generated-maps") => generated_maps(&args[1..]),
+        Some("run-rom") => run_rom(&args[1..]),
         _ => Err(TaskError(USAGE.to_string())),
     };
     match result {
@@ -33,6 +39,48 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// `run-rom ELF`, the cargo runner of a game built on the engine (`crates/xtask/run-rom`, named
+/// in the game's `.cargo/config.toml`; docs/GUIDE.md): turns the ELF cargo built into a `.gba`
+/// beside it, then opens that in mGBA if there is a display, or runs it headless in the mGBA core
+/// for `PORTALCAST_RUN_FRAMES` frames (600), printing its log and writing its last frame as a PNG
+/// into `frames/` beside it.
+fn run_rom(args: &[String]) -> TaskResult<()> {
+    let [elf] = args else {
+        return Err(TaskError(
+            "usage: run-rom ELF (cargo passes the game's ELF to its runner)".to_string(),
+        ));
+    };
+    let elf = std::path::absolute(elf).map_err(|error| TaskError(format!("{elf}: {error}")))?;
+    let gba = elf.with_extension("gba");
+    portalcast_xtask::elf_to_gba(&elf, &gba)?;
+    println!("ROM: {}", gba.display());
+    if let Some(player) = has_display()
+        .then(portalcast_xtask::player::find_installed_player)
+        .flatten()
+    {
+        return run(
+            Command::new(&player).args(portalcast_xtask::player::player_args(&gba)),
+            &format!("{} {}", player.display(), gba.display()),
+        );
+    }
+    let frames = std::env::var(RUN_FRAMES_ENV).unwrap_or_else(|_| RUN_FRAMES_DEFAULT.to_string());
+    println!(
+        "no display or no mGBA player: running it headless in the mGBA core for {frames} frames"
+    );
+    let out = elf.with_file_name("frames");
+    run(
+        cargo()
+            .args(["run", "--quiet", "--release", "-p", "portalcast-harness"])
+            .args(["--bin", "pc-run", "--"])
+            .arg(&gba)
+            .args(["--frames", &frames, "--png-every", "0", "--out"])
+            .arg(&out),
+        "the headless run",
+    )?;
+    println!("last frame: {}", out.display());
+    Ok(())
 }
 
 /// `cargo generated-maps DIR`: writes the generated maps (caves, a maze, a castle) with the

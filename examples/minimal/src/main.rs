@@ -1,0 +1,44 @@
+//! The smallest game on portalcast: one room, walked with the D-pad (L and R strafe, A jumps).
+#![no_std]
+#![no_main]
+
+use portalcast::hw::{log, Machine, ObjVram};
+use portalcast::player::{input::Controls, Player};
+use portalcast::render::view::Settings;
+
+/// The compiled assets: `ASSETS`, and each table on its own (build.rs). A game uses what it
+/// needs of them.
+#[allow(dead_code)]
+mod assets {
+    include!(concat!(env!("OUT_DIR"), "/assets.rs"));
+}
+
+#[no_mangle]
+extern "C" fn main() -> ! {
+    let mut machine = Machine::start(&assets::ASSETS, ObjVram::Engine);
+    let map = &assets::MAPS[0];
+    let mut player = Player::spawn(map);
+    let mut controls = Controls::new();
+    let settings = Settings::DEFAULT;
+    let mut frame = 0u32;
+    loop {
+        machine.ticks(|held| player.tick(&controls.read(held), map));
+        let stats = machine.draw(map, &player.camera(), &settings);
+        frame += 1;
+        if frame % 60 == 0 {
+            let camera = player.camera();
+            log::info(format_args!(
+                "minimal frame={frame} x={} y={} sector={} columns={}",
+                camera.position.x.to_bits(),
+                camera.position.y.to_bits(),
+                camera.sector,
+                stats.wall_columns
+            ));
+        }
+    }
+}
+
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    portalcast::hw::panic_screen::show(info)
+}
