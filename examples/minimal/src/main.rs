@@ -1,4 +1,5 @@
-//! The smallest game on portalcast: one room, walked with the D-pad (L and R strafe, A jumps).
+//! The smallest game on portalcast: one room, walked with the D-pad (L and R strafe, A jumps;
+//! docs/GUIDE.md builds it step by step).
 #![no_std]
 #![no_main]
 
@@ -28,7 +29,7 @@ extern "C" fn main() -> ! {
         if frame % 60 == 0 {
             let camera = player.camera();
             log::info(format_args!(
-                "minimal frame={frame} x={} y={} sector={} columns={}",
+                "game frame={frame} x={} y={} sector={} columns={}",
                 camera.position.x.to_bits(),
                 camera.position.y.to_bits(),
                 camera.sector,
