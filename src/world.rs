@@ -25,7 +25,7 @@
 //! down. A lift's floor carries a player standing on it.
 
 use portalcast_format::{
-    Light, MapTables, Mover, Sector, Trigger, LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE,
+    Light, MapTables, Mover, Sector, Thing, Trigger, LIGHT_FLICKER, LIGHT_GLOW, LIGHT_STROBE,
     LIGHT_SWITCHED, MOVER_CRUSHER, MOVER_DOOR, MOVER_LIFT, MOVER_ON_TOUCH, MOVER_ON_USE,
     MOVER_PLATFORM, STROBE_FLASH_TICKS, TRIGGER_LINE, TRIGGER_SWITCH, TRIGGER_THROWN,
 };
@@ -824,4 +824,39 @@ fn exit_wall(map: &MapTables, sector: u16, from: WorldPoint, to: WorldPoint) -> 
                 && (cross(from, to, a) >= 0) != (cross(from, to, b) >= 0)
         })
         .map(|(offset, _)| first + offset)
+}
+
+/// Takes thing `index` off a game's own copy of a map's things (`things`, with its
+/// `sector_things` index; on the GBA, copies in EWRAM: `hw::memory::ewram_copy`): a pickup
+/// taken, a monster gone. The thing moves behind the last sector's range, where no sector's
+/// walk or collision finds it, and the things after it move up one place, so every sector's
+/// things keep their order (its solid ones first). Draw and move with
+/// `MapTables { things, sector_things, ..*map }`. Returns false, changing nothing, if `index`
+/// is not a thing the index holds (taken already, or out of range).
+///
+/// ```
+/// # use portalcast::world::remove_thing;
+/// # use portalcast_format::Thing;
+/// let thing = |x_fx8| Thing { x_fx8, y_fx8: 0, angle: 0, sprite: 0, sector: 0, z: 0, radius: 8, flags: 0, frame_ticks: 1 };
+/// // Two sectors: sector 0 holds things 0 and 1, sector 1 holds thing 2.
+/// let (mut things, mut sector_things) = ([thing(0), thing(256), thing(512)], [0u16, 2, 3]);
+/// assert!(remove_thing(&mut things, &mut sector_things, 0));
+/// assert_eq!(sector_things, [0, 1, 2]);
+/// assert_eq!((things[0].x_fx8, things[1].x_fx8), (256, 512));
+/// assert!(!remove_thing(&mut things, &mut sector_things, 2));
+/// ```
+pub fn remove_thing(things: &mut [Thing], sector_things: &mut [u16], index: usize) -> bool {
+    let Some(&held) = sector_things.last() else {
+        return false;
+    };
+    if index >= usize::from(held) || index >= things.len() {
+        return false;
+    }
+    things[index..usize::from(held)].rotate_left(1);
+    for start in sector_things.iter_mut() {
+        if usize::from(*start) > index {
+            *start -= 1;
+        }
+    }
+    true
 }

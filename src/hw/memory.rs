@@ -254,6 +254,17 @@ pub fn ewram_uninit_slice<T>(len: usize) -> &'static mut [MaybeUninit<T>] {
     unsafe { core::slice::from_raw_parts_mut(at as *mut MaybeUninit<T>, len) }
 }
 
+/// A copy of `values` in EWRAM, as [`ewram_uninit_slice`] hands out room: a game's own live
+/// copy of tables it changes (a map's things, for `world::remove_thing`).
+pub fn ewram_copy<T: Copy>(values: &[T]) -> &'static mut [T] {
+    let slots = ewram_uninit_slice::<T>(values.len());
+    for (slot, value) in slots.iter_mut().zip(values) {
+        slot.write(*value);
+    }
+    // SAFETY: every one of the slots was written just above.
+    unsafe { &mut *(core::ptr::from_mut(slots) as *mut [T]) }
+}
+
 /// The texture table [`textures_in_ewram`] made, once it has: (first entry, entries).
 static mut EWRAM_TEXTURES: (usize, usize) = (0, 0);
 
