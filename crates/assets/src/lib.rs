@@ -290,6 +290,25 @@ impl Compiled {
             .map(CompiledMap::tables)
     }
 
+    /// The tables as a game on the host reads them: [`HostTables::assets`] is the same
+    /// [`portalcast_format::Assets`] value a game's generated `ASSETS` is on the GBA, borrowed
+    /// from this compilation (for host tests and tools running the engine on a user's assets).
+    pub fn host_tables(&self) -> HostTables<'_> {
+        HostTables {
+            compiled: self,
+            textures: self.textures.iter().map(CompiledTexture::texture).collect(),
+            chains_by_heat: self.texture_chains_by_heat(),
+            sky: self.sky.as_ref().map(CompiledSky::sky),
+            sprites: self.sprites.iter().map(CompiledSprite::sprite).collect(),
+            sprite_sets: self
+                .sprite_sets
+                .iter()
+                .map(CompiledSpriteSet::set)
+                .collect(),
+            maps: self.maps.iter().map(CompiledMap::tables).collect(),
+        }
+    }
+
     /// Files and folders the compilation read: print each as `cargo:rerun-if-changed`.
     pub fn files_read(&self) -> &[PathBuf] {
         &self.files_read
@@ -317,6 +336,37 @@ impl Compiled {
     /// ROM bytes per asset kind, and the RAM the tables would need if copied to EWRAM or IWRAM.
     pub fn size_report(&self) -> String {
         emit::size_report(self)
+    }
+}
+
+/// A compilation's tables, each texture's texels where the compilation keeps them (there is no
+/// texel blob on the host, and nothing goes to EWRAM): [`Compiled::host_tables`].
+pub struct HostTables<'c> {
+    compiled: &'c Compiled,
+    textures: Vec<Texture<'c>>,
+    chains_by_heat: Vec<(u16, portalcast_format::TextureChain)>,
+    sky: Option<Sky<'c>>,
+    sprites: Vec<Sprite<'c>>,
+    sprite_sets: Vec<SpriteSet<'c>>,
+    maps: Vec<MapTables<'c>>,
+}
+
+impl HostTables<'_> {
+    /// Everything as one value, as the engine takes it.
+    pub fn assets(&self) -> portalcast_format::Assets<'_> {
+        portalcast_format::Assets {
+            palette: &self.compiled.palette,
+            colormap: &self.compiled.colormap,
+            textures: &self.textures,
+            texel_blob: &[],
+            texel_ewram_len: 0,
+            texture_chains_by_heat: &self.chains_by_heat,
+            sky: self.sky,
+            blend: self.compiled.blend(),
+            sprites: &self.sprites,
+            sprite_sets: &self.sprite_sets,
+            maps: &self.maps,
+        }
     }
 }
 

@@ -3,9 +3,7 @@
 #![no_std]
 #![no_main]
 
-use portalcast::hw::{log, Machine, ObjVram};
-use portalcast::player::{input::Controls, Player};
-use portalcast::render::view::Settings;
+use portalcast::prelude::*;
 
 /// The compiled assets: `ASSETS`, and each table on its own (build.rs). A game uses what it
 /// needs of them.
