@@ -26,6 +26,9 @@ static WRITTEN: GbaCell<u32> = GbaCell::new(0);
 static CHAINED: GbaCell<Option<IrqFn>> = GbaCell::new(None);
 
 /// Runs in IRQ mode on every interrupt (the display enables VBlank's; a game may enable more).
+/// In IWRAM: it interrupts every frame once or more, and from the cartridge its ARM code cost
+/// the frame more than its 116 bytes of IWRAM are worth elsewhere (docs/BENCH.md).
+#[cfg_attr(target_os = "none", link_section = ".iwram.input_on_interrupt")]
 extern "C" fn on_interrupt(bits: IrqBits) {
     if bits.vblank() {
         let written = WRITTEN.read();
