@@ -284,6 +284,8 @@ impl<T> EwramSlot<T> {
     }
 
     /// The slot's room, once; panics if it was taken before.
+    // A cell's hand-out: the flag, not the borrow, makes the one `&mut`.
+    #[allow(clippy::mut_from_ref)]
     pub fn take(&'static self) -> &'static mut MaybeUninit<T> {
         assert!(!self.taken.get(), "an EwramSlot is taken once");
         self.taken.set(true);
