@@ -260,6 +260,24 @@ fn test() -> TaskResult<()> {
             what,
         )?;
     }
+    // The examples, each a workspace of its own as a game outside this one is: for the GBA, as
+    // their `.cargo/config.toml` builds them.
+    for example in ["minimal", "hud"] {
+        run(
+            cargo()
+                .current_dir(workspace_root().join("examples").join(example))
+                .args(["fmt", "--", "--check"]),
+            &format!("cargo fmt (examples/{example})"),
+        )?;
+        run(
+            cargo()
+                .current_dir(workspace_root().join("examples").join(example))
+                .args(["clippy", "--release", "--target-dir"])
+                .arg(workspace_root().join("target").join("examples"))
+                .args(["--", "-D", "warnings"]),
+            &format!("cargo clippy (examples/{example})"),
+        )?;
+    }
     // Dead intra-doc links and malformed doc comments fail here, not in a reader's browser.
     run(
         cargo()

@@ -87,7 +87,7 @@ extern "C" fn main() -> ! {
             (false, false) => b"KEY 0",
         });
         frame += 1;
-        if frame % 30 == 0 {
+        if frame.is_multiple_of(30) {
             log::info(format_args!(
                 "hud frame={frame} sector={} key={} gate={}",
                 player.camera().sector,

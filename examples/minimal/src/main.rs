@@ -24,7 +24,7 @@ extern "C" fn main() -> ! {
         machine.ticks(|held| player.tick(&controls.read(held), map));
         let stats = machine.draw(map, &player.camera(), &settings);
         frame += 1;
-        if frame % 60 == 0 {
+        if frame.is_multiple_of(60) {
             let camera = player.camera();
             log::info(format_args!(
                 "game frame={frame} x={} y={} sector={} columns={}",
