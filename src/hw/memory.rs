@@ -233,9 +233,10 @@ fn take_ewram(bytes: usize, align: usize) -> usize {
 
 /// Room for a `T` in EWRAM, above the linked statics, handed out once and never taken back: for
 /// the large parts of a game (its live world, a game state with the map's sector table) that
-/// the stack's room in IWRAM cannot hold. Build it in place from a constant so that it never
-/// goes through the stack: `memory::ewram_uninit().write(const { World::new() })`. EWRAM reads
-/// cost 3 cycles (IWRAM 1). Panics if EWRAM is full.
+/// the stack's room in IWRAM cannot hold. Build it in place from a constant, so that the
+/// compiler copies it from the cartridge rather than through the stack:
+/// `memory::ewram_uninit().write(const { World::new() })`. EWRAM reads cost 3 cycles (IWRAM 1).
+/// Panics if EWRAM is full.
 pub fn ewram_uninit<T>() -> &'static mut MaybeUninit<T> {
     let at = take_ewram(core::mem::size_of::<T>(), core::mem::align_of::<T>());
     // SAFETY: `take_ewram` never hands out a byte twice, the bytes lie in EWRAM above every
@@ -252,52 +253,6 @@ pub fn ewram_uninit_slice<T>(len: usize) -> &'static mut [MaybeUninit<T>] {
     let at = take_ewram(bytes, core::mem::align_of::<T>());
     // SAFETY: as `ewram_uninit`, for `len` values.
     unsafe { core::slice::from_raw_parts_mut(at as *mut MaybeUninit<T>, len) }
-}
-
-/// Room for one `T` at an address the link fixes, for a game's state that its hot code reads
-/// every tick: the compiler folds a fixed address into the code that uses it, where state
-/// handed out at run time ([`ewram_uninit`]) comes through a pointer (the shipped game's tick
-/// measured 3 cycles slower that way). Declare it in `.ewram`, which the runtime copies in at
-/// boot (zeros: its flag starts clear, and it costs its size in the cartridge):
-///
-/// ```ignore
-/// #[link_section = ".ewram"]
-/// static GAME: EwramSlot<Game> = EwramSlot::new();
-/// let game = GAME.take().write(const { Game::blank() });
-/// ```
-pub struct EwramSlot<T> {
-    taken: core::cell::Cell<bool>,
-    value: core::cell::UnsafeCell<MaybeUninit<T>>,
-}
-
-// SAFETY: the GBA runs one thread; the interrupt handler never takes a slot, and `take` hands
-// out the value once.
-unsafe impl<T> Sync for EwramSlot<T> {}
-
-impl<T> EwramSlot<T> {
-    /// A slot not taken yet.
-    pub const fn new() -> EwramSlot<T> {
-        EwramSlot {
-            taken: core::cell::Cell::new(false),
-            value: core::cell::UnsafeCell::new(MaybeUninit::uninit()),
-        }
-    }
-
-    /// The slot's room, once; panics if it was taken before.
-    // A cell's hand-out: the flag, not the borrow, makes the one `&mut`.
-    #[allow(clippy::mut_from_ref)]
-    pub fn take(&'static self) -> &'static mut MaybeUninit<T> {
-        assert!(!self.taken.get(), "an EwramSlot is taken once");
-        self.taken.set(true);
-        // SAFETY: the flag makes this the only reference ever made to the value.
-        unsafe { &mut *self.value.get() }
-    }
-}
-
-impl<T> Default for EwramSlot<T> {
-    fn default() -> Self {
-        EwramSlot::new()
-    }
 }
 
 /// A copy of `values` in EWRAM, as [`ewram_uninit_slice`] hands out room: a game's own live

@@ -601,15 +601,11 @@ mod rom {
         )
     }
 
-    /// The game's room: in EWRAM (with a map's live sector table it is too large for the
-    /// stack's room in IWRAM), at an address the link fixes, which the tick's code folds in.
-    #[link_section = ".ewram"]
-    static GAME: memory::EwramSlot<Game<'static>> = memory::EwramSlot::new();
-
-    /// The game on `maps`, in its slot. The blank game is a constant: written without a copy
-    /// on the stack, then started in place.
+    /// The game on `maps`, in EWRAM: with a map's live sector table
+    /// ([`portalcast::world::World`]) it is too large for the stack's room in IWRAM. The blank
+    /// game is a constant: written without a copy on the stack, then started in place.
     fn game_in_ewram(maps: &'static [MapTables<'static>]) -> &'static mut Game<'static> {
-        let game = GAME.take().write(const { Game::blank(&[]) });
+        let game = memory::ewram_uninit().write(const { Game::blank(&[]) });
         game.set_maps(maps);
         game.start();
         game
